@@ -1,0 +1,35 @@
+// Options shared by every verb that renders (render, bench, later view/experiment).
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace tandem {
+
+struct RenderOptions {
+  std::string scene = "cornell";   // path or built-in name
+  std::string pipeline = "deferred";
+  int width = 1280, height = 720;  // [1, 16384]
+  std::string out;                 // image file or folder
+  std::string aov;                 // comma-separated buffer names
+  int frames = 1;                  // [1, 1000000]
+  uint64_t seed = 0;
+  int threads = 0;                 // 0 = all cores
+  std::string cameraPos, lookAt, up;
+  float vfov = 0;                  // 0 = scene's
+  std::vector<std::string> pointLights, sunLights;
+  std::string emissiveLights = "auto";  // auto | on | off
+};
+
+void addRenderOptions(CLI::App* app, RenderOptions& o);
+// Validates option values; throws InputError naming the option.
+void validateRenderOptions(const RenderOptions& o);
+// Loads the scene, adds command-line lights.
+Scene loadSceneFor(const RenderOptions& o);
+// The scene camera with command-line overrides applied (a default view when it has none).
+CameraDesc cameraFor(const Scene& s, const RenderOptions& o);
+std::vector<std::string> splitList(const std::string& s);
+
+}  // namespace tandem

@@ -1,0 +1,31 @@
+// tandem: the hybrid renderer's command line. Verbs: render, info, compare, bench.
+#include <cstdio>
+#include <map>
+
+#include "core/error.h"
+#include "verbs.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Tandem: a hybrid rasterization + ray tracing renderer"};
+  app.require_subcommand(1);
+  std::map<std::string, tandem::VerbRunner> verbs = {{"render", tandem::addRenderVerb(app)},
+                                                     {"info", tandem::addInfoVerb(app)},
+                                                     {"compare", tandem::addCompareVerb(app)},
+                                                     {"bench", tandem::addBenchVerb(app)}};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (auto& [name, run] : verbs)
+      if (app.got_subcommand(name)) return run();
+  } catch (const tandem::InputError& e) {
+    std::fprintf(stderr, "tandem: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tandem: error: %s\n", e.what());
+    return 1;
+  }
+  return 1;
+}

@@ -1,0 +1,123 @@
+// tandem bench: runs the scene's camera path after warm-up frames and reports per-pass
+// median/mean/min/max milliseconds, frame time and fps (and rays/s for passes that trace).
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <thread>
+
+#include "cli_options.h"
+#include "core/error.h"
+#include "core/json_fields.h"
+#include "pipeline/renderer.h"
+#include "verbs.h"
+
+namespace tandem {
+
+namespace {
+
+// Camera for benchmark frame i of n: along the scene's path, or a gentle orbit when it has none.
+CameraDesc benchCamera(const Scene& s, const CameraDesc& base, int i, int n) {
+  float u = n > 1 ? float(i) / float(n - 1) : 0.0f;
+  if (!s.cameraPath.empty()) {
+    float t0 = s.cameraPath.front().time, t1 = s.cameraPath.back().time;
+    return sampleCameraPath(s.cameraPath, base, t0 + (t1 - t0) * u);
+  }
+  CameraDesc c = base;
+  Vec3 off = base.position - base.lookAt;
+  float a = radians(-20.0f + 40.0f * u);
+  c.position = base.lookAt + Vec3(off.x * std::cos(a) + off.z * std::sin(a), off.y, -off.x * std::sin(a) + off.z * std::cos(a));
+  return c;
+}
+
+struct BenchVerb {
+  RenderOptions opts;
+  int warmup = 5;
+  std::string json;
+
+  int run() {
+    if (opts.frames == 1) opts.frames = 60;
+    validateRenderOptions(opts);
+    if (warmup < 0 || warmup > 10000) throw InputError("command line", "--warmup", "must be in [0, 10000]");
+    std::unique_ptr<tbb::global_control> threads;
+    if (opts.threads > 0)
+      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opts.threads);
+    Pipeline pipeline = Pipeline::load(opts.pipeline);
+    Scene scene = loadSceneFor(opts);
+    CameraDesc base = cameraFor(scene, opts);
+    RenderSettings settings{.width = opts.width, .height = opts.height, .seed = opts.seed};
+    Renderer renderer(scene, std::move(pipeline), settings);
+    for (int f = 0; f < warmup; ++f) renderer.renderFrame(f, benchCamera(scene, base, 0, opts.frames));
+    std::vector<std::string> order;
+    std::map<std::string, std::vector<double>> ms;
+    std::map<std::string, double> rays, rayMs;
+    std::vector<double> total;
+    for (int f = 0; f < opts.frames; ++f) {
+      FrameTimings ft = renderer.renderFrame(warmup + f, benchCamera(scene, base, f, opts.frames));
+      for (const PassTiming& p : ft.passes) {
+        if (!ms.count(p.name)) order.push_back(p.name);
+        ms[p.name].push_back(p.ms);
+        rays[p.name] += p.rays;
+        rayMs[p.name] += p.ms;
+      }
+      total.push_back(ft.totalMs);
+    }
+    unsigned cores = std::thread::hardware_concurrency();
+    std::printf("bench: scene %s, pipeline %s, %dx%d, %d frames after %d warm-up, %s threads (%u cores)\n",
+                scene.name.c_str(), renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames, warmup,
+                opts.threads ? std::to_string(opts.threads).c_str() : "all", cores);
+    std::printf("  %-20s %9s %9s %9s %9s %12s\n", "pass", "median", "mean", "min", "max", "Mrays/s");
+    Json report;
+    report["scene"] = scene.name;
+    report["pipeline"] = renderer.pipeline().name;
+    report["width"] = opts.width;
+    report["height"] = opts.height;
+    report["frames"] = opts.frames;
+    report["warmup"] = warmup;
+    report["threads"] = opts.threads;
+    report["cores"] = cores;
+    report["passes"] = Json::object();
+    for (const std::string& name : order) {
+      TimingStats s = summarize(ms[name]);
+      double mrays = rays[name] > 0 ? rays[name] / (rayMs[name] * 1e3) : 0.0;
+      std::printf("  %-20s %9.3f %9.3f %9.3f %9.3f", name.c_str(), s.median, s.mean, s.min, s.max);
+      if (mrays > 0) std::printf(" %12.2f", mrays);
+      std::printf("\n");
+      Json pj = {{"median_ms", s.median}, {"mean_ms", s.mean}, {"min_ms", s.min}, {"max_ms", s.max}};
+      if (mrays > 0) pj["mrays_per_s"] = mrays;
+      report["passes"][name] = pj;
+    }
+    TimingStats t = summarize(total);
+    std::printf("  %-20s %9.3f %9.3f %9.3f %9.3f\n", "frame", t.median, t.mean, t.min, t.max);
+    std::printf("  fps (from median frame) %.2f\n", t.median > 0 ? 1000.0 / t.median : 0.0);
+    report["total"] = {{"median_ms", t.median}, {"mean_ms", t.mean}, {"min_ms", t.min}, {"max_ms", t.max},
+                       {"fps", t.median > 0 ? 1000.0 / t.median : 0.0}};
+    if (!json.empty()) {
+      std::string tmp = json + ".tmp";
+      {
+        std::ofstream f(tmp);
+        if (!f) throw InputError(json, "", "cannot write");
+        f << report.dump(2) << "\n";
+      }
+      std::filesystem::rename(tmp, json);
+      std::printf("wrote %s\n", json.c_str());
+    }
+    return 0;
+  }
+};
+
+}  // namespace
+
+VerbRunner addBenchVerb(CLI::App& app) {
+  auto verb = std::make_shared<BenchVerb>();
+  CLI::App* sub = app.add_subcommand("bench", "Time a pipeline along the scene's camera path");
+  sub->add_option("scene", verb->opts.scene, "Scene (same as --scene)");
+  addRenderOptions(sub, verb->opts);
+  sub->add_option("--warmup", verb->warmup, "Warm-up frames not timed");
+  sub->add_option("--json", verb->json, "Write the report as JSON");
+  return [verb] { return verb->run(); };
+}
+
+}  // namespace tandem

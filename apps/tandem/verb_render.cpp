@@ -1,0 +1,97 @@
+// tandem render: renders frames of a scene through a pipeline and writes the output image
+// (PNG tonemapped + EXR linear) and any requested AOVs. Per-pass timings are printed.
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "cli_options.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "pipeline/aov.h"
+#include "pipeline/renderer.h"
+#include "verbs.h"
+
+namespace tandem {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RenderVerb {
+  RenderOptions opts;
+
+  int run() {
+    validateRenderOptions(opts);
+    std::unique_ptr<tbb::global_control> threads;
+    if (opts.threads > 0)
+      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opts.threads);
+    Pipeline pipeline = Pipeline::load(opts.pipeline);
+    std::vector<std::string> aovs = splitList(opts.aov);
+    std::vector<std::string> produced = pipeline.producedBuffers();
+    for (const std::string& a : aovs)
+      if (std::find(produced.begin(), produced.end(), a) == produced.end()) {
+        std::string list;
+        for (auto& p : produced) list += (list.empty() ? "" : ", ") + p;
+        throw InputError("command line", "--aov", "pipeline '" + pipeline.name + "' has no buffer '" + a + "' (has: " + list + ")");
+      }
+    // Work out every output path before rendering, so bad paths fail fast and nothing is written.
+    std::string out = opts.out.empty() ? "out" : opts.out;
+    bool isFile = hasExtension(out, ".png") || hasExtension(out, ".exr");
+    fs::path dir = isFile ? fs::path(out).parent_path() : fs::path(out);
+    if (!dir.empty() && !fs::exists(dir)) fs::create_directories(dir);
+    Scene scene = loadSceneFor(opts);
+    CameraDesc camera = cameraFor(scene, opts);
+    std::string stem = isFile ? fs::path(out).stem().string() : scene.name + "_" + pipeline.name;
+    fs::path base = dir / stem;
+
+    RenderSettings settings{.width = opts.width, .height = opts.height, .seed = opts.seed};
+    Renderer renderer(scene, std::move(pipeline), settings);
+    FrameTimings last;
+    for (int f = 0; f < opts.frames; ++f) last = renderer.renderFrame(f, camera);
+    std::printf("scene %s (%zu triangles, %zu lights), pipeline %s, %dx%d, %d frame(s)\n",
+                scene.name.c_str(), scene.triangleCount(), scene.lights.size(),
+                renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames);
+    for (const PassTiming& p : last.passes) {
+      std::printf("  %-20s %9.2f ms", p.name.c_str(), p.ms);
+      if (p.rays > 0) std::printf("  %8.2f Mrays/s", p.rays / (p.ms * 1e3));
+      std::printf("\n");
+    }
+    std::printf("  %-20s %9.2f ms\n", "frame", last.totalMs);
+
+    FrameContext& ctx = renderer.context();
+    const std::string& outName = renderer.pipeline().output;
+    if (isFile) {
+      writeBuffer(out, outName, ctx.input(outName));
+      std::printf("wrote %s\n", out.c_str());
+    } else {
+      std::string png = base.string() + ".png";
+      writeBuffer(png, outName, ctx.input(outName));
+      std::printf("wrote %s\n", png.c_str());
+      if (ctx.buffers.count("hdr")) {
+        std::string exr = base.string() + ".exr";
+        writeExr(exr, ctx.input("hdr"));
+        std::printf("wrote %s\n", exr.c_str());
+      }
+    }
+    for (const std::string& a : aovs) {
+      std::string ext = isFile && hasExtension(out, ".exr") ? ".exr" : ".png";
+      std::string p = base.string() + "_" + a + ext;
+      writeBuffer(p, a, ctx.input(a));
+      std::printf("wrote %s\n", p.c_str());
+    }
+    return 0;
+  }
+};
+
+}  // namespace
+
+VerbRunner addRenderVerb(CLI::App& app) {
+  auto verb = std::make_shared<RenderVerb>();
+  CLI::App* sub = app.add_subcommand("render", "Render a scene through a pipeline to PNG/EXR");
+  sub->add_option("scene", verb->opts.scene, "Scene (same as --scene)");
+  addRenderOptions(sub, verb->opts);
+  return [verb] { return verb->run(); };
+}
+
+}  // namespace tandem

@@ -1,0 +1,18 @@
+// Colour-space transfer functions (IEC 61966-2-1 sRGB).
+#pragma once
+#include <cmath>
+
+#include "core/math.h"
+
+namespace tandem {
+
+inline float srgbToLinear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+inline float linearToSrgb(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+inline Vec3 srgbToLinear(Vec3 c) { return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)}; }
+
+}  // namespace tandem

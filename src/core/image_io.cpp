@@ -1,0 +1,153 @@
+#include "core/image_io.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <unistd.h>
+
+#include "core/error.h"
+
+namespace tandem {
+namespace fs = std::filesystem;
+
+bool hasExtension(const std::string& path, const std::string& ext) {
+  if (path.size() < ext.size()) return false;
+  return std::equal(ext.rbegin(), ext.rend(), path.rbegin(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+  });
+}
+
+namespace {
+
+// A temporary sibling name unique to this process; renamed over `path` once complete.
+std::string tempName(const std::string& path) {
+  fs::path p(path);
+  return (p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(getpid())))
+      .string();
+}
+
+void commit(const std::string& tmp, const std::string& path) {
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError(path, "", "cannot rename temporary file into place");
+  }
+}
+
+void checkWritable(const std::string& path, const Buffer& img) {
+  if (img.width <= 0 || img.height <= 0 || img.channels <= 0)
+    throw InputError(path, "", "refusing to write an empty image");
+  fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw InputError(path, "", "output folder does not exist");
+}
+
+}  // namespace
+
+void writePng(const std::string& path, const Buffer& img) {
+  checkWritable(path, img);
+  int c = std::min(img.channels, 4);
+  std::vector<unsigned char> bytes(img.pixelCount() * c);
+  for (size_t i = 0; i < img.pixelCount(); ++i)
+    for (int k = 0; k < c; ++k) {
+      float v = img.data[i * img.channels + k];
+      v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
+      bytes[i * c + k] = static_cast<unsigned char>(std::lround(v * 255.0f));
+    }
+  std::string tmp = tempName(path);
+  if (!stbi_write_png(tmp.c_str(), img.width, img.height, c, bytes.data(), img.width * c)) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw InputError(path, "", "PNG write failed");
+  }
+  commit(tmp, path);
+}
+
+void writeExr(const std::string& path, const Buffer& img) {
+  checkWritable(path, img);
+  static const char* kRgba[] = {"R", "G", "B", "A"};
+  int c = std::min(img.channels, 4);
+  std::string tmp = tempName(path);
+  try {
+    Imf::Header header(img.width, img.height);
+    Imf::FrameBuffer fb;
+    for (int k = 0; k < c; ++k) {
+      const char* name = c == 1 ? "Y" : kRgba[k];
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      fb.insert(name, Imf::Slice(Imf::FLOAT, (char*)(img.data.data() + k),
+                                 sizeof(float) * img.channels,
+                                 sizeof(float) * img.channels * img.width));
+    }
+    Imf::OutputFile file(tmp.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(img.height);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw InputError(path, "", std::string("EXR write failed: ") + e.what());
+  }
+  commit(tmp, path);
+}
+
+namespace {
+
+Buffer loadExr(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    Imath::Box2i dw = file.header().dataWindow();
+    int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    if (w <= 0 || h <= 0 || size_t(w) * h > (size_t(1) << 28))
+      throw InputError(path, "dataWindow", "absurd image size");
+    Buffer img(w, h, 3);
+    const Imf::ChannelList& ch = file.header().channels();
+    bool gray = ch.findChannel("Y") && !ch.findChannel("R");
+    Imf::FrameBuffer fb;
+    char* base = (char*)(img.data.data()) - (size_t(dw.min.y) * w + dw.min.x) * 3 * sizeof(float);
+    const char* names[3] = {"R", "G", "B"};
+    for (int k = 0; k < 3; ++k)
+      fb.insert(gray ? "Y" : names[k],
+                Imf::Slice(Imf::FLOAT, base + k * sizeof(float), 3 * sizeof(float),
+                           3 * sizeof(float) * w, 1, 1, 0.0));
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    return img;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, "", std::string("cannot read EXR: ") + e.what());
+  }
+}
+
+Buffer load8bit(const std::string& path, int wantChannels) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* px = stbi_load(path.c_str(), &w, &h, &n, wantChannels);
+  if (!px) {
+    std::string why = fs::exists(path) ? stbi_failure_reason() : "file not found";
+    throw InputError(path, "", "cannot read image: " + why);
+  }
+  Buffer img(w, h, wantChannels);
+  for (size_t i = 0; i < img.data.size(); ++i) img.data[i] = px[i] / 255.0f;
+  stbi_image_free(px);
+  return img;
+}
+
+}  // namespace
+
+Buffer loadImage(const std::string& path) {
+  if (hasExtension(path, ".exr")) return loadExr(path);
+  return load8bit(path, 3);
+}
+
+Buffer loadTextureFile(const std::string& path) { return load8bit(path, 4); }
+
+}  // namespace tandem

@@ -1,0 +1,22 @@
+// Image files: PNG (8-bit sRGB, via stb) and EXR (32-bit float linear, via OpenEXR).
+// Writes go to a temporary name in the same folder and are renamed on success, so a failed
+// write never leaves a partial image.
+#pragma once
+#include <string>
+
+#include "core/buffer.h"
+
+namespace tandem {
+
+// Writes 1-4 channel values already in [0,1] display space as an 8-bit PNG.
+void writePng(const std::string& path, const Buffer& img);
+// Writes a float EXR with channels R,G,B(,A) or Y for one channel.
+void writeExr(const std::string& path, const Buffer& img);
+// Loads PNG/JPEG (values in [0,1], display encoded) or EXR (linear float); RGB output.
+Buffer loadImage(const std::string& path);
+// Loads an 8-bit image file for texturing: RGBA in [0,1], not yet linearised.
+Buffer loadTextureFile(const std::string& path);
+
+bool hasExtension(const std::string& path, const std::string& ext);  // case-insensitive
+
+}  // namespace tandem

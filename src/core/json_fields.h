@@ -1,0 +1,42 @@
+// Strict reading of a JSON object: every key is read with a default at the point of use, and
+// finish() rejects keys nobody read (misspellings), naming the file and the field path.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "core/error.h"
+#include "core/math.h"
+
+namespace tandem {
+
+using Json = nlohmann::json;
+
+// Parses a whole JSON file; errors name the file and the line/byte of the problem.
+Json readJsonFile(const std::string& path);
+
+class JsonFields {
+ public:
+  JsonFields(const Json& j, std::string file, std::string where);
+
+  bool has(const std::string& key) const { return j_.contains(key); }
+  const Json& raw(const std::string& key);  // marks the key used; it must exist
+  float number(const std::string& key, float def, float lo = -1e30f, float hi = 1e30f);
+  int integer(const std::string& key, int def, int lo, int hi);
+  bool boolean(const std::string& key, bool def);
+  std::string string(const std::string& key, const std::string& def);
+  Vec3 vec3(const std::string& key, Vec3 def);
+  Vec2 vec2(const std::string& key, Vec2 def);
+  // Name of the field for error messages, e.g. "objects[2].position".
+  std::string field(const std::string& key) const { return where_.empty() ? key : where_ + "." + key; }
+  const std::string& file() const { return file_; }
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+  void finish() const;  // throws on unknown keys
+
+ private:
+  const Json& j_;
+  std::string file_, where_;
+  std::set<std::string> used_;
+};
+
+}  // namespace tandem

@@ -1,0 +1,25 @@
+// Tile-parallel loops over an image, written once (oneTBB). The body gets a tile rectangle
+// [x0,x1) x [y0,y1) and is called once per tile, never per pixel.
+#pragma once
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+namespace tandem {
+
+constexpr int kTileSize = 32;
+
+template <class Body>
+void parallelTiles(int width, int height, Body&& body, int tile = kTileSize) {
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, tile, 0, width, tile),
+                    [&](const tbb::blocked_range2d<int>& r) {
+                      body(r.cols().begin(), r.rows().begin(), r.cols().end(), r.rows().end());
+                    });
+}
+
+template <class Body>
+void parallelRange(size_t n, Body&& body, size_t grain = 1024) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain),
+                    [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
+}
+
+}  // namespace tandem

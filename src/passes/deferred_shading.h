@@ -1,0 +1,19 @@
+// deferred_shading: seed 002 Listing 5 over the G-buffer, through the one shading function
+// (shading/blinn_phong.h); background pixels show the skybox along the camera ray.
+// Inputs: position, normal, geo_normal, diffuse, specular, emission, ambient, optical, object_id,
+// material_id. Output: hdr (linear radiance). Parameters: none.
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class DeferredShadingPass : public Pass {
+ public:
+  std::string type() const override { return "deferred_shading"; }
+  std::string description() const override { return "Blinn-Phong lighting of the G-buffer (Listing 5)"; }
+  std::vector<BufferSlot> inputs() const override;
+  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem

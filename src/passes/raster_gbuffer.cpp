@@ -1,0 +1,34 @@
+#include "passes/raster_gbuffer.h"
+
+#include "core/parallel.h"
+#include "pipeline/frame_context.h"
+#include "raster/gbuffer.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+std::vector<BufferSlot> RasterGBufferPass::outputs() const { return gbufferSlots(); }
+
+void RasterGBufferPass::execute(FrameContext& ctx) {
+  ctx.rasterizer.render(ctx.frame, ctx.camera, ctx.visibility);
+  GBufferView g = GBufferView::create(ctx, *this);
+  const VisibilityBuffer& vis = ctx.visibility;
+  parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        size_t i = size_t(y) * ctx.width + x;
+        if (vis.object[i] == kNoObject) {
+          g.writeBackground(x, y);
+          continue;
+        }
+        // Barycentrics come from the pixel's camera ray against the visible triangle, which is
+        // exact and perspective-correct (and identical to what a primary ray would compute).
+        Vec3 o, d;
+        ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
+        SurfaceSample s = resolveSurface(ctx.frame, int(vis.object[i]), int(vis.prim[i]), o, d);
+        g.write(x, y, s, vis.depth[i], motionVector(ctx, s.object, s.position));
+      }
+  });
+}
+
+}  // namespace tandem

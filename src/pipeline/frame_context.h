@@ -1,0 +1,40 @@
+// Everything one frame's passes share: the evaluated scene, camera (and last frame's), the ray
+// tracer, named buffers, and per-pass timings/counters.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+
+#include "core/buffer.h"
+#include "core/error.h"
+#include "core/profiler.h"
+#include "raster/rasterizer.h"
+#include "rt/ray_tracer.h"
+#include "scene/camera.h"
+#include "scene/frame_scene.h"
+
+namespace tandem {
+
+struct FrameContext {
+  const Scene* scene = nullptr;
+  FrameScene frame;
+  Camera camera, prevCamera;
+  int width = 0, height = 0;
+  int frameIndex = 0;
+  uint64_t seed = 0;
+  std::map<std::string, Buffer> buffers;
+  Rasterizer rasterizer;        // owns binning scratch reused across frames
+  VisibilityBuffer visibility;  // last raster result (also shown as AOVs)
+  double passRays = 0;          // a pass adds the rays it traced; the pipeline records it
+
+  // The ray tracer, (re)built for the current frame's geometry on first use in a frame.
+  RayTracer& rayTracer();
+  // A buffer of the given shape, created or reshaped (contents kept when the shape matches).
+  Buffer& output(const std::string& name, int channels);
+  const Buffer& input(const std::string& name) const;
+
+ private:
+  std::unique_ptr<RayTracer> rt_;
+};
+
+}  // namespace tandem

@@ -1,0 +1,56 @@
+// A pass declares its inputs, outputs and parameters before it runs, so a pipeline can check
+// its wiring when it loads, the viewer can generate widgets, and docs/passes.md can be derived.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/json_fields.h"
+
+namespace tandem {
+
+struct FrameContext;
+
+enum class ParamType { Float, Int, Bool, Enum };
+
+// One parameter, described once: name, type, default, range, doc (and choices for enums).
+struct ParamDesc {
+  std::string name;
+  ParamType type = ParamType::Float;
+  double defaultValue = 0, min = 0, max = 1;
+  std::string doc;
+  std::vector<std::string> choices;  // Enum: value is the index into choices
+};
+
+// A buffer slot: the slot name (fixed by the pass) and the channel count it reads or writes.
+struct BufferSlot {
+  std::string slot;
+  int channels = 1;
+};
+
+class Pass {
+ public:
+  virtual ~Pass() = default;
+  virtual std::string type() const = 0;
+  virtual std::string description() const = 0;
+  virtual std::vector<BufferSlot> inputs() const { return {}; }
+  virtual std::vector<BufferSlot> outputs() const { return {}; }
+  virtual std::vector<ParamDesc> params() const { return {}; }
+  virtual void execute(FrameContext& ctx) = 0;
+
+  // Parameter values, validated against params(); read with param("name").
+  double param(const std::string& name) const;
+  void setParam(const std::string& name, double value);  // throws on unknown name or range
+  void resetParams();
+
+  // Slot -> buffer name in the frame context (defaults to the slot name).
+  std::map<std::string, std::string> bindings;
+  const std::string& bufferName(const std::string& slot) const;
+  std::string label;  // instance name for timings (defaults to type)
+
+ private:
+  std::map<std::string, double> values_;
+};
+
+}  // namespace tandem

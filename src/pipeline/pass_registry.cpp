@@ -1,0 +1,24 @@
+// The explicit list of pass types. Add a new pass here (and to src/CMakeLists.txt).
+#include "passes/deferred_shading.h"
+#include "passes/raster_gbuffer.h"
+#include "passes/rt_gbuffer.h"
+#include "passes/tonemap.h"
+#include "pipeline/pipeline.h"
+
+namespace tandem {
+
+const std::vector<std::string>& passTypes() {
+  static const std::vector<std::string> types = {"raster_gbuffer", "rt_gbuffer", "deferred_shading",
+                                                 "tonemap"};
+  return types;
+}
+
+std::unique_ptr<Pass> createPass(const std::string& type) {
+  if (type == "raster_gbuffer") return std::make_unique<RasterGBufferPass>();
+  if (type == "rt_gbuffer") return std::make_unique<RTGBufferPass>();
+  if (type == "deferred_shading") return std::make_unique<DeferredShadingPass>();
+  if (type == "tonemap") return std::make_unique<TonemapPass>();
+  return nullptr;
+}
+
+}  // namespace tandem

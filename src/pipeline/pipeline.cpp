@@ -1,0 +1,204 @@
+#include "pipeline/pipeline.h"
+
+#include <filesystem>
+#include <map>
+
+#include "core/image_io.h"
+#include "pipeline/frame_context.h"
+
+namespace tandem {
+
+namespace {
+
+// Built-in pipelines: the same JSON a user would write (also in pipelines/*.json).
+const std::map<std::string, std::string>& builtins() {
+  static const std::map<std::string, std::string> b = {
+      {"deferred", R"({
+  "name": "deferred",
+  "passes": [
+    {"type": "raster_gbuffer"},
+    {"type": "deferred_shading"},
+    {"type": "tonemap"}
+  ],
+  "output": "output"
+})"},
+      {"deferred-rt-gbuffer", R"({
+  "name": "deferred-rt-gbuffer",
+  "passes": [
+    {"type": "rt_gbuffer"},
+    {"type": "deferred_shading"},
+    {"type": "tonemap"}
+  ],
+  "output": "output"
+})"}};
+  return b;
+}
+
+}  // namespace
+
+const std::vector<std::string>& Pipeline::builtinNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (auto& [k, v] : builtins()) n.push_back(k);
+    return n;
+  }();
+  return names;
+}
+
+std::string Pipeline::builtinJson(const std::string& name) {
+  auto it = builtins().find(name);
+  return it == builtins().end() ? std::string() : it->second;
+}
+
+Pipeline Pipeline::load(const std::string& nameOrFile) {
+  std::string j = builtinJson(nameOrFile);
+  if (!j.empty()) return fromJson(Json::parse(j), "built-in pipeline '" + nameOrFile + "'");
+  if (!std::filesystem::exists(nameOrFile)) {
+    std::string known;
+    for (auto& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
+    throw InputError(nameOrFile, "pipeline", "not a file and not a built-in pipeline (" + known + ")");
+  }
+  return fromJson(readJsonFile(nameOrFile), nameOrFile);
+}
+
+Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
+  JsonFields f(j, source, "");
+  Pipeline p;
+  p.name = f.string("name", std::filesystem::path(source).stem().string());
+  p.output = f.string("output", "output");
+  const Json& passes = f.raw("passes");
+  if (!passes.is_array() || passes.empty()) f.fail("passes", "expected a non-empty array of passes");
+  for (size_t i = 0; i < passes.size(); ++i) {
+    std::string where = "passes[" + std::to_string(i) + "]";
+    JsonFields pf(passes[i], source, where);
+    std::string type = pf.string("type", "");
+    std::unique_ptr<Pass> pass = createPass(type);
+    if (!pass) {
+      std::string known;
+      for (auto& t : passTypes()) known += (known.empty() ? "" : ", ") + t;
+      pf.fail("type", "unknown pass type '" + type + "' (known: " + known + ")");
+    }
+    pass->label = pf.string("label", type);
+    if (pf.has("params")) {
+      const Json& params = pf.raw("params");
+      if (!params.is_object()) pf.fail("params", "expected an object");
+      for (auto it = params.begin(); it != params.end(); ++it) {
+        const std::vector<ParamDesc> all = pass->params();
+        auto d = std::find_if(all.begin(), all.end(), [&](const ParamDesc& x) { return x.name == it.key(); });
+        if (d == all.end()) pf.fail("params." + it.key(), "unknown parameter of pass '" + type + "'");
+        double v;
+        if (d->type == ParamType::Enum && it.value().is_string()) {
+          auto c = std::find(d->choices.begin(), d->choices.end(), it.value().get<std::string>());
+          if (c == d->choices.end()) pf.fail("params." + it.key(), "unknown choice '" + it.value().get<std::string>() + "'");
+          v = double(c - d->choices.begin());
+        } else if (d->type == ParamType::Bool && it.value().is_boolean()) {
+          v = it.value().get<bool>() ? 1 : 0;
+        } else if (it.value().is_number()) {
+          v = it.value().get<double>();
+        } else {
+          pf.fail("params." + it.key(), "wrong type");
+        }
+        try {
+          pass->setParam(it.key(), v);
+        } catch (const InputError& e) {
+          pf.fail("params." + it.key(), e.what());
+        }
+      }
+    }
+    for (const char* dir : {"inputs", "outputs"}) {
+      if (!pf.has(dir)) continue;
+      const Json& b = pf.raw(dir);
+      if (!b.is_object()) pf.fail(dir, "expected an object of slot -> buffer name");
+      auto slots = std::string(dir) == "inputs" ? pass->inputs() : pass->outputs();
+      for (auto it = b.begin(); it != b.end(); ++it) {
+        bool known = std::any_of(slots.begin(), slots.end(), [&](const BufferSlot& s) { return s.slot == it.key(); });
+        if (!known) pf.fail(std::string(dir) + "." + it.key(), "pass '" + type + "' has no such slot");
+        if (!it.value().is_string()) pf.fail(std::string(dir) + "." + it.key(), "expected a buffer name");
+        pass->bindings[it.key()] = it.value().get<std::string>();
+      }
+    }
+    pf.finish();
+    p.passes.push_back(std::move(pass));
+  }
+  f.finish();
+  p.validate(source);
+  return p;
+}
+
+void Pipeline::validate(const std::string& source) const {
+  std::map<std::string, int> available;  // buffer -> channels
+  for (size_t i = 0; i < passes.size(); ++i) {
+    const Pass& p = *passes[i];
+    for (const BufferSlot& in : p.inputs()) {
+      const std::string& buf = p.bufferName(in.slot);
+      auto it = available.find(buf);
+      if (it == available.end())
+        throw InputError(source, "passes[" + std::to_string(i) + "] (" + p.type() + ")",
+                         "input '" + buf + "' is not produced by an earlier pass");
+      if (it->second != in.channels)
+        throw InputError(source, "passes[" + std::to_string(i) + "] (" + p.type() + ")",
+                         "input '" + buf + "' has " + std::to_string(it->second) + " channels, expected " +
+                             std::to_string(in.channels));
+    }
+    for (const BufferSlot& out : p.outputs()) available[p.bufferName(out.slot)] = out.channels;
+  }
+  if (!available.count(output))
+    throw InputError(source, "output", "buffer '" + output + "' is not produced by any pass");
+}
+
+std::vector<std::string> Pipeline::producedBuffers() const {
+  std::vector<std::string> names;
+  for (const auto& p : passes)
+    for (const BufferSlot& out : p->outputs()) {
+      const std::string& n = p->bufferName(out.slot);
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    }
+  return names;
+}
+
+bool Pipeline::needsRayTracer() const {
+  for (const auto& p : passes)
+    if (p->type().rfind("rt_", 0) == 0) return true;
+  return false;
+}
+
+FrameTimings Pipeline::execute(FrameContext& ctx) {
+  FrameTimings ft;
+  auto frameStart = Clock::now();
+  for (auto& p : passes) {
+    ctx.passRays = 0;
+    auto t0 = Clock::now();
+    p->execute(ctx);
+    ft.passes.push_back({p->label.empty() ? p->type() : p->label, msSince(t0), ctx.passRays});
+  }
+  ft.totalMs = msSince(frameStart);
+  return ft;
+}
+
+Json Pipeline::toJson() const {
+  Json j;
+  j["name"] = name;
+  j["output"] = output;
+  j["passes"] = Json::array();
+  for (const auto& p : passes) {
+    Json pj;
+    pj["type"] = p->type();
+    if (p->label != p->type()) pj["label"] = p->label;
+    Json params = Json::object();
+    for (const ParamDesc& d : p->params()) params[d.name] = p->param(d.name);
+    if (!params.empty()) pj["params"] = params;
+    if (!p->bindings.empty()) {
+      Json in = Json::object(), out = Json::object();
+      for (const BufferSlot& s : p->inputs())
+        if (p->bindings.count(s.slot)) in[s.slot] = p->bindings.at(s.slot);
+      for (const BufferSlot& s : p->outputs())
+        if (p->bindings.count(s.slot)) out[s.slot] = p->bindings.at(s.slot);
+      if (!in.empty()) pj["inputs"] = in;
+      if (!out.empty()) pj["outputs"] = out;
+    }
+    j["passes"].push_back(pj);
+  }
+  return j;
+}
+
+}  // namespace tandem

@@ -1,0 +1,44 @@
+// A pipeline: an ordered list of passes wired through named buffers, described in JSON
+// (built-ins ship in pipelines/ and are compiled in). Wiring is checked before the first frame;
+// every pass is timed every frame.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/json_fields.h"
+#include "core/profiler.h"
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+struct FrameContext;
+
+// The explicit list of pass types (no static registration).
+std::unique_ptr<Pass> createPass(const std::string& type);
+const std::vector<std::string>& passTypes();
+
+class Pipeline {
+ public:
+  std::string name;
+  std::string output = "output";  // the buffer written as the final image
+  std::vector<std::unique_ptr<Pass>> passes;
+
+  static Pipeline fromJson(const Json& j, const std::string& source);
+  // A built-in name (deferred, deferred-rt-gbuffer) or a path to a pipeline JSON file.
+  static Pipeline load(const std::string& nameOrFile);
+  static const std::vector<std::string>& builtinNames();
+  static std::string builtinJson(const std::string& name);  // empty when unknown
+
+  // Every input is produced by an earlier pass with the same channel count, and the output
+  // buffer exists. Throws InputError naming `source`, the pass and the buffer.
+  void validate(const std::string& source) const;
+  // Buffer names produced by the passes, in order (for --aov listings and the viewer).
+  std::vector<std::string> producedBuffers() const;
+  bool needsRayTracer() const;
+
+  FrameTimings execute(FrameContext& ctx);
+  Json toJson() const;  // with current parameter values
+};
+
+}  // namespace tandem

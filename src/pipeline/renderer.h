@@ -1,0 +1,35 @@
+// The render loop shared by `render`, `bench` and (later) the viewer: evaluates the scene at the
+// frame's time, sets up this and last frame's cameras, and runs the pipeline.
+#pragma once
+#include "pipeline/frame_context.h"
+#include "pipeline/pipeline.h"
+
+namespace tandem {
+
+struct RenderSettings {
+  int width = 1280, height = 720;  // [1, 16384]
+  uint64_t seed = 0;
+  float frameRate = 30.0f;  // frame index -> scene time (seconds) = index / frameRate
+};
+
+class Renderer {
+ public:
+  Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings);
+
+  // Renders frame `index` seen through `camera` (scene time index / frameRate).
+  FrameTimings renderFrame(int index, const CameraDesc& camera);
+  const Buffer& output() const { return ctx_.input(pipeline_.output); }
+  FrameContext& context() { return ctx_; }
+  Pipeline& pipeline() { return pipeline_; }
+
+ private:
+  const Scene& scene_;
+  Pipeline pipeline_;
+  RenderSettings settings_;
+  FrameContext ctx_;
+  bool first_ = true;
+  CameraDesc lastCamera_;
+  float lastTime_ = 0;
+};
+
+}  // namespace tandem

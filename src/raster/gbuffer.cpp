@@ -1,0 +1,91 @@
+#include "raster/gbuffer.h"
+
+#include "pipeline/frame_context.h"
+
+namespace tandem {
+
+const std::vector<BufferSlot>& gbufferSlots() {
+  static const std::vector<BufferSlot> slots = {
+      {"depth", 1},    {"position", 3}, {"normal", 3},    {"geo_normal", 3},
+      {"diffuse", 4},  {"specular", 4}, {"emission", 3},  {"ambient", 3},
+      {"optical", 3},  {"object_id", 1}, {"material_id", 1}, {"motion", 2}};
+  return slots;
+}
+
+GBufferView GBufferView::create(FrameContext& ctx, const Pass& pass) {
+  auto get = [&](const char* slot, int c) { return ctx.output(pass.bufferName(slot), c).data.data(); };
+  GBufferView v;
+  v.depth = get("depth", 1);
+  v.position = get("position", 3);
+  v.normal = get("normal", 3);
+  v.geoNormal = get("geo_normal", 3);
+  v.diffuse = get("diffuse", 4);
+  v.specular = get("specular", 4);
+  v.emission = get("emission", 3);
+  v.ambient = get("ambient", 3);
+  v.optical = get("optical", 3);
+  v.objectId = get("object_id", 1);
+  v.materialId = get("material_id", 1);
+  v.motion = get("motion", 2);
+  v.width = ctx.width;
+  return v;
+}
+
+namespace {
+inline void put3(float* p, Vec3 v) {
+  p[0] = v.x;
+  p[1] = v.y;
+  p[2] = v.z;
+}
+}  // namespace
+
+void GBufferView::write(int x, int y, const SurfaceSample& s, float d, Vec2 mv) {
+  size_t i = size_t(y) * width + x;
+  depth[i] = d;
+  put3(position + 3 * i, s.position);
+  put3(normal + 3 * i, s.normal);
+  put3(geoNormal + 3 * i, s.geoNormal);
+  put3(diffuse + 4 * i, s.diffuse);
+  diffuse[4 * i + 3] = s.diffuseOpacity;
+  put3(specular + 4 * i, s.specular);
+  specular[4 * i + 3] = s.specularExponent;
+  put3(emission + 3 * i, s.emission);
+  put3(ambient + 3 * i, s.ambient);
+  put3(optical + 3 * i, {s.reflectivity, s.ior, s.opacity});
+  objectId[i] = float(s.object);
+  materialId[i] = float(s.material);
+  motion[2 * i] = mv.x;
+  motion[2 * i + 1] = mv.y;
+}
+
+void GBufferView::writeBackground(int x, int y) {
+  size_t i = size_t(y) * width + x;
+  depth[i] = 0;
+  put3(position + 3 * i, Vec3(0.0f));
+  put3(normal + 3 * i, Vec3(0.0f));
+  put3(geoNormal + 3 * i, Vec3(0.0f));
+  for (int k = 0; k < 4; ++k) diffuse[4 * i + k] = specular[4 * i + k] = 0;
+  put3(emission + 3 * i, Vec3(0.0f));
+  put3(ambient + 3 * i, Vec3(0.0f));
+  put3(optical + 3 * i, Vec3(0.0f));
+  objectId[i] = -1;
+  materialId[i] = -1;
+  motion[2 * i] = motion[2 * i + 1] = 0;
+}
+
+Vec2 motionVector(const FrameContext& ctx, int object, Vec3 p) {
+  Vec3 prevWorld = ctx.frame.objects[object].worldToPrev.transformPoint(p);
+  auto toPixel = [](const Mat4& vp, const Camera& c, Vec3 q, Vec2& px) {
+    Vec4 h = vp * Vec4(q, 1.0f);
+    if (h.w <= 1e-8f) return false;
+    px = {(h.x / h.w * 0.5f + 0.5f) * c.width, (0.5f - h.y / h.w * 0.5f) * c.height};
+    return true;
+  };
+  Vec2 now, before;
+  if (!toPixel(ctx.camera.viewProjUnjittered, ctx.camera, p, now) ||
+      !toPixel(ctx.prevCamera.viewProjUnjittered, ctx.prevCamera, prevWorld, before))
+    return {0, 0};
+  return now - before;
+}
+
+}  // namespace tandem

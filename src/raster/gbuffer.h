@@ -1,0 +1,43 @@
+// The G-buffer (seed 002 Table 2, extended): named frame buffers written by the raster and the
+// ray-traced G-buffer passes alike, from the same SurfaceSample.
+//
+//   depth        1  reversed-Z depth (1 near plane, 0 background)
+//   position     3  world position
+//   normal       3  shading normal (normal map applied), world space
+//   geo_normal   3  geometric normal
+//   diffuse      4  diffuse albedo + diffuse opacity
+//   specular     4  specular colour + exponent
+//   emission     3  emitted radiance
+//   ambient      3  ambient colour
+//   optical      3  reflectivity, index of refraction, opacity
+//   object_id    1  object index, -1 for background
+//   material_id  1  material index, -1 for background
+//   motion       2  screen-space motion in pixels: this frame's position minus last frame's
+#pragma once
+#include <string>
+#include <vector>
+
+#include "pipeline/pass.h"
+#include "shading/surface.h"
+
+namespace tandem {
+
+struct FrameContext;
+
+const std::vector<BufferSlot>& gbufferSlots();
+
+// Raw pointers to every G-buffer target, fetched once per pass (never per pixel).
+struct GBufferView {
+  float *depth, *position, *normal, *geoNormal, *diffuse, *specular, *emission, *ambient, *optical,
+      *objectId, *materialId, *motion;
+  int width;
+
+  static GBufferView create(FrameContext& ctx, const class Pass& pass);
+  void write(int x, int y, const SurfaceSample& s, float depth, Vec2 motion);
+  void writeBackground(int x, int y);
+};
+
+// Screen-space motion of a surface point of `object`: where it is now minus where it was.
+Vec2 motionVector(const FrameContext& ctx, int object, Vec3 worldPos);
+
+}  // namespace tandem

@@ -1,0 +1,268 @@
+#include "raster/rasterizer.h"
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+namespace {
+
+constexpr int kSubBits = 8;
+constexpr float kSubScale = float(1 << kSubBits);
+constexpr int kBinSize = 64;      // pixels per tile side
+constexpr float kGuardBand = 4.0f;  // clip x,y to +-4 w: coordinates stay far from overflow
+constexpr int kChunks = 64;
+
+struct ClipVert {
+  Vec4 p;
+};
+
+// Signed distance to the clip planes used here: near, far, left, right, bottom, top (guard).
+inline float planeDist(const Vec4& v, int plane) {
+  switch (plane) {
+    case 0: return v.w - v.z;  // near: z/w <= 1 in reversed-Z
+    case 1: return v.z;        // far: z >= 0
+    case 2: return v.x + kGuardBand * v.w;
+    case 3: return kGuardBand * v.w - v.x;
+    case 4: return v.y + kGuardBand * v.w;
+    default: return kGuardBand * v.w - v.y;
+  }
+}
+
+// Sutherland-Hodgman against the planes in `mask`; returns the vertex count (<= 9).
+int clipPolygon(Vec4* poly, int n, unsigned mask) {
+  Vec4 tmp[12];
+  for (int plane = 0; plane < 6 && n > 0; ++plane) {
+    if (!(mask & (1u << plane))) continue;
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      const Vec4& a = poly[i];
+      const Vec4& b = poly[(i + 1) % n];
+      float da = planeDist(a, plane), db = planeDist(b, plane);
+      if (da >= 0) tmp[m++] = a;
+      if ((da >= 0) != (db >= 0)) {
+        float t = da / (da - db);
+        tmp[m++] = a + (b - a) * t;
+      }
+    }
+    n = m;
+    for (int i = 0; i < n; ++i) poly[i] = tmp[i];
+  }
+  return n;
+}
+
+}  // namespace
+
+void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out, RasterStats* stats) {
+  const Scene& scene = *fs.scene;
+  const int W = cam.width, H = cam.height;
+  out.resize(W, H);
+  const int tilesX = (W + kBinSize - 1) / kBinSize, tilesY = (H + kBinSize - 1) / kBinSize;
+  const int tileCount = tilesX * tilesY;
+  const Mat4 vp = cam.viewProj;
+
+  // 1. Vertices to clip space.
+  clip_.resize(fs.objects.size());
+  for (size_t o = 0; o < fs.objects.size(); ++o) {
+    const auto& pos = fs.objects[o].positions;
+    auto& c = clip_[o];
+    c.resize(pos.size());
+    parallelRange(pos.size(), [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(pos[i], 1.0f);
+    }, 4096);
+  }
+
+  // Global triangle numbering: prefix sums over objects.
+  std::vector<size_t> firstTri(fs.objects.size() + 1, 0);
+  for (size_t o = 0; o < fs.objects.size(); ++o)
+    firstTri[o + 1] = firstTri[o] + scene.meshes[scene.objects[o].mesh].triangleCount();
+  const size_t totalTris = firstTri.back();
+
+  // 2. Setup and binning in chunks of consecutive triangles.
+  const int chunks = int(std::min<size_t>(kChunks, std::max<size_t>(1, totalTris / 256)));
+  chunkTris_.resize(chunks);
+  bins_.resize(chunks);
+  std::atomic<size_t> culled{0}, clipped{0};
+  tbb::parallel_for(0, chunks, [&](int ch) {
+    auto& tris = chunkTris_[ch];
+    auto& bins = bins_[ch];
+    tris.clear();
+    bins.resize(tileCount);
+    for (auto& b : bins) b.clear();
+    size_t t0 = totalTris * ch / chunks, t1 = totalTris * (ch + 1) / chunks;
+    size_t o = std::upper_bound(firstTri.begin(), firstTri.end(), t0) - firstTri.begin() - 1;
+    size_t localCulled = 0, localClipped = 0;
+    for (size_t g = t0; g < t1; ++g) {
+      while (g >= firstTri[o + 1]) ++o;
+      const Object& obj = scene.objects[o];
+      const Material& mat = scene.materials[obj.material];
+      const Mesh& mesh = scene.meshes[obj.mesh];
+      const uint32_t prim = uint32_t(g - firstTri[o]);
+      const uint32_t* idx = &mesh.indices[3 * size_t(prim)];
+      const auto& cv = clip_[o];
+      Vec4 poly[12] = {cv[idx[0]], cv[idx[1]], cv[idx[2]]};
+      // Outcodes: trivially reject when all vertices lie outside one plane.
+      unsigned andCode = 0x3f, orCode = 0;
+      for (int k = 0; k < 3; ++k) {
+        unsigned code = 0;
+        for (int p = 0; p < 6; ++p)
+          if (!(planeDist(poly[k], p) >= 0)) code |= 1u << p;  // NaN counts as outside
+        andCode &= code;
+        orCode |= code;
+      }
+      if (andCode) {
+        ++localCulled;
+        continue;
+      }
+      int n = 3;
+      if (orCode) {
+        n = clipPolygon(poly, 3, orCode);
+        ++localClipped;
+        if (n < 3) continue;
+      }
+      // Project to fixed-point screen coordinates.
+      int32_t X[12], Y[12];
+      float Z[12];
+      for (int k = 0; k < n; ++k) {
+        float iw = 1.0f / poly[k].w;
+        float sx = (poly[k].x * iw * 0.5f + 0.5f) * W;
+        float sy = (0.5f - poly[k].y * iw * 0.5f) * H;
+        X[k] = int32_t(std::lround(sx * kSubScale));
+        Y[k] = int32_t(std::lround(sy * kSubScale));
+        Z[k] = poly[k].z * iw;
+      }
+      // Triangle fan over the clipped polygon; all pieces share the original's orientation.
+      for (int k = 1; k + 1 < n; ++k) {
+        int a = 0, b = k, c = k + 1;
+        int64_t area = int64_t(X[b] - X[a]) * (Y[c] - Y[a]) - int64_t(Y[b] - Y[a]) * (X[c] - X[a]);
+        if (area == 0) continue;
+        // Counter-clockwise in the world is clockwise on a y-down screen: area < 0 is front.
+        if (area > 0) {
+          if (!mat.doubleSided) {
+            ++localCulled;
+            continue;
+          }
+        } else {
+          std::swap(b, c);
+        }
+        SetupTriangle st;
+        st.x[0] = X[a]; st.x[1] = X[b]; st.x[2] = X[c];
+        st.y[0] = Y[a]; st.y[1] = Y[b]; st.y[2] = Y[c];
+        st.z[0] = Z[a]; st.z[1] = Z[b]; st.z[2] = Z[c];
+        st.object = uint32_t(o);
+        st.prim = prim;
+        st.alphaMask = mat.alphaMode == AlphaMode::Mask;
+        // Pixel range whose centres (px + 0.5) can be covered.
+        int32_t minX = std::min({st.x[0], st.x[1], st.x[2]}), maxX = std::max({st.x[0], st.x[1], st.x[2]});
+        int32_t minY = std::min({st.y[0], st.y[1], st.y[2]}), maxY = std::max({st.y[0], st.y[1], st.y[2]});
+        int px0 = std::max(0, int((minX - 128 + 255) >> kSubBits));
+        int px1 = std::min(W - 1, int((maxX - 128) >> kSubBits));
+        int py0 = std::max(0, int((minY - 128 + 255) >> kSubBits));
+        int py1 = std::min(H - 1, int((maxY - 128) >> kSubBits));
+        if (px0 > px1 || py0 > py1) continue;  // covers no pixel centre
+        st.tx0 = int16_t(px0 / kBinSize);
+        st.tx1 = int16_t(px1 / kBinSize);
+        st.ty0 = int16_t(py0 / kBinSize);
+        st.ty1 = int16_t(py1 / kBinSize);
+        uint32_t id = uint32_t(tris.size());
+        tris.push_back(st);
+        for (int ty = st.ty0; ty <= st.ty1; ++ty)
+          for (int tx = st.tx0; tx <= st.tx1; ++tx) bins[ty * tilesX + tx].push_back(id);
+      }
+    }
+    culled += localCulled;
+    clipped += localClipped;
+  });
+
+  // 3. Rasterize each tile, chunks in submission order.
+  tbb::parallel_for(0, tileCount, [&](int tile) {
+    const int tx = tile % tilesX, ty = tile / tilesX;
+    const int x0 = tx * kBinSize, y0 = ty * kBinSize;
+    const int x1 = std::min(W, x0 + kBinSize) - 1, y1 = std::min(H, y0 + kBinSize) - 1;
+    for (int ch = 0; ch < chunks; ++ch) {
+      const auto& tris = chunkTris_[ch];
+      for (uint32_t id : bins_[ch][tile]) {
+        const SetupTriangle& t = tris[id];
+        int32_t minX = std::min({t.x[0], t.x[1], t.x[2]}), maxX = std::max({t.x[0], t.x[1], t.x[2]});
+        int32_t minY = std::min({t.y[0], t.y[1], t.y[2]}), maxY = std::max({t.y[0], t.y[1], t.y[2]});
+        int px0 = std::max(x0, int((minX - 128 + 255) >> kSubBits));
+        int px1 = std::min(x1, int((maxX - 128) >> kSubBits));
+        int py0 = std::max(y0, int((minY - 128 + 255) >> kSubBits));
+        int py1 = std::min(y1, int((maxY - 128) >> kSubBits));
+        if (px0 > px1 || py0 > py1) continue;
+        // Edge e runs from vertex e to vertex e+1; E_e(p) >= 0 inside (positive orientation).
+        int64_t dx[3], dy[3], bias[3], rowE[3];
+        const int64_t sx = (int64_t(px0) << kSubBits) + 128, sy = (int64_t(py0) << kSubBits) + 128;
+        for (int e = 0; e < 3; ++e) {
+          int a = e, b = (e + 1) % 3;
+          dx[e] = int64_t(t.x[b]) - t.x[a];
+          dy[e] = int64_t(t.y[b]) - t.y[a];
+          // Top-left rule: a shared edge is walked in opposite directions by its two
+          // triangles, so exactly one of them owns pixel centres lying on it.
+          bool owns = dy[e] < 0 || (dy[e] == 0 && dx[e] > 0);
+          bias[e] = owns ? 0 : -1;
+          rowE[e] = dx[e] * (sy - t.y[a]) - dy[e] * (sx - t.x[a]) + bias[e];
+        }
+        // E_e = dx*(py - ya) - dy*(px - xa): with this sign, positive orientation is area > 0
+        // in this formula, which we ensured by swapping during setup.
+        const float area = float(dx[0] * (int64_t(t.y[2]) - t.y[0]) - dy[0] * (int64_t(t.x[2]) - t.x[0]));
+        const float invArea = 1.0f / area;
+        const float dz1 = t.z[1] - t.z[0], dz2 = t.z[2] - t.z[0];
+        const int64_t stepX[3] = {-dy[0] * 256, -dy[1] * 256, -dy[2] * 256};
+        const int64_t stepY[3] = {dx[0] * 256, dx[1] * 256, dx[2] * 256};
+        for (int py = py0; py <= py1; ++py) {
+          int64_t e0 = rowE[0], e1 = rowE[1], e2 = rowE[2];
+          size_t row = size_t(py) * W;
+          for (int px = px0; px <= px1; ++px) {
+            if ((e0 | e1 | e2) >= 0) {
+              // Barycentric weights of vertices 1 and 2 are the opposite edge functions.
+              float l1 = float(e2 - bias[2]) * invArea, l2 = float(e0 - bias[0]) * invArea;
+              float z = t.z[0] + l1 * dz1 + l2 * dz2;
+              size_t i = row + px;
+              if (z > out.depth[i] && z <= 1.0f) {
+                bool keep = true;
+                if (t.alphaMask) {
+                  Vec3 o, d;
+                  cam.generateRay(px + 0.5f, py + 0.5f, o, d);
+                  const Mesh& mesh = scene.meshes[scene.objects[t.object].mesh];
+                  const uint32_t* idx = &mesh.indices[3 * size_t(t.prim)];
+                  const auto& wp = fs.objects[t.object].positions;
+                  float tt, u, v;
+                  intersectTriangle(o, d, wp[idx[0]], wp[idx[1]], wp[idx[2]], tt, u, v);
+                  const Material& m = scene.materials[scene.objects[t.object].material];
+                  keep = surfaceAlpha(fs, int(t.object), int(t.prim), u, v) >= m.alphaCutoff;
+                }
+                if (keep) {
+                  out.depth[i] = z;
+                  out.object[i] = t.object;
+                  out.prim[i] = t.prim;
+                }
+              }
+            }
+            e0 += stepX[0];
+            e1 += stepX[1];
+            e2 += stepX[2];
+          }
+          rowE[0] += stepY[0];
+          rowE[1] += stepY[1];
+          rowE[2] += stepY[2];
+        }
+      }
+    }
+  });
+  if (stats) {
+    stats->trianglesIn = totalTris;
+    stats->trianglesCulled = culled;
+    stats->trianglesClipped = clipped;
+    size_t binned = 0;
+    for (int ch = 0; ch < chunks; ++ch) binned += chunkTris_[ch].size();
+    stats->trianglesBinned = binned;
+  }
+}
+
+}  // namespace tandem

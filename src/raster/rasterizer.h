@@ -1,0 +1,40 @@
+// Tile-binned, multithreaded software rasterizer (oneTBB) writing a visibility buffer.
+//  - vertices to clip space once per frame; triangles set up and binned into 64x64 tiles in
+//    parallel chunks (chunk order = submission order, so results never depend on threads);
+//  - clipping against the near plane (and a guard band, so fixed-point never overflows);
+//  - 8-bit sub-pixel fixed point with a consistent top-left fill rule: a pixel centre on an
+//    edge shared by two triangles is drawn by exactly one of them;
+//  - back-face culling unless the material is double-sided; alpha-mask discard;
+//  - reversed-Z float depth (greater wins), perspective-correct because z/w is affine on screen.
+#pragma once
+#include <vector>
+
+#include "raster/visibility_buffer.h"
+#include "scene/camera.h"
+#include "scene/frame_scene.h"
+
+namespace tandem {
+
+struct RasterStats {
+  size_t trianglesIn = 0, trianglesCulled = 0, trianglesClipped = 0, trianglesBinned = 0;
+};
+
+class Rasterizer {
+ public:
+  void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out, RasterStats* stats = nullptr);
+
+  struct SetupTriangle {
+    int32_t x[3], y[3];    // fixed point, 8 sub-pixel bits, positive orientation
+    float z[3];            // reversed-Z depth per vertex
+    uint32_t object, prim;
+    int16_t tx0, ty0, tx1, ty1;  // tile range (inclusive)
+    bool alphaMask;
+  };
+
+ private:
+  std::vector<std::vector<Vec4>> clip_;                 // per object, clip-space vertices
+  std::vector<std::vector<SetupTriangle>> chunkTris_;   // per chunk
+  std::vector<std::vector<std::vector<uint32_t>>> bins_;  // [chunk][tile] -> triangle index
+};
+
+}  // namespace tandem

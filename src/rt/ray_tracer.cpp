@@ -1,0 +1,209 @@
+#include "rt/ray_tracer.h"
+
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+namespace {
+
+// Context passed to filter callbacks (Embree's documented pattern of extending the context).
+struct QueryContext {
+  RTCIntersectContext ctx;
+  const FrameScene* frame;
+  bool cullBackfaces;
+};
+
+struct GeometryInfo {
+  const FrameScene* frame;
+  int object;
+  bool singleSided, alphaMask;
+};
+
+void errorCallback(void*, RTCError code, const char* str) {
+  std::fprintf(stderr, "embree error %d: %s\n", int(code), str ? str : "");
+}
+
+// Rejects hits on transparent texels of alpha-masked materials and, for camera queries, hits on
+// the back of single-sided surfaces.
+void filterHit(const RTCFilterFunctionNArguments* args) {
+  const auto* info = static_cast<const GeometryInfo*>(args->geometryUserPtr);
+  const auto* qc = reinterpret_cast<const QueryContext*>(args->context);
+  const Scene& scene = *info->frame->scene;
+  const Material& mat = scene.materials[scene.objects[info->object].material];
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    RTCHitN* hit = args->hit;
+    RTCRayN* ray = args->ray;
+    if (info->singleSided && qc->cullBackfaces) {
+      Vec3 ng{RTCHitN_Ng_x(hit, args->N, i), RTCHitN_Ng_y(hit, args->N, i), RTCHitN_Ng_z(hit, args->N, i)};
+      Vec3 d{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i)};
+      // Embree's Ng points out of the counter-clockwise (front) face, against a front-facing ray.
+      if (dot(ng, d) >= 0) {
+        args->valid[i] = 0;
+        continue;
+      }
+    }
+    if (info->alphaMask) {
+      float u = RTCHitN_u(hit, args->N, i), v = RTCHitN_v(hit, args->N, i);
+      unsigned prim = RTCHitN_primID(hit, args->N, i);
+      if (surfaceAlpha(*info->frame, info->object, int(prim), u, v) < mat.alphaCutoff) args->valid[i] = 0;
+    }
+  }
+}
+
+}  // namespace
+
+RayTracer::RayTracer() {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("cannot create Embree device");
+  rtcSetDeviceErrorFunction(device_, errorCallback, nullptr);
+}
+
+RayTracer::~RayTracer() {
+  if (scene_) {
+    for (unsigned id = 0;; ++id) {
+      RTCGeometry g = rtcGetGeometry(scene_, id);
+      if (!g) break;
+      delete static_cast<GeometryInfo*>(rtcGetGeometryUserData(g));
+    }
+    rtcReleaseScene(scene_);
+  }
+  rtcReleaseDevice(device_);
+}
+
+bool RayTracer::update(const FrameScene& fs) {
+  if (scene_ && frame_ == &fs && builtVersion_ == fs.geometryVersion) return false;
+  if (scene_) {
+    for (unsigned id = 0; id < fs.objects.size() + 1; ++id) {
+      RTCGeometry g = rtcGetGeometry(scene_, id);
+      if (!g) break;
+      delete static_cast<GeometryInfo*>(rtcGetGeometryUserData(g));
+    }
+    rtcReleaseScene(scene_);
+  }
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+  const Scene& scene = *fs.scene;
+  for (size_t o = 0; o < fs.objects.size(); ++o) {
+    const Mesh& mesh = scene.meshes[scene.objects[o].mesh];
+    const Material& mat = scene.materials[scene.objects[o].material];
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Shared buffers: Embree reads our arrays in place (it needs 16 bytes of padding after the
+    // last vertex, which std::vector<Vec3> capacity does not guarantee, so copy vertices).
+    float* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                            sizeof(Vec3), fs.objects[o].positions.size()));
+    std::memcpy(vb, fs.objects[o].positions.data(), fs.objects[o].positions.size() * sizeof(Vec3));
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
+                               3 * sizeof(uint32_t), mesh.triangleCount());
+    auto* info = new GeometryInfo{&fs, int(o), !mat.doubleSided, mat.alphaMode == AlphaMode::Mask};
+    rtcSetGeometryUserData(g, info);
+    if (info->singleSided || info->alphaMask) rtcSetGeometryIntersectFilterFunction(g, filterHit);
+    if (info->alphaMask) rtcSetGeometryOccludedFilterFunction(g, filterHit);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene_, g, unsigned(o));
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(scene_);
+  frame_ = &fs;
+  builtVersion_ = fs.geometryVersion;
+  return true;
+}
+
+namespace {
+void setRay(RTCRay& r, const Ray& in) {
+  r.org_x = in.origin.x;
+  r.org_y = in.origin.y;
+  r.org_z = in.origin.z;
+  r.dir_x = in.dir.x;
+  r.dir_y = in.dir.y;
+  r.dir_z = in.dir.z;
+  r.tnear = in.tnear;
+  r.tfar = in.tfar;
+  r.time = 0;
+  r.mask = ~0u;
+  r.id = 0;
+  r.flags = 0;
+}
+}  // namespace
+
+Hit RayTracer::intersect(const Ray& in, bool cullBackfaces) const {
+  QueryContext qc;
+  rtcInitIntersectContext(&qc.ctx);
+  qc.frame = frame_;
+  qc.cullBackfaces = cullBackfaces;
+  RTCRayHit rh;
+  setRay(rh.ray, in);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &qc.ctx, &rh);
+  rays_.fetch_add(1, std::memory_order_relaxed);
+  Hit h;
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+    h.object = int(rh.hit.geomID);
+    h.prim = int(rh.hit.primID);
+    h.t = rh.ray.tfar;
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+  }
+  return h;
+}
+
+bool RayTracer::occluded(const Ray& in) const {
+  QueryContext qc;
+  rtcInitIntersectContext(&qc.ctx);
+  qc.frame = frame_;
+  qc.cullBackfaces = false;
+  RTCRay r;
+  setRay(r, in);
+  rtcOccluded1(scene_, &qc.ctx, &r);
+  rays_.fetch_add(1, std::memory_order_relaxed);
+  return r.tfar < 0;
+}
+
+void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackfaces) const {
+  QueryContext qc;
+  rtcInitIntersectContext(&qc.ctx);
+  qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  qc.frame = frame_;
+  qc.cullBackfaces = cullBackfaces;
+  alignas(32) int valid[8];
+  alignas(32) RTCRayHit8 rh;
+  for (int i = 0; i < 8; ++i) {
+    const Ray& r = rays[i < count ? i : 0];
+    valid[i] = i < count ? -1 : 0;
+    rh.ray.org_x[i] = r.origin.x;
+    rh.ray.org_y[i] = r.origin.y;
+    rh.ray.org_z[i] = r.origin.z;
+    rh.ray.dir_x[i] = r.dir.x;
+    rh.ray.dir_y[i] = r.dir.y;
+    rh.ray.dir_z[i] = r.dir.z;
+    rh.ray.tnear[i] = r.tnear;
+    rh.ray.tfar[i] = r.tfar;
+    rh.ray.time[i] = 0;
+    rh.ray.mask[i] = ~0u;
+    rh.ray.id[i] = unsigned(i);
+    rh.ray.flags[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(valid, scene_, &qc.ctx, &rh);
+  rays_.fetch_add(uint64_t(count), std::memory_order_relaxed);
+  for (int i = 0; i < count; ++i) {
+    Hit h;
+    if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
+      h.object = int(rh.hit.geomID[i]);
+      h.prim = int(rh.hit.primID[i]);
+      h.t = rh.ray.tfar[i];
+      h.u = rh.hit.u[i];
+      h.v = rh.hit.v[i];
+    }
+    hits[i] = h;
+  }
+}
+
+}  // namespace tandem

@@ -1,0 +1,53 @@
+// One Embree 3 scene built from the FrameScene's world-space meshes (geometry id = object id,
+// primitive id = triangle index), rebuilt when the geometry version changes. Closest-hit and
+// occlusion queries, single rays and 8-wide packets for coherent batches. Alpha-masked and
+// single-sided materials get a filter callback: masks discard transparent texels, and camera
+// queries may ask for back faces of single-sided surfaces to be culled, as the rasterizer does.
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <cstdint>
+
+#include "scene/frame_scene.h"
+
+namespace tandem {
+
+struct Ray {
+  Vec3 origin, dir;
+  float tnear = 0.0f, tfar = 1e30f;
+};
+
+struct Hit {
+  int object = -1, prim = -1;
+  float t = 0, u = 0, v = 0;
+  bool valid() const { return object >= 0; }
+};
+
+class RayTracer {
+ public:
+  RayTracer();
+  ~RayTracer();
+  RayTracer(const RayTracer&) = delete;
+  RayTracer& operator=(const RayTracer&) = delete;
+
+  // Builds (or rebuilds) the BVH when the frame's geometry changed; returns true if it built.
+  bool update(const FrameScene& fs);
+
+  Hit intersect(const Ray& r, bool cullBackfaces = false) const;
+  bool occluded(const Ray& r) const;
+  // Up to 8 rays in one Embree packet; `count` active lanes.
+  void intersect8(const Ray* rays, int count, Hit* hits, bool cullBackfaces = false) const;
+
+  uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
+  void resetRayCount() { rays_ = 0; }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  const FrameScene* frame_ = nullptr;
+  uint64_t builtVersion_ = ~0ull;
+  mutable std::atomic<uint64_t> rays_{0};
+};
+
+}  // namespace tandem

@@ -1,0 +1,44 @@
+// Camera: perspective (vertical FoV) or orthographic, reversed-Z depth, sub-pixel jitter for
+// TAA, and the thin-lens parameters of seed 000 eq. 6 (stored now, used by later passes).
+#pragma once
+#include "core/math.h"
+
+namespace tandem {
+
+enum class Projection { Perspective, Orthographic };
+
+struct CameraDesc {
+  Projection projection = Projection::Perspective;
+  Vec3 position{0, 1, 4};
+  Vec3 lookAt{0, 1, 0};
+  Vec3 up{0, 1, 0};
+  float vfovDeg = 45.0f;       // perspective, in (0, 180)
+  float orthoHeight = 2.0f;    // orthographic: world-space height of the view
+  float nearPlane = 0.01f;     // > 0; reversed-Z with an infinite far plane for perspective
+  float farPlane = 1000.0f;    // orthographic depth range only
+  float apertureDiameter = 0.0f;  // thin lens (metres); 0 = pinhole
+  float focalLength = 0.05f;      // metres
+  float focusDistance = 5.0f;     // metres
+  float sensorWidth = 0.036f;     // metres
+};
+
+// A camera evaluated for one frame at a given resolution.
+struct Camera {
+  CameraDesc desc;
+  int width = 1, height = 1;
+  Vec2 jitter{0, 0};  // sub-pixel offset in pixels, in [-0.5, 0.5]
+  Mat4 view, proj, viewProj, invView;
+  Mat4 viewProjUnjittered;  // for motion vectors, which must not contain the jitter
+  Vec3 forward, right, upVec;
+
+  static Camera make(const CameraDesc& d, int width, int height, Vec2 jitter = {0, 0});
+
+  // Primary ray through pixel coordinate (px, py) (pixel centres at +0.5), jitter applied.
+  void generateRay(float px, float py, Vec3& origin, Vec3& dir) const;
+  // Reversed-Z depth of a world point: 1 at the near plane, -> 0 far away.
+  float depthOf(Vec3 worldPos) const;
+  // World point -> pixel coordinates (continuous); returns false behind the camera.
+  bool project(Vec3 worldPos, Vec2& pixel) const;
+};
+
+}  // namespace tandem

@@ -1,0 +1,170 @@
+// OBJ + MTL via tinyobjloader. Each (shape, material) pair becomes one object.
+#include <tiny_obj_loader.h>
+
+#include <filesystem>
+#include <map>
+#include <tuple>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "scene/loaders.h"
+
+namespace tandem {
+namespace fs = std::filesystem;
+
+namespace {
+
+Vec3 toVec3(const float* v) { return {v[0], v[1], v[2]}; }
+
+int loadTexture(Scene& s, std::map<std::string, int>& cache, const std::string& mtlPath,
+                const std::string& baseDir, const std::string& name, const std::string& field,
+                bool srgb) {
+  if (name.empty()) return -1;
+  std::string path = (fs::path(baseDir) / name).string();
+  auto key = path + (srgb ? "#srgb" : "#linear");
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  if (!fs::exists(path)) throw InputError(mtlPath, field, "texture '" + name + "' not found");
+  int id = s.addTexture(textureFromImage(path, loadTextureFile(path), srgb));
+  cache[key] = id;
+  return id;
+}
+
+Material convertMaterial(const tinyobj::material_t& m, Scene& s, std::map<std::string, int>& cache,
+                         const std::string& mtlPath, const std::string& baseDir) {
+  Material out;
+  out.name = m.name;
+  out.ambient = toVec3(m.ambient);
+  out.diffuse = toVec3(m.diffuse);
+  out.specular = toVec3(m.specular);
+  out.emission = toVec3(m.emission);
+  out.specularExponent = std::clamp(m.shininess, 1.0f, 4096.0f);
+  out.ior = m.ior > 0 ? m.ior : 1.0f;
+  out.opacity = std::clamp(m.dissolve, 0.0f, 1.0f);  // tinyobjloader maps Tr to 1 - Tr
+  out.diffuseOpacity = out.opacity;
+  switch (m.illum) {
+    case 3:  // reflection on, ray traced
+    case 5:  // Fresnel mirror
+      out.reflectivity = m.illum == 5 ? 1.0f : std::clamp(maxComponent(out.specular), 0.0f, 1.0f);
+      break;
+    case 4:  // glass, ray-traced reflection
+    case 9:  // glass, no ray-traced reflection
+      out.opacity = std::min(out.opacity, 0.1f);
+      out.reflectivity = m.illum == 4 ? std::clamp(maxComponent(out.specular), 0.0f, 1.0f) : 0.0f;
+      break;
+    case 6:  // refraction, ray traced
+    case 7:  // refraction + Fresnel
+      out.opacity = 0.0f;
+      break;
+    default:
+      break;
+  }
+  for (float* c : {&out.diffuse.x, &out.diffuse.y, &out.diffuse.z, &out.specular.x,
+                   &out.specular.y, &out.specular.z})
+    *c = std::clamp(*c, 0.0f, 1.0f);
+  out.emission = vmax(out.emission, Vec3(0.0f));
+  if (!isFinite(out.emission) || !isFinite(out.diffuse) || !std::isfinite(out.ior))
+    throw InputError(mtlPath, "material '" + m.name + "'", "non-finite value");
+  out.diffuseTexture = loadTexture(s, cache, mtlPath, baseDir, m.diffuse_texname, "map_Kd", true);
+  out.emissionTexture = loadTexture(s, cache, mtlPath, baseDir, m.emissive_texname, "map_Ke", true);
+  out.specularTexture = loadTexture(s, cache, mtlPath, baseDir, m.specular_texname, "map_Ks", true);
+  out.normalTexture = loadTexture(s, cache, mtlPath, baseDir, m.normal_texname, "norm", false);
+  if (out.diffuseTexture >= 0 && m.diffuse_texopt.scale[0] != 1.0f) {
+    out.tiling = {m.diffuse_texopt.scale[0], m.diffuse_texopt.scale[1]};
+  }
+  if (out.diffuseTexture >= 0) out.offset = {m.diffuse_texopt.origin_offset[0], m.diffuse_texopt.origin_offset[1]};
+  return out;
+}
+
+}  // namespace
+
+Scene loadObj(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path, "", "file not found");
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  config.mtl_search_path = fs::path(path).parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    std::string err = reader.Error();
+    while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
+    throw InputError(path, "", "cannot parse OBJ: " + (err.empty() ? "unknown error" : err));
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  Scene s;
+  s.name = fs::path(path).stem().string();
+  s.stats.sources.push_back(path);
+  std::map<std::string, int> texCache;
+  std::string baseDir = config.mtl_search_path;
+  for (const auto& m : reader.GetMaterials())
+    s.addMaterial(convertMaterial(m, s, texCache, path + " (mtl)", baseDir));
+  int defaultMat = -1;
+  const size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3,
+               nt = attrib.texcoords.size() / 2;
+  for (size_t v = 0; v < nv; ++v)
+    if (!isFinite(toVec3(&attrib.vertices[3 * v])))
+      throw InputError(path, "v " + std::to_string(v + 1), "vertex position is NaN or infinite");
+
+  for (const auto& shape : reader.GetShapes()) {
+    const auto& mesh = shape.mesh;
+    // Group faces by material so that every object has exactly one material.
+    std::map<int, Mesh> byMaterial;
+    std::map<int, std::map<std::tuple<int, int, int>, uint32_t>> vertexIds;
+    std::map<int, bool> hasNormals;
+    for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+      if (mesh.num_face_vertices[f] != 3) continue;  // lines/points after triangulation
+      int mat = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+      if (mat >= int(s.materials.size())) mat = -1;
+      Mesh& m = byMaterial[mat];
+      auto& ids = vertexIds[mat];
+      if (!hasNormals.count(mat)) hasNormals[mat] = true;
+      for (int k = 0; k < 3; ++k) {
+        const tinyobj::index_t& idx = mesh.indices[3 * f + k];
+        if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= nv)
+          throw InputError(path, "shape '" + shape.name + "' face " + std::to_string(f + 1),
+                           "vertex index out of range");
+        if (idx.normal_index >= 0 && size_t(idx.normal_index) >= nn)
+          throw InputError(path, "shape '" + shape.name + "' face " + std::to_string(f + 1),
+                           "normal index out of range");
+        if (idx.texcoord_index >= 0 && size_t(idx.texcoord_index) >= nt)
+          throw InputError(path, "shape '" + shape.name + "' face " + std::to_string(f + 1),
+                           "texcoord index out of range");
+        if (idx.normal_index < 0) hasNormals[mat] = false;
+        auto key = std::make_tuple(idx.vertex_index, idx.normal_index, idx.texcoord_index);
+        auto it = ids.find(key);
+        if (it == ids.end()) {
+          uint32_t id = uint32_t(m.positions.size());
+          m.positions.push_back(toVec3(&attrib.vertices[3 * idx.vertex_index]));
+          m.normals.push_back(idx.normal_index >= 0 ? toVec3(&attrib.normals[3 * idx.normal_index])
+                                                    : Vec3(0.0f));
+          m.uvs.push_back(idx.texcoord_index >= 0
+                              ? Vec2(attrib.texcoords[2 * idx.texcoord_index],
+                                     1.0f - attrib.texcoords[2 * idx.texcoord_index + 1])
+                              : Vec2(0, 0));
+          it = ids.emplace(key, id).first;
+        }
+        m.indices.push_back(it->second);
+      }
+    }
+    for (auto& [mat, m] : byMaterial) {
+      s.stats.degenerateTriangles += removeDegenerateTriangles(m);
+      if (m.indices.empty()) continue;
+      if (!hasNormals[mat]) m.normals.clear();
+      for (const Vec3& n : m.normals)
+        if (!isFinite(n)) throw InputError(path, "shape '" + shape.name + "'", "normal is NaN or infinite");
+      int material = mat;
+      if (material < 0) {
+        if (defaultMat < 0) defaultMat = s.addMaterial(Material{});
+        material = defaultMat;
+      }
+      std::string name = shape.name.empty() ? "shape" : shape.name;
+      if (byMaterial.size() > 1) name += "/" + s.materials[material].name;
+      s.addObject(name, s.addMesh(std::move(m)), material);
+    }
+  }
+  if (s.objects.empty()) throw InputError(path, "", "no triangles");
+  validateScene(s, path);
+  return s;
+}
+
+}  // namespace tandem

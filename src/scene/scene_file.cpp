@@ -1,0 +1,316 @@
+// Tandem scene files (JSON): primitives and model files placed with transforms, materials with
+// every property of seed 002 Table 1, lights, environment, camera, camera path, animation and
+// heuristic parameters. The format is documented in docs/scene-format.md.
+#include <filesystem>
+#include <map>
+
+#include "core/image_io.h"
+#include "core/json_fields.h"
+#include "scene/builtin_scenes.h"
+#include "scene/loaders.h"
+#include "scene/primitives.h"
+
+namespace tandem {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct FileCtx {
+  std::string path;
+  fs::path dir;
+  Scene& scene;
+  std::map<std::string, int> materials;  // by name
+  std::map<std::string, int> textures;   // by resolved path (+ colour space)
+};
+
+std::string resolve(const FileCtx& c, const std::string& p) {
+  fs::path q(p);
+  return (q.is_absolute() ? q : c.dir / q).lexically_normal().string();
+}
+
+int readTexture(FileCtx& c, JsonFields& f, const std::string& key, bool srgb) {
+  std::string name = f.string(key, "");
+  if (name.empty()) return -1;
+  std::string p = resolve(c, name);
+  std::string cacheKey = p + (srgb ? "#srgb" : "#linear");
+  if (auto it = c.textures.find(cacheKey); it != c.textures.end()) return it->second;
+  if (!fs::is_regular_file(p)) f.fail(key, "texture file '" + name + "' not found");
+  int id = c.scene.addTexture(textureFromImage(p, loadTextureFile(p), srgb));
+  c.textures[cacheKey] = id;
+  return id;
+}
+
+Material readMaterial(FileCtx& c, const Json& j, const std::string& name, const std::string& where) {
+  JsonFields f(j, c.path, where);
+  Material m;
+  m.name = name;
+  m.emission = f.vec3("emission", m.emission);
+  m.ambient = f.vec3("ambient", m.ambient);
+  m.diffuse = f.vec3("diffuse", m.diffuse);
+  m.diffuseOpacity = f.number("diffuseOpacity", 1.0f, 0.0f, 1.0f);
+  m.specular = f.vec3("specular", m.specular);
+  m.specularExponent = f.number("specularExponent", m.specularExponent, 1.0f, 4096.0f);
+  m.reflectivity = f.number("reflectivity", 0.0f, 0.0f, 1.0f);
+  m.ior = f.number("ior", 1.0f, 0.1f, 10.0f);
+  m.opacity = f.number("opacity", 1.0f, 0.0f, 1.0f);
+  m.tiling = f.vec2("tiling", m.tiling);
+  m.offset = f.vec2("offset", m.offset);
+  m.castsShadows = f.boolean("castsShadows", true);
+  m.doubleSided = f.boolean("doubleSided", false);
+  std::string alpha = f.string("alphaMode", "opaque");
+  if (alpha == "opaque") m.alphaMode = AlphaMode::Opaque;
+  else if (alpha == "mask") m.alphaMode = AlphaMode::Mask;
+  else if (alpha == "blend") m.alphaMode = AlphaMode::Blend;
+  else f.fail("alphaMode", "expected opaque, mask or blend, got '" + alpha + "'");
+  m.alphaCutoff = f.number("alphaCutoff", 0.5f, 0.0f, 1.0f);
+  m.diffuseTexture = readTexture(c, f, "diffuseMap", true);
+  m.emissionTexture = readTexture(c, f, "emissionMap", true);
+  m.specularTexture = readTexture(c, f, "specularMap", true);
+  m.normalTexture = readTexture(c, f, "normalMap", false);
+  f.finish();
+  for (Vec3 v : {m.emission, m.ambient, m.diffuse, m.specular})
+    if (v.x < 0 || v.y < 0 || v.z < 0) throw InputError(c.path, where, "colours must be >= 0");
+  return m;
+}
+
+Transform readTransform(JsonFields& f) {
+  Transform t;
+  t.position = f.vec3("position", t.position);
+  t.rotationDeg = f.vec3("rotation", t.rotationDeg);
+  t.scale = f.vec3("scale", t.scale);
+  return t;
+}
+
+int materialRef(FileCtx& c, JsonFields& f, const std::string& key) {
+  if (!f.has(key)) return -1;
+  const Json& v = f.raw(key);
+  if (v.is_string()) {
+    auto it = c.materials.find(v.get<std::string>());
+    if (it == c.materials.end()) f.fail(key, "unknown material '" + v.get<std::string>() + "'");
+    return it->second;
+  }
+  return c.scene.addMaterial(readMaterial(c, v, "inline", f.field(key)));
+}
+
+void readObject(FileCtx& c, const Json& j, size_t index) {
+  std::string where = "objects[" + std::to_string(index) + "]";
+  JsonFields f(j, c.path, where);
+  std::string name = f.string("name", "object" + std::to_string(index));
+  int material = materialRef(c, f, "material");
+  Transform xf = readTransform(f);
+  std::vector<TransformKey> keys;
+  if (f.has("animation")) {
+    const Json& a = f.raw("animation");
+    if (!a.is_array() || a.empty()) f.fail("animation", "expected a non-empty array of keyframes");
+    float lastTime = -1e30f;
+    for (size_t k = 0; k < a.size(); ++k) {
+      JsonFields kf(a[k], c.path, f.field("animation") + "[" + std::to_string(k) + "]");
+      TransformKey key;
+      key.time = kf.number("time", 0.0f);
+      if (key.time < lastTime) kf.fail("time", "keyframes must be sorted by time");
+      lastTime = key.time;
+      key.transform = readTransform(kf);
+      kf.finish();
+      keys.push_back(key);
+    }
+  }
+  HeuristicParams h;
+  if (f.has("heuristic")) {
+    JsonFields hf(f.raw("heuristic"), c.path, f.field("heuristic"));
+    h.K = hf.number("K", 1.0f, 0.0f, 1e6f);
+    h.E = hf.number("E", 1.0f, 0.0f, 1e6f);
+    hf.finish();
+  }
+  auto place = [&](size_t firstObject) {
+    for (size_t o = firstObject; o < c.scene.objects.size(); ++o) {
+      c.scene.objects[o].heuristic = h;
+      c.scene.objects[o].animation = keys;
+    }
+  };
+  if (f.has("file")) {
+    std::string p = resolve(c, f.string("file", ""));
+    Scene sub = loadSceneByExtension(p);
+    size_t first = c.scene.objects.size();
+    // With animation the keyframes place the model; otherwise the object's transform does.
+    c.scene.append(sub, keys.empty() ? xf.matrix() : Mat4(), material);
+    // Name model parts after the placing object so that `info` shows where they came from.
+    for (size_t o = first; o < c.scene.objects.size(); ++o)
+      c.scene.objects[o].name = name + "/" + c.scene.objects[o].name;
+    place(first);
+    f.finish();
+    return;
+  }
+  std::string shape = f.string("shape", "");
+  Mesh mesh;
+  if (shape == "plane") {
+    mesh = makePlane(f.integer("subdivisions", 1, 1, 4096));
+  } else if (shape == "cube") {
+    mesh = makeCube();
+  } else if (shape == "sphere") {
+    int slices = f.integer("slices", 32, 3, 4096);
+    int stacks = f.integer("stacks", 16, 2, 4096);
+    mesh = makeUvSphere(slices, stacks);
+  } else if (shape.empty()) {
+    f.fail("shape", "an object needs \"shape\" (plane, cube, sphere) or \"file\"");
+  } else {
+    f.fail("shape", "unknown shape '" + shape + "' (plane, cube, sphere)");
+  }
+  if (material < 0) material = c.scene.addMaterial(Material{});
+  int obj = c.scene.addObject(name, c.scene.addMesh(std::move(mesh)), material,
+                              keys.empty() ? xf : Transform{});
+  place(size_t(obj));
+  f.finish();
+}
+
+Light readLight(const FileCtx& c, const Json& j, size_t index) {
+  JsonFields f(j, c.path, "lights[" + std::to_string(index) + "]");
+  Light l;
+  std::string type = f.string("type", "");
+  if (type == "directional") l.type = LightType::Directional;
+  else if (type == "point") l.type = LightType::Point;
+  else if (type == "spot") l.type = LightType::Spot;
+  else f.fail("type", "expected directional, point or spot, got '" + type + "'");
+  l.name = f.string("name", type + std::to_string(index));
+  l.color = f.vec3("color", l.color);
+  l.intensity = f.number("intensity", 1.0f, 0.0f, 1e9f);
+  l.position = f.vec3("position", l.position);
+  Vec3 d = f.vec3("direction", l.direction);
+  if (length(d) == 0) f.fail("direction", "must not be zero");
+  l.direction = normalize(d);
+  Vec3 att = f.vec3("attenuation", {l.attConstant, l.attLinear, l.attQuadratic});
+  if (att.x < 0 || att.y < 0 || att.z < 0 || att.x + att.y + att.z <= 0)
+    f.fail("attenuation", "coefficients must be >= 0 and not all zero");
+  l.attConstant = att.x;
+  l.attLinear = att.y;
+  l.attQuadratic = att.z;
+  l.range = f.number("range", 0.0f, 0.0f, 1e9f);
+  l.innerConeDeg = f.number("innerCone", l.innerConeDeg, 0.0f, 90.0f);
+  l.outerConeDeg = f.number("outerCone", l.outerConeDeg, 0.0f, 90.0f);
+  if (l.innerConeDeg > l.outerConeDeg) f.fail("innerCone", "must not exceed outerCone");
+  l.cosinePower = f.number("cosinePower", 0.0f, 0.0f, 1000.0f);
+  l.castsShadows = f.boolean("castsShadows", true);
+  f.finish();
+  return l;
+}
+
+void readCamera(FileCtx& c, const Json& j) {
+  JsonFields f(j, c.path, "camera");
+  CameraDesc& d = c.scene.camera;
+  std::string proj = f.string("projection", "perspective");
+  if (proj == "perspective") d.projection = Projection::Perspective;
+  else if (proj == "orthographic") d.projection = Projection::Orthographic;
+  else f.fail("projection", "expected perspective or orthographic");
+  d.position = f.vec3("position", d.position);
+  d.lookAt = f.vec3("lookAt", d.lookAt);
+  d.up = f.vec3("up", d.up);
+  if (length(d.lookAt - d.position) == 0) f.fail("lookAt", "must differ from position");
+  d.vfovDeg = f.number("vfov", d.vfovDeg, 0.01f, 179.0f);
+  d.orthoHeight = f.number("orthoHeight", d.orthoHeight, 1e-6f, 1e9f);
+  d.nearPlane = f.number("near", d.nearPlane, 1e-6f, 1e9f);
+  d.farPlane = f.number("far", d.farPlane, 1e-6f, 1e12f);
+  d.apertureDiameter = f.number("aperture", d.apertureDiameter, 0.0f, 1e3f);
+  d.focalLength = f.number("focalLength", d.focalLength, 1e-6f, 1e3f);
+  d.focusDistance = f.number("focusDistance", d.focusDistance, 1e-6f, 1e9f);
+  d.sensorWidth = f.number("sensorWidth", d.sensorWidth, 1e-6f, 1e3f);
+  f.finish();
+  c.scene.hasCamera = true;
+}
+
+void readSkybox(FileCtx& c, const Json& j) {
+  JsonFields f(j, c.path, "skybox");
+  c.scene.skybox.color = f.vec3("color", c.scene.skybox.color);
+  if (f.has("faces")) {
+    const Json& faces = f.raw("faces");
+    if (!faces.is_array() || faces.size() != 6 || !std::all_of(faces.begin(), faces.end(), [](const Json& v) { return v.is_string(); }))
+      f.fail("faces", "expected 6 image paths (+X, -X, +Y, -Y, +Z, -Z)");
+    for (int k = 0; k < 6; ++k) {
+      std::string p = resolve(c, faces[k].get<std::string>());
+      if (!fs::is_regular_file(p)) f.fail("faces", "image '" + faces[k].get<std::string>() + "' not found");
+      c.scene.skybox.faces[k] = c.scene.addTexture(textureFromImage(p, loadTextureFile(p), true));
+    }
+  }
+  f.finish();
+}
+
+}  // namespace
+
+Scene loadSceneFile(const std::string& path) {
+  Json root = readJsonFile(path);
+  Scene s;
+  FileCtx c{path, fs::path(path).parent_path(), s, {}, {}};
+  JsonFields f(root, path, "");
+  if (f.has("base")) {
+    std::string base = f.string("base", "");
+    s = isBuiltinScene(base) ? makeBuiltinScene(base) : loadSceneByExtension(resolve(c, base));
+    for (size_t i = 0; i < s.materials.size(); ++i) c.materials[s.materials[i].name] = int(i);
+  }
+  s.name = fs::path(path).stem().string();
+  s.stats.sources.push_back(path);
+  if (f.has("materials")) {
+    const Json& mats = f.raw("materials");
+    if (!mats.is_object()) f.fail("materials", "expected an object of name -> material");
+    for (auto it = mats.begin(); it != mats.end(); ++it)
+      c.materials[it.key()] = s.addMaterial(readMaterial(c, it.value(), it.key(), "materials." + it.key()));
+  }
+  if (f.has("objects")) {
+    const Json& objs = f.raw("objects");
+    if (!objs.is_array()) f.fail("objects", "expected an array");
+    for (size_t i = 0; i < objs.size(); ++i) readObject(c, objs[i], i);
+  }
+  if (f.has("lights")) {
+    const Json& lights = f.raw("lights");
+    if (!lights.is_array()) f.fail("lights", "expected an array");
+    for (size_t i = 0; i < lights.size(); ++i) s.lights.push_back(readLight(c, lights[i], i));
+  }
+  s.ambient = f.vec3("ambient", s.ambient);
+  s.environmentIor = f.number("environmentIor", s.environmentIor, 0.1f, 10.0f);
+  if (f.has("skybox")) readSkybox(c, f.raw("skybox"));
+  if (f.has("camera")) readCamera(c, f.raw("camera"));
+  if (f.has("cameraPath")) {
+    const Json& p = f.raw("cameraPath");
+    if (!p.is_array()) f.fail("cameraPath", "expected an array of keys");
+    s.cameraPath.clear();
+    float lastTime = -1e30f;
+    for (size_t i = 0; i < p.size(); ++i) {
+      JsonFields kf(p[i], path, "cameraPath[" + std::to_string(i) + "]");
+      CameraKey k;
+      k.time = kf.number("time", 0.0f);
+      if (k.time < lastTime) kf.fail("time", "keys must be sorted by time");
+      lastTime = k.time;
+      k.position = kf.vec3("position", s.camera.position);
+      k.lookAt = kf.vec3("lookAt", s.camera.lookAt);
+      kf.finish();
+      s.cameraPath.push_back(k);
+    }
+  }
+  f.finish();
+  if (s.objects.empty()) throw InputError(path, "objects", "scene has no objects");
+  validateScene(s, path);
+  return s;
+}
+
+Scene loadSceneByExtension(const std::string& path) {
+  if (hasExtension(path, ".obj")) return loadObj(path);
+  if (hasExtension(path, ".gltf") || hasExtension(path, ".glb")) return loadGltf(path);
+  if (hasExtension(path, ".json")) return loadSceneFile(path);
+  throw InputError(path, "", "unknown scene format (expected .gltf, .glb, .obj or .json)");
+}
+
+Scene loadScene(const std::string& pathOrName, const LoadOptions& opts) {
+  Scene s;
+  if (isBuiltinScene(pathOrName) && !fs::exists(pathOrName)) {
+    s = makeBuiltinScene(pathOrName);
+  } else if (!fs::exists(pathOrName) && pathOrName.find('.') == std::string::npos &&
+             pathOrName.find('/') == std::string::npos) {
+    throw InputError(pathOrName, "scene", "not a file and not a built-in scene (cornell, spheres, atrium)");
+  } else {
+    s = loadSceneByExtension(pathOrName);
+  }
+  bool hasPunctual = !s.lights.empty();
+  if (opts.emissiveLights == LoadOptions::EmissiveLights::On ||
+      (opts.emissiveLights == LoadOptions::EmissiveLights::Auto && !hasPunctual))
+    addLightsForEmissiveMeshes(s);
+  return s;
+}
+
+}  // namespace tandem

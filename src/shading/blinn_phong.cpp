@@ -1,0 +1,71 @@
+#include "shading/blinn_phong.h"
+
+#include <cmath>
+#include <limits>
+
+#include "scene/scene.h"
+
+namespace tandem {
+
+namespace {
+float smoothstep(float e0, float e1, float x) {
+  if (e1 <= e0) return x >= e0 ? 1.0f : 0.0f;
+  float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+  return t * t * (3 - 2 * t);
+}
+}  // namespace
+
+LightSample sampleLight(const Light& l, Vec3 p) {
+  LightSample s;
+  Vec3 power = l.color * l.intensity;
+  if (l.type == LightType::Directional) {
+    s.wi = -l.direction;
+    s.distance = std::numeric_limits<float>::infinity();
+    s.radiance = power;
+    return s;
+  }
+  Vec3 d = l.position - p;
+  float dist2 = dot(d, d);
+  float dist = std::sqrt(dist2);
+  s.wi = dist > 0 ? d / dist : Vec3(0, 1, 0);
+  s.distance = dist;
+  if (l.range > 0 && dist > l.range) {
+    s.radiance = Vec3(0.0f);
+    return s;
+  }
+  float att = 1.0f / std::max(l.attConstant + l.attLinear * dist + l.attQuadratic * dist2, 1e-8f);
+  if (l.type == LightType::Spot) {
+    float cosTheta = dot(-s.wi, l.direction);
+    float cone = smoothstep(std::cos(radians(l.outerConeDeg)), std::cos(radians(l.innerConeDeg)), cosTheta);
+    if (l.outerConeDeg >= 90.0f && l.innerConeDeg >= 90.0f) cone = cosTheta > 0 ? 1.0f : 0.0f;
+    if (l.cosinePower > 0) cone *= std::pow(std::max(cosTheta, 0.0f), l.cosinePower);
+    att *= cone;
+  }
+  s.radiance = power * att;
+  return s;
+}
+
+Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene, const float* lightVisibility) {
+  Vec3 color = s.emission + scene.ambient * s.ambient;
+  const Vec3 n = s.normal;
+  const bool hasSpecular = maxComponent(s.specular) > 0.0f;
+  const float specNorm = (s.specularExponent + 8.0f) / (8.0f * kPi);
+  const Vec3 diffuseBrdf = s.diffuse * kInvPi;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    float vis = lightVisibility ? lightVisibility[i] : 1.0f;
+    if (vis <= 0.0f) continue;
+    LightSample ls = sampleLight(scene.lights[i], s.position);
+    float nDotL = dot(n, ls.wi);
+    if (nDotL <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
+    Vec3 f = diffuseBrdf;
+    if (hasSpecular) {
+      Vec3 h = normalize(ls.wi + wo);
+      float nDotH = std::max(dot(n, h), 0.0f);
+      f += s.specular * (specNorm * std::pow(nDotH, s.specularExponent));
+    }
+    color += f * ls.radiance * (nDotL * vis);
+  }
+  return color;
+}
+
+}  // namespace tandem

@@ -1,0 +1,98 @@
+#include "shading/surface_resolve.h"
+
+#include <cmath>
+
+namespace tandem {
+
+bool intersectTriangle(Vec3 o, Vec3 d, Vec3 a, Vec3 b, Vec3 c, float& t, float& u, float& v) {
+  // Möller-Trumbore, evaluated relative to vertex a for precision.
+  Vec3 e1 = b - a, e2 = c - a;
+  Vec3 p = cross(d, e2);
+  float det = dot(e1, p);
+  if (det == 0.0f) {
+    t = u = v = 0;
+    return false;
+  }
+  float inv = 1.0f / det;
+  Vec3 s = o - a;
+  u = dot(s, p) * inv;
+  Vec3 q = cross(s, e1);
+  v = dot(d, q) * inv;
+  t = dot(e2, q) * inv;
+  return true;
+}
+
+float surfaceAlpha(const FrameScene& fs, int object, int prim, float u, float v) {
+  const Scene& scene = *fs.scene;
+  const Object& obj = scene.objects[object];
+  const Material& mat = scene.materials[obj.material];
+  const Mesh& mesh = scene.meshes[obj.mesh];
+  float alpha = mat.diffuseOpacity;
+  if (mat.diffuseTexture < 0) return alpha;
+  const uint32_t* idx = &mesh.indices[3 * size_t(prim)];
+  float w = 1.0f - u - v;
+  Vec2 uv = mesh.uvs[idx[0]] * w + mesh.uvs[idx[1]] * u + mesh.uvs[idx[2]] * v;
+  return alpha * scene.textures[mat.diffuseTexture].sample(mat.transformUv(uv)).w;
+}
+
+SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir) {
+  const Scene& scene = *fs.scene;
+  const Object& obj = scene.objects[object];
+  const FrameObject& fo = fs.objects[object];
+  const Mesh& mesh = scene.meshes[obj.mesh];
+  const Material& mat = scene.materials[obj.material];
+  const uint32_t* idx = &mesh.indices[3 * size_t(prim)];
+  const Vec3 a = fo.positions[idx[0]], b = fo.positions[idx[1]], c = fo.positions[idx[2]];
+  float t, u, v;
+  intersectTriangle(origin, dir, a, b, c, t, u, v);
+  // Pixels on an edge can land a hair outside [0,1]; clamp so attributes stay convex.
+  u = std::clamp(u, 0.0f, 1.0f);
+  v = std::clamp(v, 0.0f, 1.0f - u);
+  const float w = 1.0f - u - v;
+
+  SurfaceSample s;
+  s.object = object;
+  s.material = obj.material;
+  s.t = t;
+  s.position = a * w + b * u + c * v;
+  s.geoNormal = normalize(cross(b - a, c - a));
+  Vec3 n = normalize(fo.normals[idx[0]] * w + fo.normals[idx[1]] * u + fo.normals[idx[2]] * v);
+  if (mat.doubleSided && dot(s.geoNormal, dir) > 0) {
+    s.geoNormal = -s.geoNormal;
+    n = -n;
+  }
+  Vec2 uvMesh = mesh.uvs[idx[0]] * w + mesh.uvs[idx[1]] * u + mesh.uvs[idx[2]] * v;
+  s.uv = mat.transformUv(uvMesh);
+
+  s.diffuse = mat.diffuse;
+  s.diffuseOpacity = mat.diffuseOpacity;
+  if (mat.diffuseTexture >= 0) {
+    Vec4 tex = scene.textures[mat.diffuseTexture].sample(s.uv);
+    s.diffuse = s.diffuse * tex.xyz();
+    s.diffuseOpacity *= tex.w;
+  }
+  s.ambient = mat.ambient;
+  s.emission = mat.emission;
+  if (mat.emissionTexture >= 0) s.emission = s.emission * scene.textures[mat.emissionTexture].sample(s.uv).xyz();
+  s.specular = mat.specular;
+  if (mat.specularTexture >= 0) s.specular = s.specular * scene.textures[mat.specularTexture].sample(s.uv).xyz();
+  s.specularExponent = mat.specularExponent;
+  s.reflectivity = mat.reflectivity;
+  s.ior = mat.ior;
+  s.opacity = mat.opacity;
+  if (mat.alphaMode == AlphaMode::Blend) s.opacity = std::min(s.opacity, s.diffuseOpacity);
+
+  if (mat.normalTexture >= 0) {
+    Vec4 tg = fo.tangents[idx[0]] * w + fo.tangents[idx[1]] * u + fo.tangents[idx[2]] * v;
+    Vec3 tangent = normalize(tg.xyz() - n * dot(n, tg.xyz()));
+    Vec3 bitangent = cross(n, tangent) * (fo.tangents[idx[0]].w < 0 ? -1.0f : 1.0f);
+    Vec4 tex = scene.textures[mat.normalTexture].sample(s.uv);
+    Vec3 tn{(tex.x * 2 - 1) * mat.normalScale, (tex.y * 2 - 1) * mat.normalScale, tex.z * 2 - 1};
+    Vec3 mapped = normalize(tangent * tn.x + bitangent * tn.y + n * tn.z);
+    if (isFinite(mapped) && length(mapped) > 0.5f) n = mapped;
+  }
+  s.normal = n;
+  return s;
+}
+
+}  // namespace tandem
