@@ -9,6 +9,13 @@
 
 namespace tandem {
 
+// Per-geometry data for filter callbacks.
+struct GeometryInfo {
+  const FrameScene* frame;
+  int object;
+  bool singleSided, alphaMask;
+};
+
 namespace {
 
 // Context passed to filter callbacks (Embree's documented pattern of extending the context).
@@ -16,12 +23,6 @@ struct QueryContext {
   RTCIntersectContext ctx;
   const FrameScene* frame;
   bool cullBackfaces;
-};
-
-struct GeometryInfo {
-  const FrameScene* frame;
-  int object;
-  bool singleSided, alphaMask;
 };
 
 void errorCallback(void*, RTCError code, const char* str) {
@@ -65,27 +66,14 @@ RayTracer::RayTracer() {
 }
 
 RayTracer::~RayTracer() {
-  if (scene_) {
-    for (unsigned id = 0;; ++id) {
-      RTCGeometry g = rtcGetGeometry(scene_, id);
-      if (!g) break;
-      delete static_cast<GeometryInfo*>(rtcGetGeometryUserData(g));
-    }
-    rtcReleaseScene(scene_);
-  }
+  if (scene_) rtcReleaseScene(scene_);
   rtcReleaseDevice(device_);
 }
 
 bool RayTracer::update(const FrameScene& fs) {
   if (scene_ && frame_ == &fs && builtVersion_ == fs.geometryVersion) return false;
-  if (scene_) {
-    for (unsigned id = 0; id < fs.objects.size() + 1; ++id) {
-      RTCGeometry g = rtcGetGeometry(scene_, id);
-      if (!g) break;
-      delete static_cast<GeometryInfo*>(rtcGetGeometryUserData(g));
-    }
-    rtcReleaseScene(scene_);
-  }
+  if (scene_) rtcReleaseScene(scene_);
+  geometryInfo_.clear();
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
   const Scene& scene = *fs.scene;
@@ -100,7 +88,9 @@ bool RayTracer::update(const FrameScene& fs) {
     std::memcpy(vb, fs.objects[o].positions.data(), fs.objects[o].positions.size() * sizeof(Vec3));
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
                                3 * sizeof(uint32_t), mesh.triangleCount());
-    auto* info = new GeometryInfo{&fs, int(o), !mat.doubleSided, mat.alphaMode == AlphaMode::Mask};
+    geometryInfo_.push_back(std::make_unique<GeometryInfo>(
+        GeometryInfo{&fs, int(o), !mat.doubleSided, mat.alphaMode == AlphaMode::Mask}));
+    GeometryInfo* info = geometryInfo_.back().get();
     rtcSetGeometryUserData(g, info);
     if (info->singleSided || info->alphaMask) rtcSetGeometryIntersectFilterFunction(g, filterHit);
     if (info->alphaMask) rtcSetGeometryOccludedFilterFunction(g, filterHit);

@@ -8,6 +8,8 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "scene/frame_scene.h"
 
@@ -23,6 +25,8 @@ struct Hit {
   float t = 0, u = 0, v = 0;
   bool valid() const { return object >= 0; }
 };
+
+struct GeometryInfo;
 
 class RayTracer {
  public:
@@ -47,6 +51,7 @@ class RayTracer {
   RTCScene scene_ = nullptr;
   const FrameScene* frame_ = nullptr;
   uint64_t builtVersion_ = ~0ull;
+  std::vector<std::unique_ptr<GeometryInfo>> geometryInfo_;
   mutable std::atomic<uint64_t> rays_{0};
 };
 

@@ -181,11 +181,11 @@ Scene makeAtriumScene() {
   s.name = "atrium";
   int plane = s.addMesh(makePlane(64));
   int cube = s.addMesh(makeCube());
-  int column = s.addMesh(makeCylinder(48, 24, false));
-  int capital = s.addMesh(makeCylinder(48, 4, true));
+  int column = s.addMesh(makeCylinder(48, 16, false));
+  int capital = s.addMesh(makeCylinder(48, 3, true));
   int arch = s.addMesh(makeArch(0.7f, 1.0f, 0.6f, 32));
-  int cloth = s.addMesh(makeCloth(1.6f, 3.2f, 56, 80, 0.25f, 3));
-  int urn = s.addMesh(makeUvSphere(96, 48));
+  int cloth = s.addMesh(makeCloth(1.6f, 3.2f, 40, 60, 0.25f, 3));
+  int urn = s.addMesh(makeUvSphere(64, 32));
   int tiles = s.addTexture(checkerTexture(512, 32, {0.62f, 0.58f, 0.5f}, {0.35f, 0.3f, 0.26f}));
   Material floorMat = diffuseMaterial("tiles", {1, 1, 1});
   floorMat.diffuseTexture = tiles;
