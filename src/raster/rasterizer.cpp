@@ -127,11 +127,13 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
       }
       // Project to fixed-point screen coordinates.
       int32_t X[12], Y[12];
-      float Z[12];
+      float Z[12], SX[12], SY[12];
       for (int k = 0; k < n; ++k) {
         float iw = 1.0f / poly[k].w;
         float sx = (poly[k].x * iw * 0.5f + 0.5f) * W;
         float sy = (0.5f - poly[k].y * iw * 0.5f) * H;
+        SX[k] = sx;
+        SY[k] = sy;
         X[k] = int32_t(std::lround(sx * kSubScale));
         Y[k] = int32_t(std::lround(sy * kSubScale));
         Z[k] = poly[k].z * iw;
@@ -153,7 +155,19 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
         SetupTriangle st;
         st.x[0] = X[a]; st.x[1] = X[b]; st.x[2] = X[c];
         st.y[0] = Y[a]; st.y[1] = Y[b]; st.y[2] = Y[c];
-        st.z[0] = Z[a]; st.z[1] = Z[b]; st.z[2] = Z[c];
+        // Depth is affine in screen space; derive its plane from the unsnapped positions (in
+        // double) so that sub-pixel snapping of large clipped triangles does not tilt it.
+        {
+          double ux = SX[b] - SX[a], uy = SY[b] - SY[a], vx = SX[c] - SX[a], vy = SY[c] - SY[a];
+          double uz = double(Z[b]) - Z[a], vz = double(Z[c]) - Z[a];
+          double det = ux * vy - uy * vx;
+          if (det == 0) continue;
+          st.dzdx = float((uz * vy - vz * uy) / det);
+          st.dzdy = float((vz * ux - uz * vx) / det);
+          st.zRef = Z[a];
+          st.xRef = SX[a];
+          st.yRef = SY[a];
+        }
         st.object = uint32_t(o);
         st.prim = prim;
         st.alphaMask = mat.alphaMode == AlphaMode::Mask;
@@ -210,19 +224,15 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
         }
         // E_e = dx*(py - ya) - dy*(px - xa): with this sign, positive orientation is area > 0
         // in this formula, which we ensured by swapping during setup.
-        const float area = float(dx[0] * (int64_t(t.y[2]) - t.y[0]) - dy[0] * (int64_t(t.x[2]) - t.x[0]));
-        const float invArea = 1.0f / area;
-        const float dz1 = t.z[1] - t.z[0], dz2 = t.z[2] - t.z[0];
         const int64_t stepX[3] = {-dy[0] * 256, -dy[1] * 256, -dy[2] * 256};
         const int64_t stepY[3] = {dx[0] * 256, dx[1] * 256, dx[2] * 256};
         for (int py = py0; py <= py1; ++py) {
           int64_t e0 = rowE[0], e1 = rowE[1], e2 = rowE[2];
           size_t row = size_t(py) * W;
-          for (int px = px0; px <= px1; ++px) {
+          float zRow = t.zRef + t.dzdy * (py + 0.5f - t.yRef) + t.dzdx * (px0 + 0.5f - t.xRef);
+          for (int px = px0; px <= px1; ++px, zRow += t.dzdx) {
             if ((e0 | e1 | e2) >= 0) {
-              // Barycentric weights of vertices 1 and 2 are the opposite edge functions.
-              float l1 = float(e2 - bias[2]) * invArea, l2 = float(e0 - bias[0]) * invArea;
-              float z = t.z[0] + l1 * dz1 + l2 * dz2;
+              const float z = zRow;
               size_t i = row + px;
               if (z > out.depth[i] && z <= 1.0f) {
                 bool keep = true;

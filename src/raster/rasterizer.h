@@ -25,7 +25,8 @@ class Rasterizer {
 
   struct SetupTriangle {
     int32_t x[3], y[3];    // fixed point, 8 sub-pixel bits, positive orientation
-    float z[3];            // reversed-Z depth per vertex
+    float zRef, dzdx, dzdy;  // depth plane from unsnapped coordinates: z = zRef + dzdx*(px-xRef) + ...
+    float xRef, yRef;
     uint32_t object, prim;
     int16_t tx0, ty0, tx1, ty1;  // tile range (inclusive)
     bool alphaMask;

@@ -1,7 +1,10 @@
 // OBJ + MTL via tinyobjloader. Each (shape, material) pair becomes one object.
 #include <tiny_obj_loader.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <map>
 #include <tuple>
 
@@ -76,10 +79,29 @@ Material convertMaterial(const tinyobj::material_t& m, Scene& s, std::map<std::s
   return out;
 }
 
+// tinyobjloader reads 'nan'/'inf' coordinates leniently (as 0 or a huge value); check every
+// vertex line ourselves so such files fail with the line that is wrong.
+void checkVertexLines(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (size_t n = 1; std::getline(in, line); ++n) {
+    if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+    std::istringstream ss(line.substr(2));
+    std::string tok;
+    for (int k = 0; k < 3 && ss >> tok; ++k) {
+      char* end = nullptr;
+      double d = std::strtod(tok.c_str(), &end);
+      if (end == tok.c_str() || !std::isfinite(d))
+        throw InputError(path, "line " + std::to_string(n), "vertex coordinate '" + tok + "' is NaN or infinite or not a number");
+    }
+  }
+}
+
 }  // namespace
 
 Scene loadObj(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path, "", "file not found");
+  checkVertexLines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;

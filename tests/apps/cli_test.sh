@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Command-line behaviour: success paths write images; bad input exits non-zero with a message
+# naming the problem and writes nothing.
+set -u
+T="$TANDEM"
+D="$1"
+rm -rf "$D" && mkdir -p "$D"
+fail=0
+check() { if ! eval "$2"; then echo "FAIL: $1"; fail=1; else echo "ok: $1"; fi; }
+
+# Expect a non-zero exit, a message containing $2, and an empty output folder.
+expect_error() {
+  local name="$1" fragment="$2"; shift 2
+  local out
+  out=$("$@" 2>&1); local rc=$?
+  check "$name: non-zero exit" "[ $rc -ne 0 ]"
+  check "$name: message names '$fragment'" "grep -qF -- \"$fragment\" <<<\"\$out\""
+  check "$name: nothing written" "[ -z \"\$(ls -A $D/err 2>/dev/null)\" ]"
+}
+
+"$T" --help >/dev/null; check "help" "[ $? -eq 0 ]"
+for v in render info compare bench; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
+
+"$T" render --width 160 --height 90 --out "$D/demo" --aov depth,normal,object_id,motion >/dev/null
+check "render writes png+exr+aovs" "[ -s $D/demo/cornell_deferred.png ] && [ -s $D/demo/cornell_deferred.exr ] && [ -s $D/demo/cornell_deferred_object_id.png ]"
+"$T" render cornell --width 160 --height 90 --pipeline deferred-rt-gbuffer --out "$D/rt.png" >/dev/null
+check "rt pipeline renders" "[ -s $D/rt.png ]"
+out=$("$T" compare "$D/demo/cornell_deferred.png" "$D/rt.png" --heatmap "$D/heat.png")
+check "compare raster vs rt output" "grep -q ssim <<<\"\$out\" && [ -s $D/heat.png ]"
+ssim=$(awk '/^ssim/ {print $2}' <<<"$out")
+check "raster and rt images agree (SSIM >= 0.98, got $ssim)" "awk -v s=$ssim 'BEGIN{exit !(s >= 0.98)}'"
+out=$("$T" info "$SHARED_SCENES/CornellBox/CornellBox-Original.obj")
+check "info counts triangles" "grep -q 'triangles    36' <<<\"\$out\""
+check "info shows the converted light" "grep -q 'lights       1' <<<\"\$out\""
+"$T" bench --scene cornell --frames 3 --warmup 1 --width 64 --height 48 --json "$D/bench.json" >/dev/null
+check "bench writes json" "grep -q median_ms $D/bench.json"
+"$T" render "$SHARED_SCENES/StanfordBunny/bunny.obj" --width 96 --height 96 --sun-light -0.3,-1,-0.5,3 \
+  --camera-pos -0.017,0.13,0.30 --look-at -0.017,0.11,-0.0015 --vfov 45 --out "$D/bunny.png" >/dev/null
+check "camera and light overrides" "[ -s $D/bunny.png ]"
+
+mkdir -p "$D/err"
+expect_error "missing scene file" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/x.png"
+expect_error "unknown builtin" "not a file and not a built-in" "$T" render --scene nosuchscene --out "$D/err/x.png"
+expect_error "zero width" "--width" "$T" render --width 0 --out "$D/err/x.png"
+expect_error "absurd height" "--height" "$T" render --height 100000 --out "$D/err/x.png"
+expect_error "unknown pipeline" "not a built-in pipeline" "$T" render --pipeline nope --out "$D/err/x.png"
+expect_error "unknown aov" "has no buffer 'nope'" "$T" render --aov nope --out "$D/err/x.png"
+expect_error "bad camera vector" "--camera-pos" "$T" render --camera-pos 1,2 --out "$D/err/x.png"
+expect_error "parallel up" "--up" "$T" render --camera-pos 0,5,0 --look-at 0,0,0 --up 0,1,0 --out "$D/err/x.png"
+echo '{"objects": [{"shape": "cube", "rotaton": [0,0,0]}]}' > "$D/bad.json"
+expect_error "unknown scene field" "objects[0].rotaton: unknown field" "$T" render --scene "$D/bad.json" --out "$D/err/x.png"
+expect_error "compare size mismatch" "differs" "$T" compare "$D/demo/cornell_deferred.png" "$D/bunny.png"
+expect_error "compare missing file" "not found" "$T" compare "$D/nope.png" "$D/bunny.png"
+expect_error "info missing" "not found" "$T" info /nonexistent.gltf
+
+if [ $fail -ne 0 ]; then echo "cli tests failed"; exit 1; fi
+echo "cli tests passed"

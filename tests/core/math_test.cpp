@@ -1,0 +1,45 @@
+#include <gtest/gtest.h>
+
+#include "core/math.h"
+#include "scene/camera.h"
+
+using namespace tandem;
+
+TEST(Math, InverseTimesMatrixIsIdentity) {
+  Mat4 m = Mat4::translate({1, 2, 3}) * Mat4::eulerXYZ({10, 20, 30}) * Mat4::scale({2, 3, 4});
+  Mat4 i = m * m.inverse();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(i.m[r][c], r == c ? 1.0f : 0.0f, 1e-5f);
+}
+
+TEST(Math, QuaternionMatchesAxisRotation) {
+  // 90 degrees about Y: (0, sin 45, 0, cos 45).
+  Mat4 q = Mat4::fromQuaternion({0, std::sin(kPi / 4), 0, std::cos(kPi / 4)});
+  Mat4 r = Mat4::rotateY(kPi / 2);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(q.m[i][j], r.m[i][j], 1e-6f);
+}
+
+TEST(Camera, ProjectInvertsGenerateRay) {
+  CameraDesc d;
+  d.position = {1, 2, 5};
+  d.lookAt = {0, 0, 0};
+  Camera c = Camera::make(d, 320, 200, {0.25f, -0.125f});
+  Vec3 o, dir;
+  c.generateRay(100.5f, 50.5f, o, dir);
+  Vec2 px;
+  ASSERT_TRUE(c.project(o + dir * 3.0f, px));
+  EXPECT_NEAR(px.x, 100.5f, 1e-3f);
+  EXPECT_NEAR(px.y, 50.5f, 1e-3f);
+}
+
+TEST(Camera, ReversedZDepthIsOneAtNearAndFallsWithDistance) {
+  CameraDesc d;
+  d.position = {0, 0, 0};
+  d.lookAt = {0, 0, -1};
+  d.nearPlane = 0.1f;
+  Camera c = Camera::make(d, 64, 64);
+  EXPECT_NEAR(c.depthOf({0, 0, -0.1f}), 1.0f, 1e-6f);
+  EXPECT_NEAR(c.depthOf({0, 0, -10.0f}), 0.01f, 1e-6f);
+  EXPECT_GT(c.depthOf({0, 0, -1}), c.depthOf({0, 0, -2}));
+}

@@ -1,0 +1,98 @@
+// Raster and ray-traced G-buffers of the same frame agree on object id and depth on all but a
+// thin band of edge pixels.
+#include <gtest/gtest.h>
+
+#include "scene/builtin_scenes.h"
+#include "scene/loaders.h"
+#include "test_util.h"
+
+using namespace tandem;
+
+namespace {
+
+struct Agreement {
+  size_t covered = 0, idMismatch = 0, idMismatchInterior = 0, depthChecked = 0, depthBad = 0;
+  float maxRel = 0;
+};
+
+// A pixel is on an edge when any 8-neighbour of the raster id differs from it.
+Agreement compareGBuffers(const Scene& scene, const CameraDesc& cam, int w, int h) {
+  auto raster = test::renderOnce(scene, "deferred", w, h, cam);
+  auto rt = test::renderOnce(scene, "deferred-rt-gbuffer", w, h, cam);
+  const Buffer& idA = raster->context().input("object_id");
+  const Buffer& idB = rt->context().input("object_id");
+  const Buffer& dA = raster->context().input("depth");
+  const Buffer& dB = rt->context().input("depth");
+  Agreement a;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float id = idA.at(x, y)[0];
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
+          if (idA.at(xx, yy)[0] != id) edge = true;
+        }
+      if (id >= 0) ++a.covered;
+      if (id != idB.at(x, y)[0]) {
+        ++a.idMismatch;
+        if (!edge) ++a.idMismatchInterior;
+        continue;
+      }
+      if (id < 0) continue;
+      ++a.depthChecked;
+      float za = dA.at(x, y)[0], zb = dB.at(x, y)[0];
+      float rel = std::abs(za - zb) / std::max(za, zb);
+      a.maxRel = std::max(a.maxRel, rel);
+      if (rel > 1e-4f) ++a.depthBad;
+    }
+  return a;
+}
+
+void expectAgreement(const Agreement& a, size_t pixels) {
+  EXPECT_GT(a.covered, pixels / 10) << "image nearly empty";
+  // Tolerances: at most 1% of pixels may differ in id, none of them away from an edge;
+  // depth agrees to 1e-4 relative on all but 0.1% of the pixels where ids agree.
+  EXPECT_LE(a.idMismatch, pixels / 100) << a.idMismatch << " id mismatches";
+  EXPECT_EQ(a.idMismatchInterior, 0u);
+  EXPECT_LE(a.depthBad, a.depthChecked / 1000 + 1) << a.depthBad << " depth mismatches, max relative " << a.maxRel;
+}
+
+}  // namespace
+
+class GBufferAgreement : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GBufferAgreement, RasterMatchesRayTraced) {
+  Scene s = makeBuiltinScene(GetParam());
+  const int w = 320, h = 180;
+  expectAgreement(compareGBuffers(s, s.camera, w, h), size_t(w) * h);
+}
+
+INSTANTIATE_TEST_SUITE_P(Builtins, GBufferAgreement, ::testing::Values("cornell", "spheres", "atrium"));
+
+TEST(GBufferAgreementFiles, CornellObjAndWaterBottle) {
+  Scene c = loadScene(test::sharedScene("CornellBox/CornellBox-Sphere.obj"));
+  CameraDesc cam;
+  cam.position = {0, 0.795f, 3.4f};
+  cam.lookAt = {0, 0.795f, 0};
+  cam.vfovDeg = 39.3f;
+  expectAgreement(compareGBuffers(c, cam, 256, 256), 256 * 256);
+  Scene b = loadScene(test::sharedScene("WaterBottle/glTF/WaterBottle.gltf"));
+  cam.position = {0, 0.02f, 0.45f};
+  cam.lookAt = {0, 0, 0};
+  cam.vfovDeg = 45;
+  cam.nearPlane = 0.005f;
+  expectAgreement(compareGBuffers(b, cam, 200, 200), 200 * 200);
+}
+
+// A camera inside a room: walls, floor and ceiling all cross the near plane and pass behind
+// the camera, exercising clipping.
+TEST(GBufferAgreementFiles, CameraInsideGeometryNearPlaneClipping) {
+  Scene s = makeCornellScene();
+  CameraDesc cam;
+  cam.position = {0.2f, 0.6f, -0.2f};
+  cam.lookAt = {-1, 0.3f, -0.8f};
+  cam.vfovDeg = 100;
+  cam.nearPlane = 0.05f;
+  expectAgreement(compareGBuffers(s, cam, 240, 160), 240 * 160);
+}

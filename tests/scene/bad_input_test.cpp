@@ -1,0 +1,125 @@
+// Every bad input gets an InputError naming the file, the field and the problem.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "scene/loaders.h"
+#include "test_util.h"
+
+using namespace tandem;
+using tandem::test::scratchDir;
+using tandem::test::writeText;
+
+namespace {
+
+// Loads `text` saved as `name` and expects an InputError whose message holds every fragment.
+void expectLoadError(const std::string& name, const std::string& text, std::vector<std::string> fragments) {
+  auto dir = scratchDir("bad_" + name);
+  auto path = (dir / name).string();
+  writeText(dir / name, text);
+  try {
+    loadSceneByExtension(path);
+    FAIL() << "no error for " << name;
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+  }
+}
+
+const std::string kTriangleGltfHead = R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],)";
+const std::string kBuffer =
+    R"("buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}])";
+
+}  // namespace
+
+TEST(BadInput, MissingFiles) {
+  EXPECT_THROW(loadSceneByExtension("/nonexistent/x.obj"), InputError);
+  EXPECT_THROW(loadSceneByExtension("/nonexistent/x.gltf"), InputError);
+  EXPECT_THROW(loadSceneByExtension("/nonexistent/x.json"), InputError);
+  EXPECT_THROW(loadScene("no-such-builtin"), InputError);
+  EXPECT_THROW(loadSceneByExtension("/tmp/scene.xyz"), InputError);
+}
+
+TEST(BadInput, MalformedJson) { expectLoadError("a.json", "{\"objects\": [", {"malformed JSON"}); }
+
+TEST(BadInput, UnknownJsonField) {
+  expectLoadError("b.json", R"({"objects": [{"shape": "cube", "positon": [0, 0, 0]}]})", {"objects[0].positon", "unknown field"});
+}
+
+TEST(BadInput, WrongJsonType) {
+  expectLoadError("c.json", R"({"objects": [{"shape": "cube", "position": "up"}]})", {"objects[0].position", "array of 3"});
+  expectLoadError("d.json", R"({"objects": [{"shape": "sphere", "slices": 2.5}]})", {"slices", "integer"});
+  expectLoadError("e.json", R"({"materials": {"m": {"ior": -1}}, "objects": [{"shape": "cube"}]})", {"materials.m.ior", "out of range"});
+}
+
+TEST(BadInput, UnknownMaterialAndShape) {
+  expectLoadError("f.json", R"({"objects": [{"shape": "cube", "material": "nope"}]})", {"objects[0].material", "unknown material 'nope'"});
+  expectLoadError("g.json", R"({"objects": [{"shape": "torus"}]})", {"objects[0].shape", "torus"});
+}
+
+TEST(BadInput, MissingTexture) {
+  expectLoadError("h.json", R"({"materials": {"m": {"diffuseMap": "missing.png"}}, "objects": [{"shape": "cube"}]})",
+                  {"materials.m.diffuseMap", "missing.png", "not found"});
+}
+
+TEST(BadInput, ObjIndexOutOfRange) {
+  expectLoadError("i.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", {});
+}
+
+TEST(BadInput, ObjNanVertex) { expectLoadError("j.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", {"NaN"}); }
+
+TEST(BadInput, ObjInfVertex) { expectLoadError("k.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", {"NaN or infinite"}); }
+
+TEST(BadInput, ObjMissingTexture) {
+  auto dir = scratchDir("obj_tex");
+  writeText(dir / "m.mtl", "newmtl a\nKd 1 1 1\nmap_Kd nothere.png\n");
+  writeText(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  try {
+    loadObj((dir / "m.obj").string());
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("map_Kd"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BadInput, DegenerateTrianglesAreSkippedAndCounted) {
+  auto dir = scratchDir("degenerate");
+  writeText(dir / "d.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n");
+  Scene s = loadObj((dir / "d.obj").string());
+  EXPECT_EQ(s.triangleCount(), 1u);
+  EXPECT_EQ(s.stats.degenerateTriangles, 2u);
+}
+
+TEST(BadInput, GltfRequiredExtensionUnsupported) {
+  expectLoadError("l.gltf", R"({"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_draco_mesh_compression"],
+                                 "extensionsUsed": ["KHR_draco_mesh_compression"]})",
+                  {"extensionsRequired", "KHR_draco_mesh_compression"});
+}
+
+TEST(BadInput, GltfAccessorOutOfRange) {
+  expectLoadError("m.gltf", kTriangleGltfHead + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 5}}]}],
+      "accessors": [], "bufferViews": [], )" + kBuffer + "}",
+                  {"POSITION", "out of range"});
+}
+
+TEST(BadInput, GltfIndexOutOfRange) {
+  // Indices 0, 1, 9 as unsigned bytes after the 36 position bytes.
+  expectLoadError("n.gltf", kTriangleGltfHead + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                    {"bufferView": 1, "componentType": 5121, "count": 3, "type": "SCALAR"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 1, "byteLength": 3}],
+      "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"},
+                  {"byteLength": 3, "uri": "data:application/octet-stream;base64,AAEJ"}]})",
+                  {"indices", "index 9 out of range"});
+}
+
+TEST(BadInput, GltfNanVertex) {
+  // Second vertex x = NaN (0x7fc00000).
+  expectLoadError("o.gltf", kTriangleGltfHead + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAADAfwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})",
+                  {"POSITION", "NaN"});
+}
+
+TEST(BadInput, GltfMalformed) { expectLoadError("p.gltf", "{ not json", {"cannot parse glTF"}); }

@@ -1,0 +1,182 @@
+#include <gtest/gtest.h>
+
+#include "scene/builtin_scenes.h"
+#include "scene/loaders.h"
+#include "test_util.h"
+
+using namespace tandem;
+using tandem::test::scratchDir;
+using tandem::test::sharedScene;
+using tandem::test::writeText;
+
+TEST(ObjLoader, CornellBoxOriginal) {
+  Scene s = loadObj(sharedScene("CornellBox/CornellBox-Original.obj"));
+  EXPECT_EQ(s.triangleCount(), 36u);
+  EXPECT_GE(s.objects.size(), 8u);
+  // The light's MTL Ke = (17, 12, 4) becomes the material's emission.
+  bool found = false;
+  for (const Object& o : s.objects)
+    if (s.materials[o.material].emission.x == 17.0f) found = true;
+  EXPECT_TRUE(found);
+  Bounds3 b = s.bounds();
+  EXPECT_NEAR(b.hi.y, 1.99f, 0.02f);
+}
+
+TEST(ObjLoader, IllumAndIorMapToOpticalProperties) {
+  Scene s = loadObj(sharedScene("CornellBox/CornellBox-Sphere.obj"));
+  const Material *mirror = nullptr, *glass = nullptr;
+  for (const Material& m : s.materials) {
+    if (m.name == "leftSphere") mirror = &m;
+    if (m.name == "rightSphere") glass = &m;
+  }
+  ASSERT_TRUE(mirror && glass);
+  EXPECT_EQ(mirror->reflectivity, 1.0f);  // illum 5
+  EXPECT_EQ(glass->opacity, 0.0f);        // illum 7
+  EXPECT_FLOAT_EQ(glass->ior, 2.5f);      // Ni 2.5
+}
+
+TEST(EmissiveLights, CornellLightBecomesCosineSpotWithKeTimesArea) {
+  Scene s = loadScene(sharedScene("CornellBox/CornellBox-Original.obj"));
+  ASSERT_EQ(s.lights.size(), 1u);
+  const Light& l = s.lights[0];
+  EXPECT_EQ(l.type, LightType::Spot);
+  EXPECT_EQ(l.cosinePower, 1.0f);
+  EXPECT_NEAR(l.direction.y, -1.0f, 1e-3f);  // faces down into the box
+  // The light quad is about 0.47 x 0.38 m (scene README: area 0.1786), Ke max = 17.
+  EXPECT_NEAR(l.intensity, 17.0f * 0.1786f, 0.05f * 17.0f * 0.1786f);
+  EXPECT_NEAR(l.position.y, 1.98f, 0.02f);
+  // Turned off on request.
+  Scene off = loadScene(sharedScene("CornellBox/CornellBox-Original.obj"), {LoadOptions::EmissiveLights::Off});
+  EXPECT_TRUE(off.lights.empty());
+}
+
+TEST(ObjLoader, BunnyWithoutNormalsGetsSmoothNormals) {
+  Scene s = loadObj(sharedScene("StanfordBunny/bunny.obj"));
+  EXPECT_EQ(s.triangleCount() + s.stats.degenerateTriangles, 69451u);
+  const Mesh& m = s.meshes[s.objects[0].mesh];
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  for (size_t i = 0; i < m.normals.size(); i += 997) EXPECT_NEAR(length(m.normals[i]), 1.0f, 1e-4f);
+}
+
+TEST(GltfLoader, WaterBottleHasTexturesAndNodeRotation) {
+  Scene s = loadGltf(sharedScene("WaterBottle/glTF/WaterBottle.gltf"));
+  EXPECT_EQ(s.triangleCount(), 4510u);  // scene README
+  ASSERT_EQ(s.objects.size(), 1u);
+  const Material& m = s.materials[s.objects[0].material];
+  EXPECT_GE(m.diffuseTexture, 0);
+  EXPECT_GE(m.normalTexture, 0);
+  EXPECT_GE(m.emissionTexture, 0);
+  // The node's 180 degree rotation about Y maps +X to -X.
+  Vec3 x = s.objects[0].worldMatrix(0).transformVector({1, 0, 0});
+  EXPECT_NEAR(x.x, -1.0f, 1e-5f);
+  const Mesh& mesh = s.meshes[s.objects[0].mesh];
+  EXPECT_EQ(mesh.tangents.size(), mesh.positions.size());
+}
+
+TEST(GltfLoader, SuzanneMetallicRoughnessMapping) {
+  Scene s = loadGltf(sharedScene("Suzanne/glTF/Suzanne.gltf"));
+  EXPECT_EQ(s.triangleCount(), 3936u);
+  const Material& m = s.materials[s.objects[0].material];
+  EXPECT_GE(m.diffuseTexture, 0);
+  EXPECT_GE(m.specularExponent, 1.0f);
+}
+
+// A hand-written glTF exercising lights, camera, KHR extensions and sampler modes.
+TEST(GltfLoader, ExtensionsLightsAndCamera) {
+  auto dir = scratchDir("gltf_ext");
+  // One triangle; buffer as base64 data URI: 3 float3 positions (36 bytes).
+  const char* b64 = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
+  std::string gltf = std::string(R"({
+ "asset": {"version": "2.0"},
+ "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"],
+ "extensions": {"KHR_lights_punctual": {"lights": [
+    {"type": "spot", "intensity": 5, "color": [1, 0.5, 0.25], "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.4}},
+    {"type": "directional", "intensity": 2}]}},
+ "scene": 0, "scenes": [{"nodes": [0, 1, 2, 3]}],
+ "nodes": [
+   {"mesh": 0, "translation": [1, 0, 0]},
+   {"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 3, 0]},
+   {"extensions": {"KHR_lights_punctual": {"light": 1}}},
+   {"camera": 0, "translation": [0, 0, 5]}],
+ "cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.05}}],
+ "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1], "metallicFactor": 0, "roughnessFactor": 0.5},
+   "emissiveFactor": [1, 1, 1], "alphaMode": "BLEND",
+   "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.75}, "KHR_materials_ior": {"ior": 1.33},
+                  "KHR_materials_emissive_strength": {"emissiveStrength": 4}}}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)") + b64 + R"("}]
+})";
+  writeText(dir / "t.gltf", gltf);
+  Scene s = loadGltf((dir / "t.gltf").string());
+  ASSERT_EQ(s.objects.size(), 1u);
+  const Material& m = s.materials[s.objects[0].material];
+  EXPECT_NEAR(m.ior, 1.33f, 1e-6f);
+  EXPECT_NEAR(m.opacity, 0.25f, 1e-6f);
+  EXPECT_NEAR(m.emission.x, 4.0f, 1e-6f);
+  EXPECT_EQ(m.alphaMode, AlphaMode::Blend);
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].type, LightType::Spot);
+  EXPECT_NEAR(s.lights[0].position.y, 3.0f, 1e-6f);
+  EXPECT_NEAR(s.lights[0].outerConeDeg, degrees(0.4f), 1e-4f);
+  EXPECT_NEAR(s.lights[1].direction.z, -1.0f, 1e-6f);  // default -Z
+  EXPECT_TRUE(s.hasCamera);
+  EXPECT_NEAR(s.camera.vfovDeg, degrees(0.5f), 1e-4f);
+  EXPECT_NEAR(s.camera.position.z, 5.0f, 1e-6f);
+  EXPECT_NEAR(s.objects[0].worldMatrix(0).transformPoint({0, 0, 0}).x, 1.0f, 1e-6f);
+}
+
+TEST(SceneFile, PrimitivesMaterialsLightsCameraAnimation) {
+  auto dir = scratchDir("scene_file");
+  writeText(dir / "s.json", R"({
+  "materials": {"red": {"diffuse": [0.8, 0.1, 0.1], "specular": [0.5, 0.5, 0.5], "specularExponent": 64,
+                        "reflectivity": 0.3, "ior": 1.4, "opacity": 0.5, "tiling": [2, 3], "offset": [0.1, 0.2],
+                        "castsShadows": false, "emission": [0, 0, 0], "ambient": [0.1, 0.1, 0.1], "diffuseOpacity": 0.9}},
+  "objects": [
+    {"name": "ball", "shape": "sphere", "slices": 12, "stacks": 6, "material": "red", "position": [0, 1, 0],
+     "heuristic": {"K": 2.5, "E": 3}},
+    {"name": "floor", "shape": "plane", "scale": [5, 1, 5]},
+    {"name": "box", "shape": "cube", "animation": [{"time": 0, "position": [0, 0, 0]}, {"time": 1, "position": [2, 0, 0]}]},
+    {"name": "bunny", "file": ")" + sharedScene("StanfordBunny/bunny.obj") + R"(", "scale": [2, 2, 2], "material": "red"}
+  ],
+  "lights": [{"type": "point", "position": [0, 4, 0], "intensity": 20},
+             {"type": "spot", "position": [0, 4, 0], "direction": [0, -1, 0], "innerCone": 10, "outerCone": 20},
+             {"type": "directional", "direction": [0, -1, 0], "intensity": 2}],
+  "ambient": [0.05, 0.05, 0.05], "environmentIor": 1.0, "skybox": {"color": [0.2, 0.3, 0.4]},
+  "camera": {"position": [0, 2, 6], "lookAt": [0, 1, 0], "vfov": 50, "aperture": 0.02, "focalLength": 0.05,
+             "focusDistance": 6, "sensorWidth": 0.036},
+  "cameraPath": [{"time": 0, "position": [0, 2, 6], "lookAt": [0, 1, 0]}, {"time": 2, "position": [2, 2, 6], "lookAt": [0, 1, 0]}]
+})");
+  Scene s = loadSceneFile((dir / "s.json").string());
+  ASSERT_EQ(s.objects.size(), 4u);
+  EXPECT_EQ(s.meshes[s.objects[0].mesh].triangleCount(), size_t(12 * (6 - 1) * 2 - 12 * 0));
+  EXPECT_EQ(s.objects[0].heuristic.K, 2.5f);
+  EXPECT_EQ(s.objects[0].heuristic.E, 3.0f);
+  const Material& red = s.materials[s.objects[0].material];
+  EXPECT_FALSE(red.castsShadows);
+  EXPECT_EQ(red.tiling.y, 3.0f);
+  EXPECT_NEAR(s.objects[2].worldMatrix(0.5f).transformPoint({0, 0, 0}).x, 1.0f, 1e-6f);
+  EXPECT_EQ(s.lights.size(), 3u);
+  EXPECT_EQ(s.camera.apertureDiameter, 0.02f);
+  EXPECT_EQ(s.cameraPath.size(), 2u);
+  EXPECT_NEAR(s.objects[3].worldMatrix(0).m[0][0], 2.0f, 1e-6f);
+  EXPECT_EQ(s.objects[3].material, s.objects[0].material);
+}
+
+TEST(SceneFile, BaseBuiltinPlusModel) {
+  auto dir = scratchDir("scene_base");
+  writeText(dir / "s.json", R"({"base": "cornell", "objects": [{"file": ")" + sharedScene("StanfordBunny/bunny.obj") +
+                                R"(", "material": "glass", "position": [0, 0, 0]}]})");
+  Scene s = loadSceneFile((dir / "s.json").string());
+  Scene base = makeCornellScene();
+  EXPECT_EQ(s.objects.size(), base.objects.size() + 1);
+  EXPECT_EQ(s.materials[s.objects.back().material].name, "glass");
+}
+
+TEST(BuiltinScenes, AtriumIsAtPaperComplexity) {
+  Scene s = makeAtriumScene();
+  EXPECT_GT(s.triangleCount(), 200000u);
+  EXPECT_LT(s.triangleCount(), 400000u);
+  validateScene(s, "atrium");
+}
