@@ -68,7 +68,7 @@ struct BenchVerb {
     std::printf("bench: scene %s, pipeline %s, %dx%d, %d frames after %d warm-up, %s threads (%u cores)\n",
                 scene.name.c_str(), renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames, warmup,
                 opts.threads ? std::to_string(opts.threads).c_str() : "all", cores);
-    std::printf("  %-20s %9s %9s %9s %9s %12s\n", "pass", "median", "mean", "min", "max", "Mrays/s");
+    std::printf("  %-28s %9s %9s %9s %9s %12s\n", "pass", "median", "mean", "min", "max", "Mrays/s");
     Json report;
     report["scene"] = scene.name;
     report["pipeline"] = renderer.pipeline().name;
@@ -82,7 +82,7 @@ struct BenchVerb {
     for (const std::string& name : order) {
       TimingStats s = summarize(ms[name]);
       double mrays = rays[name] > 0 ? rays[name] / (rayMs[name] * 1e3) : 0.0;
-      std::printf("  %-20s %9.3f %9.3f %9.3f %9.3f", name.c_str(), s.median, s.mean, s.min, s.max);
+      std::printf("  %-28s %9.3f %9.3f %9.3f %9.3f", name.c_str(), s.median, s.mean, s.min, s.max);
       if (mrays > 0) std::printf(" %12.2f", mrays);
       std::printf("\n");
       Json pj = {{"median_ms", s.median}, {"mean_ms", s.mean}, {"min_ms", s.min}, {"max_ms", s.max}};
@@ -90,7 +90,7 @@ struct BenchVerb {
       report["passes"][name] = pj;
     }
     TimingStats t = summarize(total);
-    std::printf("  %-20s %9.3f %9.3f %9.3f %9.3f\n", "frame", t.median, t.mean, t.min, t.max);
+    std::printf("  %-28s %9.3f %9.3f %9.3f %9.3f\n", "frame", t.median, t.mean, t.min, t.max);
     std::printf("  fps (from median frame) %.2f\n", t.median > 0 ? 1000.0 / t.median : 0.0);
     report["total"] = {{"median_ms", t.median}, {"mean_ms", t.mean}, {"min_ms", t.min}, {"max_ms", t.max},
                        {"fps", t.median > 0 ? 1000.0 / t.median : 0.0}};

@@ -53,11 +53,11 @@ struct RenderVerb {
                 scene.name.c_str(), scene.triangleCount(), scene.lights.size(),
                 renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames);
     for (const PassTiming& p : last.passes) {
-      std::printf("  %-20s %9.2f ms", p.name.c_str(), p.ms);
+      std::printf("  %-28s %9.2f ms", p.name.c_str(), p.ms);
       if (p.rays > 0) std::printf("  %8.2f Mrays/s", p.rays / (p.ms * 1e3));
       std::printf("\n");
     }
-    std::printf("  %-20s %9.2f ms\n", "frame", last.totalMs);
+    std::printf("  %-28s %9.2f ms\n", "frame", last.totalMs);
 
     FrameContext& ctx = renderer.context();
     const std::string& outName = renderer.pipeline().output;

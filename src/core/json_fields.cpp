@@ -13,7 +13,7 @@ Json readJsonFile(const std::string& path) {
   ss << in.rdbuf();
   try {
     return Json::parse(ss.str());
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse errors and number overflow alike
     throw InputError(path, "", std::string("malformed JSON: ") + e.what());
   }
 }

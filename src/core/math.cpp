@@ -101,24 +101,6 @@ Mat4 Mat4::operator*(const Mat4& o) const {
   return r;
 }
 
-Vec4 Mat4::operator*(Vec4 v) const {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z + m[0][3] * v.w,
-          m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z + m[1][3] * v.w,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z + m[2][3] * v.w,
-          m[3][0] * v.x + m[3][1] * v.y + m[3][2] * v.z + m[3][3] * v.w};
-}
-
-Vec3 Mat4::transformPoint(Vec3 p) const {
-  Vec4 r = *this * Vec4(p, 1.0f);
-  return r.w != 1.0f && r.w != 0.0f ? r.xyz() / r.w : r.xyz();
-}
-
-Vec3 Mat4::transformVector(Vec3 v) const {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
-          m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
-}
-
 Mat4 Mat4::transposed() const {
   Mat4 r;
   for (int i = 0; i < 4; ++i)

@@ -10,7 +10,10 @@ namespace tandem {
 std::vector<BufferSlot> RasterGBufferPass::outputs() const { return gbufferSlots(); }
 
 void RasterGBufferPass::execute(FrameContext& ctx) {
+  auto t0 = Clock::now();
   ctx.rasterizer.render(ctx.frame, ctx.camera, ctx.visibility);
+  ctx.passParts.push_back({"visibility", msSince(t0), 0});
+  auto t1 = Clock::now();
   GBufferView g = GBufferView::create(ctx, *this);
   const VisibilityBuffer& vis = ctx.visibility;
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
@@ -29,6 +32,7 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
         g.write(x, y, s, vis.depth[i], motionVector(ctx, s.object, s.position));
       }
   });
+  ctx.passParts.push_back({"resolve", msSince(t1), 0});
 }
 
 }  // namespace tandem

@@ -19,6 +19,7 @@ struct FrameContext {
   const Scene* scene = nullptr;
   FrameScene frame;
   Camera camera, prevCamera;
+  bool cameraMoved = false;  // this frame's unjittered view-projection differs from last frame's
   int width = 0, height = 0;
   int frameIndex = 0;
   uint64_t seed = 0;
@@ -26,6 +27,7 @@ struct FrameContext {
   Rasterizer rasterizer;        // owns binning scratch reused across frames
   VisibilityBuffer visibility;  // last raster result (also shown as AOVs)
   double passRays = 0;          // a pass adds the rays it traced; the pipeline records it
+  std::vector<PassTiming> passParts;  // optional sub-timings a pass reports ("pass/part")
 
   // The ray tracer, (re)built for the current frame's geometry on first use in a frame.
   RayTracer& rayTracer();

@@ -167,9 +167,13 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
   auto frameStart = Clock::now();
   for (auto& p : passes) {
     ctx.passRays = 0;
+    ctx.passParts.clear();
     auto t0 = Clock::now();
     p->execute(ctx);
-    ft.passes.push_back({p->label.empty() ? p->type() : p->label, msSince(t0), ctx.passRays});
+    const std::string label = p->label.empty() ? p->type() : p->label;
+    ft.passes.push_back({label, msSince(t0), ctx.passRays});
+    // Parts are reported after their pass and are not added to the frame total again.
+    for (PassTiming& part : ctx.passParts) ft.passes.push_back({label + "/" + part.name, part.ms, part.rays});
   }
   ft.totalMs = msSince(frameStart);
   return ft;

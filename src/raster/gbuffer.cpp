@@ -74,7 +74,9 @@ void GBufferView::writeBackground(int x, int y) {
 }
 
 Vec2 motionVector(const FrameContext& ctx, int object, Vec3 p) {
-  Vec3 prevWorld = ctx.frame.objects[object].worldToPrev.transformPoint(p);
+  const FrameObject& fo = ctx.frame.objects[object];
+  if (!fo.moved && !ctx.cameraMoved) return {0, 0};
+  Vec3 prevWorld = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
   auto toPixel = [](const Mat4& vp, const Camera& c, Vec3 q, Vec2& px) {
     Vec4 h = vp * Vec4(q, 1.0f);
     if (h.w <= 1e-8f) return false;

@@ -198,6 +198,12 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
     const int tx = tile % tilesX, ty = tile / tilesX;
     const int x0 = tx * kBinSize, y0 = ty * kBinSize;
     const int x1 = std::min(W, x0 + kBinSize) - 1, y1 = std::min(H, y0 + kBinSize) - 1;
+    for (int y = y0; y <= y1; ++y) {
+      size_t row = size_t(y) * W;
+      std::fill(out.depth.begin() + row + x0, out.depth.begin() + row + x1 + 1, 0.0f);
+      std::fill(out.object.begin() + row + x0, out.object.begin() + row + x1 + 1, kNoObject);
+      std::fill(out.prim.begin() + row + x0, out.prim.begin() + row + x1 + 1, 0u);
+    }
     for (int ch = 0; ch < chunks; ++ch) {
       const auto& tris = chunkTris_[ch];
       for (uint32_t id : bins_[ch][tile]) {

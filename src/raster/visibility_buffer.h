@@ -16,13 +16,14 @@ struct VisibilityBuffer {
   std::vector<uint32_t> object;  // kNoObject where nothing was drawn
   std::vector<uint32_t> prim;
 
+  // Allocates without clearing: the rasterizer clears each tile in parallel before drawing it.
   void resize(int w, int h) {
     width = w;
     height = h;
     size_t n = size_t(w) * h;
-    depth.assign(n, 0.0f);
-    object.assign(n, kNoObject);
-    prim.assign(n, 0);
+    depth.resize(n);
+    object.resize(n);
+    prim.resize(n);
   }
 };
 

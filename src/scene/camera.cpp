@@ -16,6 +16,8 @@ Camera Camera::make(const CameraDesc& d, int width, int height, Vec2 jitter) {
   c.upVec = Vec3(c.view.m[1][0], c.view.m[1][1], c.view.m[1][2]);
   c.forward = -Vec3(c.view.m[2][0], c.view.m[2][1], c.view.m[2][2]);
   float aspect = float(width) / float(height);
+  c.aspect = aspect;
+  c.tanHalfFov = std::tan(radians(d.vfovDeg) * 0.5f);
   Mat4 p;
   if (d.projection == Projection::Perspective) {
     // Reversed-Z, infinite far: clip = (x*f/a, y*f, near, -z_view); ndc z = near / z_dist.
@@ -47,9 +49,8 @@ Camera Camera::make(const CameraDesc& d, int width, int height, Vec2 jitter) {
 void Camera::generateRay(float px, float py, Vec3& origin, Vec3& dir) const {
   float sx = (px + jitter.x) / width * 2.0f - 1.0f;   // NDC x
   float sy = 1.0f - (py + jitter.y) / height * 2.0f;  // NDC y
-  float aspect = float(width) / float(height);
   if (desc.projection == Projection::Perspective) {
-    float t = std::tan(radians(desc.vfovDeg) * 0.5f);
+    float t = tanHalfFov;
     origin = desc.position;
     dir = normalize(forward + right * (sx * t * aspect) + upVec * (sy * t));
   } else {

@@ -23,6 +23,7 @@ void FrameScene::update(const Scene& s, float t, float tPrev) {
     Mat4 w = o.worldMatrix(t);
     f.prevWorld = o.worldMatrix(tPrev);
     f.worldToPrev = f.prevWorld * w.inverse();
+    f.moved = !sameMatrix(f.prevWorld, w);
     if (!first && sameMatrix(w, f.world)) continue;
     changed = true;
     f.world = w;

@@ -57,7 +57,7 @@ TEST(Pipeline, EveryPassTimedEveryFrame) {
   auto r = std::make_unique<Renderer>(s, Pipeline::load("deferred"), RenderSettings{.width = 64, .height = 48});
   for (int f = 0; f < 3; ++f) {
     FrameTimings t = r->renderFrame(f, s.camera);
-    ASSERT_EQ(t.passes.size(), 4u);  // scene_update + 3 passes
+    ASSERT_EQ(t.passes.size(), 6u);  // scene_update + 3 passes + raster_gbuffer's 2 parts
     EXPECT_EQ(t.passes[1].name, "raster_gbuffer");
     for (const PassTiming& p : t.passes) EXPECT_GE(p.ms, 0.0);
     EXPECT_GT(t.totalMs, 0.0);
