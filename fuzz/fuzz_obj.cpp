@@ -1,4 +1,6 @@
 // libFuzzer target for the obj loader.
 #include "fuzz_loader.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return fuzzLoad(data, size, ".obj"); }
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return fuzzLoad(data, size, ".obj");
+}

@@ -7,7 +7,9 @@
 
 namespace tandem::test {
 
-inline std::string sharedScene(const std::string& rel) { return std::string(TANDEM_SHARED_SCENES) + "/" + rel; }
+inline std::string sharedScene(const std::string& rel) {
+  return std::string(TANDEM_SHARED_SCENES) + "/" + rel;
+}
 
 // A fresh empty folder under the build tree for one test.
 inline std::filesystem::path scratchDir(const std::string& name) {
@@ -24,9 +26,10 @@ inline void writeText(const std::filesystem::path& p, const std::string& text) {
 }
 
 // Renders one frame of `scene` through a built-in pipeline and returns the renderer.
-inline std::unique_ptr<Renderer> renderOnce(const Scene& scene, const std::string& pipeline, int w, int h,
-                                            const CameraDesc& cam) {
-  auto r = std::make_unique<Renderer>(scene, Pipeline::load(pipeline), RenderSettings{.width = w, .height = h});
+inline std::unique_ptr<Renderer> renderOnce(const Scene& scene, const std::string& pipeline, int w,
+                                            int h, const CameraDesc& cam) {
+  auto r = std::make_unique<Renderer>(scene, Pipeline::load(pipeline),
+                                      RenderSettings{.width = w, .height = h});
   r->renderFrame(0, cam);
   return r;
 }

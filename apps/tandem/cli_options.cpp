@@ -19,7 +19,8 @@ std::vector<std::string> splitList(const std::string& s) {
 
 namespace {
 
-std::vector<float> parseNumbers(const std::string& opt, const std::string& text, size_t minN, size_t maxN) {
+std::vector<float> parseNumbers(const std::string& opt, const std::string& text, size_t minN,
+                                size_t maxN) {
   std::vector<float> v;
   for (const std::string& part : splitList(text)) {
     char* end = nullptr;
@@ -29,9 +30,10 @@ std::vector<float> parseNumbers(const std::string& opt, const std::string& text,
     v.push_back(f);
   }
   if (v.size() < minN || v.size() > maxN)
-    throw InputError("command line", opt, "expected " + std::to_string(minN) +
-                                              (maxN > minN ? "-" + std::to_string(maxN) : "") +
-                                              " comma-separated numbers, got '" + text + "'");
+    throw InputError("command line", opt,
+                     "expected " + std::to_string(minN) +
+                         (maxN > minN ? "-" + std::to_string(maxN) : "") +
+                         " comma-separated numbers, got '" + text + "'");
   return v;
 }
 
@@ -43,12 +45,15 @@ Vec3 parseVec3(const std::string& opt, const std::string& text) {
 }  // namespace
 
 void addRenderOptions(CLI::App* app, RenderOptions& o) {
-  app->add_option("--scene", o.scene, "Scene: .gltf/.glb/.obj/.json file or built-in (cornell, spheres, atrium)");
-  app->add_option("--pipeline", o.pipeline, "Pipeline: built-in name (deferred, deferred-rt-gbuffer) or JSON file");
+  app->add_option("--scene", o.scene,
+                  "Scene: .gltf/.glb/.obj/.json file or built-in (cornell, spheres, atrium)");
+  app->add_option("--pipeline", o.pipeline,
+                  "Pipeline: built-in name (deferred, deferred-rt-gbuffer) or JSON file");
   app->add_option("--width", o.width, "Image width in pixels");
   app->add_option("--height", o.height, "Image height in pixels");
   app->add_option("--out", o.out, "Output image (.png/.exr) or folder");
-  app->add_option("--aov", o.aov, "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
+  app->add_option("--aov", o.aov,
+                  "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
   app->add_option("--frames", o.frames, "Frames to render (scene time advances 1/30 s per frame)");
   app->add_option("--seed", o.seed, "Random seed");
   app->add_option("--threads", o.threads, "Worker threads (0 = all cores)");
@@ -56,17 +61,26 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
   app->add_option("--look-at", o.lookAt, "Camera target x,y,z");
   app->add_option("--up", o.up, "Camera up vector x,y,z");
   app->add_option("--vfov", o.vfov, "Vertical field of view in degrees");
-  app->add_option("--point-light", o.pointLights, "Add a point light: x,y,z[,intensity[,r,g,b]] (W/sr)");
-  app->add_option("--sun-light", o.sunLights, "Add a directional light: dx,dy,dz[,intensity[,r,g,b]] (travel direction, W/m^2)");
-  app->add_option("--emissive-lights", o.emissiveLights, "Emissive meshes as punctual lights: auto (when the scene has none), on, off");
+  app->add_option("--point-light", o.pointLights,
+                  "Add a point light: x,y,z[,intensity[,r,g,b]] (W/sr)");
+  app->add_option(
+      "--sun-light", o.sunLights,
+      "Add a directional light: dx,dy,dz[,intensity[,r,g,b]] (travel direction, W/m^2)");
+  app->add_option("--emissive-lights", o.emissiveLights,
+                  "Emissive meshes as punctual lights: auto (when the scene has none), on, off");
 }
 
 void validateRenderOptions(const RenderOptions& o) {
-  if (o.width < 1 || o.width > 16384) throw InputError("command line", "--width", "must be in [1, 16384]");
-  if (o.height < 1 || o.height > 16384) throw InputError("command line", "--height", "must be in [1, 16384]");
-  if (o.frames < 1 || o.frames > 1000000) throw InputError("command line", "--frames", "must be in [1, 1000000]");
-  if (o.threads < 0 || o.threads > 4096) throw InputError("command line", "--threads", "must be in [0, 4096]");
-  if (o.vfov != 0 && !(o.vfov > 0 && o.vfov < 180)) throw InputError("command line", "--vfov", "must be in (0, 180)");
+  if (o.width < 1 || o.width > 16384)
+    throw InputError("command line", "--width", "must be in [1, 16384]");
+  if (o.height < 1 || o.height > 16384)
+    throw InputError("command line", "--height", "must be in [1, 16384]");
+  if (o.frames < 1 || o.frames > 1000000)
+    throw InputError("command line", "--frames", "must be in [1, 1000000]");
+  if (o.threads < 0 || o.threads > 4096)
+    throw InputError("command line", "--threads", "must be in [0, 4096]");
+  if (o.vfov != 0 && !(o.vfov > 0 && o.vfov < 180))
+    throw InputError("command line", "--vfov", "must be in (0, 180)");
   if (o.emissiveLights != "auto" && o.emissiveLights != "on" && o.emissiveLights != "off")
     throw InputError("command line", "--emissive-lights", "expected auto, on or off");
 }
@@ -78,12 +92,14 @@ Scene loadSceneFor(const RenderOptions& o) {
                                                   : LoadOptions::EmissiveLights::Auto;
   // Command-line lights count as the scene's own for the 'auto' rule.
   if (!o.pointLights.empty() || !o.sunLights.empty()) {
-    if (lo.emissiveLights == LoadOptions::EmissiveLights::Auto) lo.emissiveLights = LoadOptions::EmissiveLights::Off;
+    if (lo.emissiveLights == LoadOptions::EmissiveLights::Auto)
+      lo.emissiveLights = LoadOptions::EmissiveLights::Off;
   }
   Scene s = loadScene(o.scene, lo);
   for (const std::string& p : o.pointLights) {
     auto v = parseNumbers("--point-light", p, 3, 7);
-    if (v.size() == 5 || v.size() == 6) throw InputError("command line", "--point-light", "colour needs 3 numbers");
+    if (v.size() == 5 || v.size() == 6)
+      throw InputError("command line", "--point-light", "colour needs 3 numbers");
     Light l;
     l.type = LightType::Point;
     l.name = "cli-point";
@@ -94,11 +110,13 @@ Scene loadSceneFor(const RenderOptions& o) {
   }
   for (const std::string& p : o.sunLights) {
     auto v = parseNumbers("--sun-light", p, 3, 7);
-    if (v.size() == 5 || v.size() == 6) throw InputError("command line", "--sun-light", "colour needs 3 numbers");
+    if (v.size() == 5 || v.size() == 6)
+      throw InputError("command line", "--sun-light", "colour needs 3 numbers");
     Light l;
     l.type = LightType::Directional;
     l.name = "cli-sun";
-    if (length(Vec3(v[0], v[1], v[2])) == 0) throw InputError("command line", "--sun-light", "direction must not be zero");
+    if (length(Vec3(v[0], v[1], v[2])) == 0)
+      throw InputError("command line", "--sun-light", "direction must not be zero");
     l.direction = normalize(Vec3(v[0], v[1], v[2]));
     l.intensity = v.size() > 3 ? v[3] : 3.0f;
     if (v.size() == 7) l.color = {v[4], v[5], v[6]};
@@ -122,7 +140,8 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
   if (!o.lookAt.empty()) c.lookAt = parseVec3("--look-at", o.lookAt);
   if (!o.up.empty()) c.up = parseVec3("--up", o.up);
   if (o.vfov > 0) c.vfovDeg = o.vfov;
-  if (length(c.lookAt - c.position) == 0) throw InputError("command line", "--look-at", "must differ from the camera position");
+  if (length(c.lookAt - c.position) == 0)
+    throw InputError("command line", "--look-at", "must differ from the camera position");
   if (length(cross(normalize(c.lookAt - c.position), normalize(c.up))) < 1e-6f)
     throw InputError("command line", "--up", "must not be parallel to the view direction");
   // Keep the near plane sensible for tiny models seen from close up.

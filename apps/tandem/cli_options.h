@@ -9,16 +9,16 @@
 namespace tandem {
 
 struct RenderOptions {
-  std::string scene = "cornell";   // path or built-in name
+  std::string scene = "cornell";  // path or built-in name
   std::string pipeline = "deferred";
   int width = 1280, height = 720;  // [1, 16384]
   std::string out;                 // image file or folder
   std::string aov;                 // comma-separated buffer names
   int frames = 1;                  // [1, 1000000]
   uint64_t seed = 0;
-  int threads = 0;                 // 0 = all cores
+  int threads = 0;  // 0 = all cores
   std::string cameraPos, lookAt, up;
-  float vfov = 0;                  // 0 = scene's
+  float vfov = 0;  // 0 = scene's
   std::vector<std::string> pointLights, sunLights;
   std::string emissiveLights = "auto";  // auto | on | off
 };

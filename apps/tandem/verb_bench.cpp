@@ -28,7 +28,8 @@ CameraDesc benchCamera(const Scene& s, const CameraDesc& base, int i, int n) {
   CameraDesc c = base;
   Vec3 off = base.position - base.lookAt;
   float a = radians(-20.0f + 40.0f * u);
-  c.position = base.lookAt + Vec3(off.x * std::cos(a) + off.z * std::sin(a), off.y, -off.x * std::sin(a) + off.z * std::cos(a));
+  c.position = base.lookAt + Vec3(off.x * std::cos(a) + off.z * std::sin(a), off.y,
+                                  -off.x * std::sin(a) + off.z * std::cos(a));
   return c;
 }
 
@@ -40,16 +41,19 @@ struct BenchVerb {
   int run() {
     if (opts.frames == 1) opts.frames = 60;
     validateRenderOptions(opts);
-    if (warmup < 0 || warmup > 10000) throw InputError("command line", "--warmup", "must be in [0, 10000]");
+    if (warmup < 0 || warmup > 10000)
+      throw InputError("command line", "--warmup", "must be in [0, 10000]");
     std::unique_ptr<tbb::global_control> threads;
     if (opts.threads > 0)
-      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opts.threads);
+      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      opts.threads);
     Pipeline pipeline = Pipeline::load(opts.pipeline);
     Scene scene = loadSceneFor(opts);
     CameraDesc base = cameraFor(scene, opts);
     RenderSettings settings{.width = opts.width, .height = opts.height, .seed = opts.seed};
     Renderer renderer(scene, std::move(pipeline), settings);
-    for (int f = 0; f < warmup; ++f) renderer.renderFrame(f, benchCamera(scene, base, 0, opts.frames));
+    for (int f = 0; f < warmup; ++f)
+      renderer.renderFrame(f, benchCamera(scene, base, 0, opts.frames));
     std::vector<std::string> order;
     std::map<std::string, std::vector<double>> ms;
     std::map<std::string, double> rays, rayMs;
@@ -65,10 +69,12 @@ struct BenchVerb {
       total.push_back(ft.totalMs);
     }
     unsigned cores = std::thread::hardware_concurrency();
-    std::printf("bench: scene %s, pipeline %s, %dx%d, %d frames after %d warm-up, %s threads (%u cores)\n",
-                scene.name.c_str(), renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames, warmup,
-                opts.threads ? std::to_string(opts.threads).c_str() : "all", cores);
-    std::printf("  %-28s %9s %9s %9s %9s %12s\n", "pass", "median", "mean", "min", "max", "Mrays/s");
+    std::printf(
+        "bench: scene %s, pipeline %s, %dx%d, %d frames after %d warm-up, %s threads (%u cores)\n",
+        scene.name.c_str(), renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames,
+        warmup, opts.threads ? std::to_string(opts.threads).c_str() : "all", cores);
+    std::printf("  %-28s %9s %9s %9s %9s %12s\n", "pass", "median", "mean", "min", "max",
+                "Mrays/s");
     Json report;
     report["scene"] = scene.name;
     report["pipeline"] = renderer.pipeline().name;
@@ -85,14 +91,18 @@ struct BenchVerb {
       std::printf("  %-28s %9.3f %9.3f %9.3f %9.3f", name.c_str(), s.median, s.mean, s.min, s.max);
       if (mrays > 0) std::printf(" %12.2f", mrays);
       std::printf("\n");
-      Json pj = {{"median_ms", s.median}, {"mean_ms", s.mean}, {"min_ms", s.min}, {"max_ms", s.max}};
+      Json pj = {
+          {"median_ms", s.median}, {"mean_ms", s.mean}, {"min_ms", s.min}, {"max_ms", s.max}};
       if (mrays > 0) pj["mrays_per_s"] = mrays;
       report["passes"][name] = pj;
     }
     TimingStats t = summarize(total);
     std::printf("  %-28s %9.3f %9.3f %9.3f %9.3f\n", "frame", t.median, t.mean, t.min, t.max);
     std::printf("  fps (from median frame) %.2f\n", t.median > 0 ? 1000.0 / t.median : 0.0);
-    report["total"] = {{"median_ms", t.median}, {"mean_ms", t.mean}, {"min_ms", t.min}, {"max_ms", t.max},
+    report["total"] = {{"median_ms", t.median},
+                       {"mean_ms", t.mean},
+                       {"min_ms", t.min},
+                       {"max_ms", t.max},
                        {"fps", t.median > 0 ? 1000.0 / t.median : 0.0}};
     if (!json.empty()) {
       std::string tmp = json + ".tmp";

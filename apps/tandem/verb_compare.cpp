@@ -14,16 +14,18 @@ VerbRunner addCompareVerb(CLI::App& app) {
     std::string a, b, heatmap;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* sub = app.add_subcommand("compare", "Compare two images: RMSE, PSNR, SSIM (per RGB channel, averaged)");
+  CLI::App* sub = app.add_subcommand(
+      "compare", "Compare two images: RMSE, PSNR, SSIM (per RGB channel, averaged)");
   sub->add_option("a", args->a, "First image (PNG or EXR)")->required();
   sub->add_option("b", args->b, "Second image (PNG or EXR)")->required();
   sub->add_option("--heatmap", args->heatmap, "Write a PNG heat map of 1 - SSIM");
   return [args] {
     Buffer a = loadImage(args->a), b = loadImage(args->b);
     if (a.width != b.width || a.height != b.height)
-      throw InputError(args->b, "size", std::to_string(b.width) + "x" + std::to_string(b.height) +
-                                            " differs from " + args->a + " (" + std::to_string(a.width) + "x" +
-                                            std::to_string(a.height) + ")");
+      throw InputError(args->b, "size",
+                       std::to_string(b.width) + "x" + std::to_string(b.height) + " differs from " +
+                           args->a + " (" + std::to_string(a.width) + "x" +
+                           std::to_string(a.height) + ")");
     Buffer map;
     ImageMetrics m = compareImages(a, b, args->heatmap.empty() ? nullptr : &map);
     std::printf("rmse %.6f\npsnr %.3f dB\nssim %.6f\n", m.rmse, m.psnr, m.ssim);

@@ -17,7 +17,8 @@ const char* lightTypeName(LightType t) {
 VerbRunner addInfoVerb(CLI::App& app) {
   auto opts = std::make_shared<RenderOptions>();
   auto verbose = std::make_shared<bool>(false);
-  CLI::App* sub = app.add_subcommand("info", "Describe a scene: triangles, objects, materials, lights, bounds, memory");
+  CLI::App* sub = app.add_subcommand(
+      "info", "Describe a scene: triangles, objects, materials, lights, bounds, memory");
   sub->add_option("scene", opts->scene, "Scene file or built-in name");
   sub->add_option("--scene", opts->scene, "Scene file or built-in name");
   sub->add_option("--emissive-lights", opts->emissiveLights, "auto, on or off");
@@ -36,21 +37,26 @@ VerbRunner addInfoVerb(CLI::App& app) {
     std::printf("triangles    %zu\n", s.triangleCount());
     std::printf("degenerate   %zu (skipped while loading)\n", s.stats.degenerateTriangles);
     std::printf("objects      %zu (%zu emissive, %zu animated)\n", s.objects.size(), emissive,
-                size_t(std::count_if(s.objects.begin(), s.objects.end(), [](const Object& o) { return o.animated(); })));
+                size_t(std::count_if(s.objects.begin(), s.objects.end(),
+                                     [](const Object& o) { return o.animated(); })));
     std::printf("meshes       %zu\n", s.meshes.size());
     std::printf("materials    %zu\n", s.materials.size());
     std::printf("textures     %zu\n", s.textures.size());
     std::printf("lights       %zu (%zu directional, %zu point, %zu spot)\n", s.lights.size(),
                 lightsByType[0], lightsByType[1], lightsByType[2]);
-    std::printf("bounds       (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g)\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
-    std::printf("camera       %s, path with %zu keys\n", s.hasCamera ? "from scene" : "none (auto-framed)", s.cameraPath.size());
-    std::printf("memory       %.2f MiB (meshes, textures, materials)\n", s.memoryBytes() / 1048576.0);
+    std::printf("bounds       (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g)\n", b.lo.x, b.lo.y, b.lo.z,
+                b.hi.x, b.hi.y, b.hi.z);
+    std::printf("camera       %s, path with %zu keys\n",
+                s.hasCamera ? "from scene" : "none (auto-framed)", s.cameraPath.size());
+    std::printf("memory       %.2f MiB (meshes, textures, materials)\n",
+                s.memoryBytes() / 1048576.0);
     for (const Light& l : s.lights)
-      std::printf("  light %-24s %-11s intensity %g\n", l.name.c_str(), lightTypeName(l.type), l.intensity);
+      std::printf("  light %-24s %-11s intensity %g\n", l.name.c_str(), lightTypeName(l.type),
+                  l.intensity);
     if (*verbose)
       for (const Object& o : s.objects)
-        std::printf("  object %-32s %7zu tris  material %s\n", o.name.c_str(), s.meshes[o.mesh].triangleCount(),
-                    s.materials[o.material].name.c_str());
+        std::printf("  object %-32s %7zu tris  material %s\n", o.name.c_str(),
+                    s.meshes[o.mesh].triangleCount(), s.materials[o.material].name.c_str());
     return 0;
   };
 }

@@ -25,7 +25,8 @@ struct RenderVerb {
     validateRenderOptions(opts);
     std::unique_ptr<tbb::global_control> threads;
     if (opts.threads > 0)
-      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opts.threads);
+      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      opts.threads);
     Pipeline pipeline = Pipeline::load(opts.pipeline);
     std::vector<std::string> aovs = splitList(opts.aov);
     std::vector<std::string> produced = pipeline.producedBuffers();
@@ -33,7 +34,9 @@ struct RenderVerb {
       if (std::find(produced.begin(), produced.end(), a) == produced.end()) {
         std::string list;
         for (auto& p : produced) list += (list.empty() ? "" : ", ") + p;
-        throw InputError("command line", "--aov", "pipeline '" + pipeline.name + "' has no buffer '" + a + "' (has: " + list + ")");
+        throw InputError(
+            "command line", "--aov",
+            "pipeline '" + pipeline.name + "' has no buffer '" + a + "' (has: " + list + ")");
       }
     // Work out every output path before rendering, so bad paths fail fast and nothing is written.
     std::string out = opts.out.empty() ? "out" : opts.out;

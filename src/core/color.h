@@ -13,6 +13,8 @@ inline float linearToSrgb(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
-inline Vec3 srgbToLinear(Vec3 c) { return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)}; }
+inline Vec3 srgbToLinear(Vec3 c) {
+  return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
+}
 
 }  // namespace tandem

@@ -8,11 +8,11 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <unistd.h>
 
 #include "core/error.h"
 
@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 bool hasExtension(const std::string& path, const std::string& ext) {
   if (path.size() < ext.size()) return false;
   return std::equal(ext.rbegin(), ext.rend(), path.rbegin(), [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    return std::tolower(static_cast<unsigned char>(a)) ==
+           std::tolower(static_cast<unsigned char>(b));
   });
 }
 
@@ -84,9 +85,9 @@ void writeExr(const std::string& path, const Buffer& img) {
     for (int k = 0; k < c; ++k) {
       const char* name = c == 1 ? "Y" : kRgba[k];
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      fb.insert(name, Imf::Slice(Imf::FLOAT, (char*)(img.data.data() + k),
-                                 sizeof(float) * img.channels,
-                                 sizeof(float) * img.channels * img.width));
+      fb.insert(name,
+                Imf::Slice(Imf::FLOAT, (char*)(img.data.data() + k), sizeof(float) * img.channels,
+                           sizeof(float) * img.channels * img.width));
     }
     Imf::OutputFile file(tmp.c_str(), header);
     file.setFrameBuffer(fb);
@@ -148,6 +149,8 @@ Buffer loadImage(const std::string& path) {
   return load8bit(path, 3);
 }
 
-Buffer loadTextureFile(const std::string& path) { return load8bit(path, 4); }
+Buffer loadTextureFile(const std::string& path) {
+  return load8bit(path, 4);
+}
 
 }  // namespace tandem

@@ -20,7 +20,8 @@ Json readJsonFile(const std::string& path) {
 
 JsonFields::JsonFields(const Json& j, std::string file, std::string where)
     : j_(j), file_(std::move(file)), where_(std::move(where)) {
-  if (!j_.is_object()) throw InputError(file_, where_.empty() ? "(root)" : where_, "expected a JSON object");
+  if (!j_.is_object())
+    throw InputError(file_, where_.empty() ? "(root)" : where_, "expected a JSON object");
 }
 
 void JsonFields::fail(const std::string& key, const std::string& problem) const {

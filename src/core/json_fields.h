@@ -28,7 +28,9 @@ class JsonFields {
   Vec3 vec3(const std::string& key, Vec3 def);
   Vec2 vec2(const std::string& key, Vec2 def);
   // Name of the field for error messages, e.g. "objects[2].position".
-  std::string field(const std::string& key) const { return where_.empty() ? key : where_ + "." + key; }
+  std::string field(const std::string& key) const {
+    return where_.empty() ? key : where_ + "." + key;
+  }
   const std::string& file() const { return file_; }
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
   void finish() const;  // throws on unknown keys

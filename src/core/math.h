@@ -8,8 +8,12 @@ namespace tandem {
 
 constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInvPi = 1.0f / kPi;
-inline float radians(float deg) { return deg * (kPi / 180.0f); }
-inline float degrees(float rad) { return rad * (180.0f / kPi); }
+inline float radians(float deg) {
+  return deg * (kPi / 180.0f);
+}
+inline float degrees(float rad) {
+  return rad * (180.0f / kPi);
+}
 
 struct Vec2 {
   float x = 0, y = 0;
@@ -38,7 +42,9 @@ struct Vec3 {
   constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
   float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 };
-inline constexpr Vec3 operator*(float s, Vec3 v) { return v * s; }
+inline constexpr Vec3 operator*(float s, Vec3 v) {
+  return v * s;
+}
 
 struct Vec4 {
   float x = 0, y = 0, z = 0, w = 0;
@@ -52,11 +58,15 @@ struct Vec4 {
   constexpr Vec4 operator*(Vec4 o) const { return {x * o.x, y * o.y, z * o.z, w * o.w}; }
 };
 
-inline constexpr float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline constexpr float dot(Vec3 a, Vec3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline constexpr Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(Vec3 v) { return std::sqrt(dot(v, v)); }
+inline float length(Vec3 v) {
+  return std::sqrt(dot(v, v));
+}
 inline Vec3 normalize(Vec3 v) {
   float l = length(v);
   return l > 0 ? v / l : Vec3(0, 0, 0);
@@ -67,12 +77,18 @@ inline Vec3 vmin(Vec3 a, Vec3 b) {
 inline Vec3 vmax(Vec3 a, Vec3 b) {
   return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
-inline Vec3 lerp(Vec3 a, Vec3 b, float t) { return a + (b - a) * t; }
-inline float maxComponent(Vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+inline Vec3 lerp(Vec3 a, Vec3 b, float t) {
+  return a + (b - a) * t;
+}
+inline float maxComponent(Vec3 v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
 inline bool isFinite(Vec3 v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
-inline float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+inline float luminance(Vec3 c) {
+  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 
 // Row-major 4x4 matrix acting on column vectors: p' = M * p.
 struct Mat4 {
@@ -86,7 +102,7 @@ struct Mat4 {
   static Mat4 rotateZ(float rad);
   // Euler angles in degrees applied X, then Y, then Z (R = Rz * Ry * Rx).
   static Mat4 eulerXYZ(Vec3 deg);
-  static Mat4 fromQuaternion(Vec4 q);  // (x, y, z, w)
+  static Mat4 fromQuaternion(Vec4 q);                  // (x, y, z, w)
   static Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up);  // world -> view (view looks down -Z)
 
   Mat4 operator*(const Mat4& o) const;
@@ -102,7 +118,8 @@ struct Mat4 {
     return r.w != 1.0f && r.w != 0.0f ? r.xyz() / r.w : r.xyz();
   }
   Vec3 transformVector(Vec3 v) const {
-    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+            m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
   }
   Mat4 inverse() const;

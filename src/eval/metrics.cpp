@@ -72,7 +72,8 @@ double ssim(const Buffer& a, const Buffer& b, Buffer* map) {
       double mx = m[0], my = m[1];
       double vx = std::max(m[2] - mx * mx, 0.0), vy = std::max(m[3] - my * my, 0.0);
       double cov = m[4] - mx * my;
-      double s = ((2 * mx * my + c1) * (2 * cov + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+      double s =
+          ((2 * mx * my + c1) * (2 * cov + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
       total += s;
       if (map) map->data[i] += float(s / C);
     }
@@ -87,9 +88,10 @@ ImageMetrics compareImages(const Buffer& a, const Buffer& b, Buffer* ssimMap) {
 Buffer heatMap(const Buffer& scalar, float maxValue) {
   Buffer out(scalar.width, scalar.height, 3);
   for (size_t i = 0; i < scalar.pixelCount(); ++i) {
-    float t = maxValue > 0 ? std::clamp(scalar.data[i * scalar.channels] / maxValue, 0.0f, 1.0f) : 0.0f;
+    float t =
+        maxValue > 0 ? std::clamp(scalar.data[i * scalar.channels] / maxValue, 0.0f, 1.0f) : 0.0f;
     // Piecewise-linear ramp: blue (0) -> green (1/3) -> yellow (2/3) -> red (1).
-    Vec3 c = t < 1.0f / 3 ? lerp({0, 0, 1}, {0, 1, 0}, t * 3)
+    Vec3 c = t < 1.0f / 3   ? lerp({0, 0, 1}, {0, 1, 0}, t * 3)
              : t < 2.0f / 3 ? lerp({0, 1, 0}, {1, 1, 0}, t * 3 - 1)
                             : lerp({1, 1, 0}, {1, 0, 0}, t * 3 - 2);
     out.setRgb(int(i % scalar.width), int(i / scalar.width), c);

@@ -7,7 +7,9 @@
 
 namespace tandem {
 
-std::vector<BufferSlot> DeferredShadingPass::inputs() const { return gbufferSampleSlots(); }
+std::vector<BufferSlot> DeferredShadingPass::inputs() const {
+  return gbufferSampleSlots();
+}
 
 void DeferredShadingPass::execute(FrameContext& ctx) {
   GBufferReader g(ctx, *this);
@@ -19,8 +21,7 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
         Vec3 o, d;
         ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
         SurfaceSample s;
-        Vec3 c = g.read(x, y, s) ? shadeBlinnPhong(s, -d, scene)
-                                 : scene.skyRadiance(d);
+        Vec3 c = g.read(x, y, s) ? shadeBlinnPhong(s, -d, scene) : scene.skyRadiance(d);
         hdr.setRgb(x, y, c);
       }
   });

@@ -10,7 +10,9 @@ namespace tandem {
 class DeferredShadingPass : public Pass {
  public:
   std::string type() const override { return "deferred_shading"; }
-  std::string description() const override { return "Blinn-Phong lighting of the G-buffer (Listing 5)"; }
+  std::string description() const override {
+    return "Blinn-Phong lighting of the G-buffer (Listing 5)";
+  }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
   void execute(FrameContext& ctx) override;

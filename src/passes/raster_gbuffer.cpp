@@ -7,7 +7,9 @@
 
 namespace tandem {
 
-std::vector<BufferSlot> RasterGBufferPass::outputs() const { return gbufferSlots(); }
+std::vector<BufferSlot> RasterGBufferPass::outputs() const {
+  return gbufferSlots();
+}
 
 void RasterGBufferPass::execute(FrameContext& ctx) {
   auto t0 = Clock::now();

@@ -9,7 +9,9 @@
 
 namespace tandem {
 
-std::vector<BufferSlot> RTGBufferPass::outputs() const { return gbufferSlots(); }
+std::vector<BufferSlot> RTGBufferPass::outputs() const {
+  return gbufferSlots();
+}
 
 void RTGBufferPass::execute(FrameContext& ctx) {
   RayTracer& rt = ctx.rayTracer();

@@ -20,9 +20,15 @@ Vec3 tonemapPixel(Vec3 c, float ev, ToneOperator op) {
   for (int k = 0; k < 3; ++k) {
     float v = std::isfinite(c[k]) ? std::max(c[k], 0.0f) : 0.0f;
     switch (op) {
-      case ToneOperator::Clamp: v = std::min(v, 1.0f); break;
-      case ToneOperator::Reinhard: v = v / (1.0f + v); break;
-      case ToneOperator::Aces: v = aces(v); break;
+      case ToneOperator::Clamp:
+        v = std::min(v, 1.0f);
+        break;
+      case ToneOperator::Reinhard:
+        v = v / (1.0f + v);
+        break;
+      case ToneOperator::Aces:
+        v = aces(v);
+        break;
     }
     c[k] = linearToSrgb(v);
   }

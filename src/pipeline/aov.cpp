@@ -55,7 +55,8 @@ Buffer visualizeBuffer(const std::string& name, const Buffer& b) {
   }
   if (name == "motion") {
     float m = 1e-6f;
-    for (size_t i = 0; i < n; ++i) m = std::max({m, std::abs(b.data[2 * i]), std::abs(b.data[2 * i + 1])});
+    for (size_t i = 0; i < n; ++i)
+      m = std::max({m, std::abs(b.data[2 * i]), std::abs(b.data[2 * i + 1])});
     for (size_t i = 0; i < n; ++i)
       set(i, {0.5f + 0.5f * b.data[2 * i] / m, 0.5f + 0.5f * b.data[2 * i + 1] / m, 0.5f});
     return out;

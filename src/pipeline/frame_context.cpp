@@ -10,7 +10,8 @@ RayTracer& FrameContext::rayTracer() {
 
 Buffer& FrameContext::output(const std::string& name, int channels) {
   Buffer& b = buffers[name];
-  if (b.width != width || b.height != height || b.channels != channels) b = Buffer(width, height, channels);
+  if (b.width != width || b.height != height || b.channels != channels)
+    b = Buffer(width, height, channels);
   return b;
 }
 

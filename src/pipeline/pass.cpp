@@ -33,7 +33,9 @@ void Pass::setParam(const std::string& name, double value) {
   throw InputError("", "pass '" + type() + "' parameter '" + name + "'", "unknown parameter");
 }
 
-void Pass::resetParams() { values_.clear(); }
+void Pass::resetParams() {
+  values_.clear();
+}
 
 const std::string& Pass::bufferName(const std::string& slot) const {
   auto it = bindings.find(slot);

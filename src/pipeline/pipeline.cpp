@@ -12,8 +12,7 @@ namespace {
 
 // Built-in pipelines: the same JSON a user would write (also in pipelines/*.json).
 const std::map<std::string, std::string>& builtins() {
-  static const std::map<std::string, std::string> b = {
-      {"deferred", R"({
+  static const std::map<std::string, std::string> b = {{"deferred", R"({
   "name": "deferred",
   "passes": [
     {"type": "raster_gbuffer"},
@@ -22,7 +21,7 @@ const std::map<std::string, std::string>& builtins() {
   ],
   "output": "output"
 })"},
-      {"deferred-rt-gbuffer", R"({
+                                                       {"deferred-rt-gbuffer", R"({
   "name": "deferred-rt-gbuffer",
   "passes": [
     {"type": "rt_gbuffer"},
@@ -56,7 +55,8 @@ Pipeline Pipeline::load(const std::string& nameOrFile) {
   if (!std::filesystem::exists(nameOrFile)) {
     std::string known;
     for (auto& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
-    throw InputError(nameOrFile, "pipeline", "not a file and not a built-in pipeline (" + known + ")");
+    throw InputError(nameOrFile, "pipeline",
+                     "not a file and not a built-in pipeline (" + known + ")");
   }
   return fromJson(readJsonFile(nameOrFile), nameOrFile);
 }
@@ -67,7 +67,8 @@ Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
   p.name = f.string("name", std::filesystem::path(source).stem().string());
   p.output = f.string("output", "output");
   const Json& passes = f.raw("passes");
-  if (!passes.is_array() || passes.empty()) f.fail("passes", "expected a non-empty array of passes");
+  if (!passes.is_array() || passes.empty())
+    f.fail("passes", "expected a non-empty array of passes");
   for (size_t i = 0; i < passes.size(); ++i) {
     std::string where = "passes[" + std::to_string(i) + "]";
     JsonFields pf(passes[i], source, where);
@@ -84,12 +85,15 @@ Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
       if (!params.is_object()) pf.fail("params", "expected an object");
       for (auto it = params.begin(); it != params.end(); ++it) {
         const std::vector<ParamDesc> all = pass->params();
-        auto d = std::find_if(all.begin(), all.end(), [&](const ParamDesc& x) { return x.name == it.key(); });
-        if (d == all.end()) pf.fail("params." + it.key(), "unknown parameter of pass '" + type + "'");
+        auto d = std::find_if(all.begin(), all.end(),
+                              [&](const ParamDesc& x) { return x.name == it.key(); });
+        if (d == all.end())
+          pf.fail("params." + it.key(), "unknown parameter of pass '" + type + "'");
         double v;
         if (d->type == ParamType::Enum && it.value().is_string()) {
           auto c = std::find(d->choices.begin(), d->choices.end(), it.value().get<std::string>());
-          if (c == d->choices.end()) pf.fail("params." + it.key(), "unknown choice '" + it.value().get<std::string>() + "'");
+          if (c == d->choices.end())
+            pf.fail("params." + it.key(), "unknown choice '" + it.value().get<std::string>() + "'");
           v = double(c - d->choices.begin());
         } else if (d->type == ParamType::Bool && it.value().is_boolean()) {
           v = it.value().get<bool>() ? 1 : 0;
@@ -111,9 +115,12 @@ Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
       if (!b.is_object()) pf.fail(dir, "expected an object of slot -> buffer name");
       auto slots = std::string(dir) == "inputs" ? pass->inputs() : pass->outputs();
       for (auto it = b.begin(); it != b.end(); ++it) {
-        bool known = std::any_of(slots.begin(), slots.end(), [&](const BufferSlot& s) { return s.slot == it.key(); });
-        if (!known) pf.fail(std::string(dir) + "." + it.key(), "pass '" + type + "' has no such slot");
-        if (!it.value().is_string()) pf.fail(std::string(dir) + "." + it.key(), "expected a buffer name");
+        bool known = std::any_of(slots.begin(), slots.end(),
+                                 [&](const BufferSlot& s) { return s.slot == it.key(); });
+        if (!known)
+          pf.fail(std::string(dir) + "." + it.key(), "pass '" + type + "' has no such slot");
+        if (!it.value().is_string())
+          pf.fail(std::string(dir) + "." + it.key(), "expected a buffer name");
         pass->bindings[it.key()] = it.value().get<std::string>();
       }
     }
@@ -137,8 +144,8 @@ void Pipeline::validate(const std::string& source) const {
                          "input '" + buf + "' is not produced by an earlier pass");
       if (it->second != in.channels)
         throw InputError(source, "passes[" + std::to_string(i) + "] (" + p.type() + ")",
-                         "input '" + buf + "' has " + std::to_string(it->second) + " channels, expected " +
-                             std::to_string(in.channels));
+                         "input '" + buf + "' has " + std::to_string(it->second) +
+                             " channels, expected " + std::to_string(in.channels));
     }
     for (const BufferSlot& out : p.outputs()) available[p.bufferName(out.slot)] = out.channels;
   }
@@ -173,7 +180,8 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     const std::string label = p->label.empty() ? p->type() : p->label;
     ft.passes.push_back({label, msSince(t0), ctx.passRays});
     // Parts are reported after their pass and are not added to the frame total again.
-    for (PassTiming& part : ctx.passParts) ft.passes.push_back({label + "/" + part.name, part.ms, part.rays});
+    for (PassTiming& part : ctx.passParts)
+      ft.passes.push_back({label + "/" + part.name, part.ms, part.rays});
   }
   ft.totalMs = msSince(frameStart);
   return ft;

@@ -24,7 +24,8 @@ FrameTimings Renderer::renderFrame(int index, const CameraDesc& camera) {
   ctx_.frameIndex = index;
   ctx_.camera = Camera::make(camera, settings_.width, settings_.height);
   ctx_.prevCamera = Camera::make(prevDesc, settings_.width, settings_.height);
-  ctx_.cameraMoved = std::memcmp(&ctx_.camera.viewProjUnjittered, &ctx_.prevCamera.viewProjUnjittered, sizeof(Mat4)) != 0;
+  ctx_.cameraMoved = std::memcmp(&ctx_.camera.viewProjUnjittered,
+                                 &ctx_.prevCamera.viewProjUnjittered, sizeof(Mat4)) != 0;
   FrameTimings ft = pipeline_.execute(ctx_);
   ft.passes.insert(ft.passes.begin(), PassTiming{"scene_update", updateMs, 0});
   ft.totalMs += updateMs;

@@ -6,14 +6,16 @@ namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSlots() {
   static const std::vector<BufferSlot> slots = {
-      {"depth", 1},    {"position", 3}, {"normal", 3},    {"geo_normal", 3},
-      {"diffuse", 4},  {"specular", 4}, {"emission", 3},  {"ambient", 3},
-      {"optical", 3},  {"object_id", 1}, {"material_id", 1}, {"motion", 2}};
+      {"depth", 1},   {"position", 3},  {"normal", 3},      {"geo_normal", 3},
+      {"diffuse", 4}, {"specular", 4},  {"emission", 3},    {"ambient", 3},
+      {"optical", 3}, {"object_id", 1}, {"material_id", 1}, {"motion", 2}};
   return slots;
 }
 
 GBufferView GBufferView::create(FrameContext& ctx, const Pass& pass) {
-  auto get = [&](const char* slot, int c) { return ctx.output(pass.bufferName(slot), c).data.data(); };
+  auto get = [&](const char* slot, int c) {
+    return ctx.output(pass.bufferName(slot), c).data.data();
+  };
   GBufferView v;
   v.depth = get("depth", 1);
   v.position = get("position", 3);

@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kSubBits = 8;
 constexpr float kSubScale = float(1 << kSubBits);
-constexpr int kBinSize = 64;      // pixels per tile side
+constexpr int kBinSize = 64;        // pixels per tile side
 constexpr float kGuardBand = 4.0f;  // clip x,y to +-4 w: coordinates stay far from overflow
 constexpr int kChunks = 64;
 
@@ -25,12 +25,18 @@ struct ClipVert {
 // Signed distance to the clip planes used here: near, far, left, right, bottom, top (guard).
 inline float planeDist(const Vec4& v, int plane) {
   switch (plane) {
-    case 0: return v.w - v.z;  // near: z/w <= 1 in reversed-Z
-    case 1: return v.z;        // far: z >= 0
-    case 2: return v.x + kGuardBand * v.w;
-    case 3: return kGuardBand * v.w - v.x;
-    case 4: return v.y + kGuardBand * v.w;
-    default: return kGuardBand * v.w - v.y;
+    case 0:
+      return v.w - v.z;  // near: z/w <= 1 in reversed-Z
+    case 1:
+      return v.z;  // far: z >= 0
+    case 2:
+      return v.x + kGuardBand * v.w;
+    case 3:
+      return kGuardBand * v.w - v.x;
+    case 4:
+      return v.y + kGuardBand * v.w;
+    default:
+      return kGuardBand * v.w - v.y;
   }
 }
 
@@ -58,7 +64,8 @@ int clipPolygon(Vec4* poly, int n, unsigned mask) {
 
 }  // namespace
 
-void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out, RasterStats* stats) {
+void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
+                        RasterStats* stats) {
   const Scene& scene = *fs.scene;
   const int W = cam.width, H = cam.height;
   out.resize(W, H);
@@ -72,9 +79,12 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
     const auto& pos = fs.objects[o].positions;
     auto& c = clip_[o];
     c.resize(pos.size());
-    parallelRange(pos.size(), [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(pos[i], 1.0f);
-    }, 4096);
+    parallelRange(
+        pos.size(),
+        [&](size_t b, size_t e) {
+          for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(pos[i], 1.0f);
+        },
+        4096);
   }
 
   // Global triangle numbering: prefix sums over objects.
@@ -153,8 +163,12 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
           std::swap(b, c);
         }
         SetupTriangle st;
-        st.x[0] = X[a]; st.x[1] = X[b]; st.x[2] = X[c];
-        st.y[0] = Y[a]; st.y[1] = Y[b]; st.y[2] = Y[c];
+        st.x[0] = X[a];
+        st.x[1] = X[b];
+        st.x[2] = X[c];
+        st.y[0] = Y[a];
+        st.y[1] = Y[b];
+        st.y[2] = Y[c];
         // Depth is affine in screen space; derive its plane from the unsnapped positions (in
         // double) so that sub-pixel snapping of large clipped triangles does not tilt it.
         {
@@ -172,8 +186,10 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
         st.prim = prim;
         st.alphaMask = mat.alphaMode == AlphaMode::Mask;
         // Pixel range whose centres (px + 0.5) can be covered.
-        int32_t minX = std::min({st.x[0], st.x[1], st.x[2]}), maxX = std::max({st.x[0], st.x[1], st.x[2]});
-        int32_t minY = std::min({st.y[0], st.y[1], st.y[2]}), maxY = std::max({st.y[0], st.y[1], st.y[2]});
+        int32_t minX = std::min({st.x[0], st.x[1], st.x[2]}),
+                maxX = std::max({st.x[0], st.x[1], st.x[2]});
+        int32_t minY = std::min({st.y[0], st.y[1], st.y[2]}),
+                maxY = std::max({st.y[0], st.y[1], st.y[2]});
         int px0 = std::max(0, int((minX - 128 + 255) >> kSubBits));
         int px1 = std::min(W - 1, int((maxX - 128) >> kSubBits));
         int py0 = std::max(0, int((minY - 128 + 255) >> kSubBits));
@@ -208,8 +224,10 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
       const auto& tris = chunkTris_[ch];
       for (uint32_t id : bins_[ch][tile]) {
         const SetupTriangle& t = tris[id];
-        int32_t minX = std::min({t.x[0], t.x[1], t.x[2]}), maxX = std::max({t.x[0], t.x[1], t.x[2]});
-        int32_t minY = std::min({t.y[0], t.y[1], t.y[2]}), maxY = std::max({t.y[0], t.y[1], t.y[2]});
+        int32_t minX = std::min({t.x[0], t.x[1], t.x[2]}),
+                maxX = std::max({t.x[0], t.x[1], t.x[2]});
+        int32_t minY = std::min({t.y[0], t.y[1], t.y[2]}),
+                maxY = std::max({t.y[0], t.y[1], t.y[2]});
         int px0 = std::max(x0, int((minX - 128 + 255) >> kSubBits));
         int px1 = std::min(x1, int((maxX - 128) >> kSubBits));
         int py0 = std::max(y0, int((minY - 128 + 255) >> kSubBits));

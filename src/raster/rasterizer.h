@@ -21,11 +21,13 @@ struct RasterStats {
 
 class Rasterizer {
  public:
-  void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out, RasterStats* stats = nullptr);
+  void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
+              RasterStats* stats = nullptr);
 
   struct SetupTriangle {
-    int32_t x[3], y[3];    // fixed point, 8 sub-pixel bits, positive orientation
-    float zRef, dzdx, dzdy;  // depth plane from unsnapped coordinates: z = zRef + dzdx*(px-xRef) + ...
+    int32_t x[3], y[3];  // fixed point, 8 sub-pixel bits, positive orientation
+    float zRef, dzdx,
+        dzdy;  // depth plane from unsnapped coordinates: z = zRef + dzdx*(px-xRef) + ...
     float xRef, yRef;
     uint32_t object, prim;
     int16_t tx0, ty0, tx1, ty1;  // tile range (inclusive)
@@ -33,8 +35,8 @@ class Rasterizer {
   };
 
  private:
-  std::vector<std::vector<Vec4>> clip_;                 // per object, clip-space vertices
-  std::vector<std::vector<SetupTriangle>> chunkTris_;   // per chunk
+  std::vector<std::vector<Vec4>> clip_;                   // per object, clip-space vertices
+  std::vector<std::vector<SetupTriangle>> chunkTris_;     // per chunk
   std::vector<std::vector<std::vector<uint32_t>>> bins_;  // [chunk][tile] -> triangle index
 };
 

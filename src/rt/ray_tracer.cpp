@@ -41,8 +41,10 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
     RTCHitN* hit = args->hit;
     RTCRayN* ray = args->ray;
     if (info->singleSided && qc->cullBackfaces) {
-      Vec3 ng{RTCHitN_Ng_x(hit, args->N, i), RTCHitN_Ng_y(hit, args->N, i), RTCHitN_Ng_z(hit, args->N, i)};
-      Vec3 d{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i)};
+      Vec3 ng{RTCHitN_Ng_x(hit, args->N, i), RTCHitN_Ng_y(hit, args->N, i),
+              RTCHitN_Ng_z(hit, args->N, i)};
+      Vec3 d{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
+             RTCRayN_dir_z(ray, args->N, i)};
       // Embree's Ng points out of the counter-clockwise (front) face, against a front-facing ray.
       if (dot(ng, d) >= 0) {
         args->valid[i] = 0;
@@ -52,7 +54,8 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
     if (info->alphaMask) {
       float u = RTCHitN_u(hit, args->N, i), v = RTCHitN_v(hit, args->N, i);
       unsigned prim = RTCHitN_primID(hit, args->N, i);
-      if (surfaceAlpha(*info->frame, info->object, int(prim), u, v) < mat.alphaCutoff) args->valid[i] = 0;
+      if (surfaceAlpha(*info->frame, info->object, int(prim), u, v) < mat.alphaCutoff)
+        args->valid[i] = 0;
     }
   }
 }
@@ -83,11 +86,12 @@ bool RayTracer::update(const FrameScene& fs) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Shared buffers: Embree reads our arrays in place (it needs 16 bytes of padding after the
     // last vertex, which std::vector<Vec3> capacity does not guarantee, so copy vertices).
-    float* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                            sizeof(Vec3), fs.objects[o].positions.size()));
+    float* vb =
+        static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                    sizeof(Vec3), fs.objects[o].positions.size()));
     std::memcpy(vb, fs.objects[o].positions.data(), fs.objects[o].positions.size() * sizeof(Vec3));
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
-                               3 * sizeof(uint32_t), mesh.triangleCount());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
+                               0, 3 * sizeof(uint32_t), mesh.triangleCount());
     geometryInfo_.push_back(std::make_unique<GeometryInfo>(
         GeometryInfo{&fs, int(o), !mat.doubleSided, mat.alphaMode == AlphaMode::Mask}));
     GeometryInfo* info = geometryInfo_.back().get();

@@ -57,7 +57,9 @@ Material glassMaterial(const char* name, float ior) {
   return m;
 }
 
-Transform xform(Vec3 p, Vec3 rot = {0, 0, 0}, Vec3 s = {1, 1, 1}) { return {p, rot, s}; }
+Transform xform(Vec3 p, Vec3 rot = {0, 0, 0}, Vec3 s = {1, 1, 1}) {
+  return {p, rot, s};
+}
 
 }  // namespace
 
@@ -83,8 +85,10 @@ Scene makeCornellScene() {
   s.addObject("left", plane, red, xform({-1, 1, 0}, {0, 0, -90}));
   s.addObject("right", plane, green, xform({1, 1, 0}, {0, 0, 90}));
   s.addObject("light", plane, light, xform({0, 1.98f, 0}, {180, 0, 0}, {0.235f, 1, 0.19f}));
-  s.addObject("tallBox", cube, white, xform({-0.35f, 0.6f, -0.35f}, {0, 18, 0}, {0.3f, 0.6f, 0.3f}));
-  s.addObject("mirrorSphere", sphere, mirror, xform({0.45f, 0.35f, -0.35f}, {}, {0.35f, 0.35f, 0.35f}));
+  s.addObject("tallBox", cube, white,
+              xform({-0.35f, 0.6f, -0.35f}, {0, 18, 0}, {0.3f, 0.6f, 0.3f}));
+  s.addObject("mirrorSphere", sphere, mirror,
+              xform({0.45f, 0.35f, -0.35f}, {}, {0.35f, 0.35f, 0.35f}));
   s.addObject("glassSphere", sphere, glass, xform({0.0f, 0.3f, 0.45f}, {}, {0.3f, 0.3f, 0.3f}));
   s.ambient = {0.03f, 0.03f, 0.03f};
   s.skybox.color = {0, 0, 0};
@@ -120,8 +124,11 @@ Scene makeSpheresScene() {
   s.addObject("leftWall", plane, wallM, xform({-10, 4, 0}, {0, 0, -90}, {4, 1, 10}));
   s.addObject("rightWall", plane, wallM, xform({10, 4, 0}, {0, 0, 90}, {4, 1, 10}));
   // A 5 x 5 grid alternating mirror, glass and coloured glossy spheres.
-  const Vec3 colours[5] = {{0.8f, 0.2f, 0.2f}, {0.2f, 0.7f, 0.3f}, {0.2f, 0.3f, 0.8f},
-                           {0.8f, 0.7f, 0.2f}, {0.7f, 0.3f, 0.7f}};
+  const Vec3 colours[5] = {{0.8f, 0.2f, 0.2f},
+                           {0.2f, 0.7f, 0.3f},
+                           {0.2f, 0.3f, 0.8f},
+                           {0.8f, 0.7f, 0.2f},
+                           {0.7f, 0.3f, 0.7f}};
   int mirror = s.addMaterial(mirrorMaterial("mirror"));
   int glass = s.addMaterial(glassMaterial("glass", 1.5f));
   for (int j = 0; j < 5; ++j)
@@ -170,7 +177,8 @@ Scene makeSpheresScene() {
   s.camera.vfovDeg = 50;
   s.camera.focusDistance = 14;
   s.hasCamera = true;
-  s.cameraPath = {{0, {-8, 5, 13}, {0, 1, 0}}, {5, {0, 7, 15}, {0, 1, 0}}, {10, {8, 5, 13}, {0, 1, 0}}};
+  s.cameraPath = {
+      {0, {-8, 5, 13}, {0, 1, 0}}, {5, {0, 7, 15}, {0, 1, 0}}, {10, {8, 5, 13}, {0, 1, 0}}};
   return s;
 }
 
@@ -216,7 +224,8 @@ Scene makeAtriumScene() {
   s.addObject("floor", plane, floorM, xform({0, 0, 0}, {}, {hx + 3, 1, hz + 3}));
   s.addObject("wallBack", plane, wallM, xform({0, 4.5f, -(hz + 3)}, {90, 0, 0}, {hx + 3, 1, 4.5f}));
   s.addObject("wallFront", plane, wallM, xform({0, 4.5f, hz + 3}, {-90, 0, 0}, {hx + 3, 1, 4.5f}));
-  s.addObject("wallLeft", plane, wallM, xform({-(hx + 3), 4.5f, 0}, {0, 0, -90}, {4.5f, 1, hz + 3}));
+  s.addObject("wallLeft", plane, wallM,
+              xform({-(hx + 3), 4.5f, 0}, {0, 0, -90}, {4.5f, 1, hz + 3}));
   s.addObject("wallRight", plane, wallM, xform({hx + 3, 4.5f, 0}, {0, 0, 90}, {4.5f, 1, hz + 3}));
   int n = 0;
   for (int level = 0; level < 2; ++level) {
@@ -236,8 +245,10 @@ Scene makeAtriumScene() {
     for (auto& [p, rot] : spots) {
       std::string id = std::to_string(n++);
       s.addObject("column" + id, column, stoneM, xform(p, {}, {0.25f, h, 0.25f}));
-      s.addObject("capital" + id, capital, stoneM, xform(p + Vec3(0, h - 0.25f, 0), {}, {0.38f, 0.25f, 0.38f}));
-      s.addObject("base" + id, cube, stoneM, xform(p + Vec3(0, 0.12f, 0), {}, {0.36f, 0.12f, 0.36f}));
+      s.addObject("capital" + id, capital, stoneM,
+                  xform(p + Vec3(0, h - 0.25f, 0), {}, {0.38f, 0.25f, 0.38f}));
+      s.addObject("base" + id, cube, stoneM,
+                  xform(p + Vec3(0, 0.12f, 0), {}, {0.36f, 0.12f, 0.36f}));
       // An arch spanning to the next column along the side.
       bool lastX = rot == 0 && p.x >= hx - 0.01f;
       bool lastZ = rot == 90 && p.z >= hz - 2.01f;
@@ -248,10 +259,14 @@ Scene makeAtriumScene() {
     }
     // Balcony slabs over each colonnade.
     float ys = y0 + h + 0.3f;
-    s.addObject("slabN" + std::to_string(level), cube, stoneM, xform({0, ys, -hz - 1.2f}, {}, {hx + 1.5f, 0.3f, 1.6f}));
-    s.addObject("slabS" + std::to_string(level), cube, stoneM, xform({0, ys, hz + 1.2f}, {}, {hx + 1.5f, 0.3f, 1.6f}));
-    s.addObject("slabW" + std::to_string(level), cube, stoneM, xform({-hx - 1.2f, ys, 0}, {}, {1.6f, 0.3f, hz - 0.4f}));
-    s.addObject("slabE" + std::to_string(level), cube, stoneM, xform({hx + 1.2f, ys, 0}, {}, {1.6f, 0.3f, hz - 0.4f}));
+    s.addObject("slabN" + std::to_string(level), cube, stoneM,
+                xform({0, ys, -hz - 1.2f}, {}, {hx + 1.5f, 0.3f, 1.6f}));
+    s.addObject("slabS" + std::to_string(level), cube, stoneM,
+                xform({0, ys, hz + 1.2f}, {}, {hx + 1.5f, 0.3f, 1.6f}));
+    s.addObject("slabW" + std::to_string(level), cube, stoneM,
+                xform({-hx - 1.2f, ys, 0}, {}, {1.6f, 0.3f, hz - 0.4f}));
+    s.addObject("slabE" + std::to_string(level), cube, stoneM,
+                xform({hx + 1.2f, ys, 0}, {}, {1.6f, 0.3f, hz - 0.4f}));
   }
   // Hanging cloth under the upper arches of both long sides.
   for (int i = 0; i < 12; ++i) {

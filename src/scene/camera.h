@@ -12,10 +12,10 @@ struct CameraDesc {
   Vec3 position{0, 1, 4};
   Vec3 lookAt{0, 1, 0};
   Vec3 up{0, 1, 0};
-  float vfovDeg = 45.0f;       // perspective, in (0, 180)
-  float orthoHeight = 2.0f;    // orthographic: world-space height of the view
-  float nearPlane = 0.01f;     // > 0; reversed-Z with an infinite far plane for perspective
-  float farPlane = 1000.0f;    // orthographic depth range only
+  float vfovDeg = 45.0f;          // perspective, in (0, 180)
+  float orthoHeight = 2.0f;       // orthographic: world-space height of the view
+  float nearPlane = 0.01f;        // > 0; reversed-Z with an infinite far plane for perspective
+  float farPlane = 1000.0f;       // orthographic depth range only
   float apertureDiameter = 0.0f;  // thin lens (metres); 0 = pinhole
   float focalLength = 0.05f;      // metres
   float focusDistance = 5.0f;     // metres

@@ -7,7 +7,9 @@
 namespace tandem {
 
 namespace {
-bool sameMatrix(const Mat4& a, const Mat4& b) { return std::memcmp(&a, &b, sizeof(Mat4)) == 0; }
+bool sameMatrix(const Mat4& a, const Mat4& b) {
+  return std::memcmp(&a, &b, sizeof(Mat4)) == 0;
+}
 }  // namespace
 
 void FrameScene::update(const Scene& s, float t, float tPrev) {

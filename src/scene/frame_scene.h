@@ -10,7 +10,7 @@ namespace tandem {
 
 struct FrameObject {
   Mat4 world, prevWorld, normalMatrix;
-  Mat4 worldToPrev;  // carries this frame's world points to last frame's (motion vectors)
+  Mat4 worldToPrev;    // carries this frame's world points to last frame's (motion vectors)
   bool moved = false;  // worldToPrev is not the identity
   std::vector<Vec3> positions;  // world space
   std::vector<Vec3> normals;    // world space, unit

@@ -29,7 +29,8 @@ struct Ctx {
 };
 
 // Reads `count` elements of an accessor as floats (normalised integers mapped to [0,1]/[-1,1]).
-std::vector<float> readAccessor(const Ctx& c, int index, int wantComponents, const std::string& what) {
+std::vector<float> readAccessor(const Ctx& c, int index, int wantComponents,
+                                const std::string& what) {
   const auto& m = c.model;
   if (index < 0 || index >= int(m.accessors.size()))
     throw InputError(c.path, what, "accessor index " + std::to_string(index) + " out of range");
@@ -61,24 +62,32 @@ std::vector<float> readAccessor(const Ctx& c, int index, int wantComponents, con
       const unsigned char* p = buf.data() + start + i * stride + size_t(k) * csize;
       float v = 0;
       switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&v, p, 4); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = a.normalized ? *p / 255.0f : *p; break;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+          std::memcpy(&v, p, 4);
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          v = a.normalized ? *p / 255.0f : *p;
+          break;
         case TINYGLTF_COMPONENT_TYPE_BYTE: {
-          int8_t b; std::memcpy(&b, p, 1);
+          int8_t b;
+          std::memcpy(&b, p, 1);
           v = a.normalized ? std::max(b / 127.0f, -1.0f) : b;
           break;
         }
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          uint16_t u; std::memcpy(&u, p, 2);
+          uint16_t u;
+          std::memcpy(&u, p, 2);
           v = a.normalized ? u / 65535.0f : u;
           break;
         }
         case TINYGLTF_COMPONENT_TYPE_SHORT: {
-          int16_t u; std::memcpy(&u, p, 2);
+          int16_t u;
+          std::memcpy(&u, p, 2);
           v = a.normalized ? std::max(u / 32767.0f, -1.0f) : u;
           break;
         }
-        default: throw InputError(c.path, field, "unsupported componentType for vertex data");
+        default:
+          throw InputError(c.path, field, "unsupported componentType for vertex data");
       }
       if (!std::isfinite(v)) throw InputError(c.path, field, "value is NaN or infinite");
       out[i * comps + k] = v;
@@ -92,14 +101,16 @@ std::vector<uint32_t> readIndices(const Ctx& c, int index, size_t vertexCount) {
   if (index < 0 || index >= int(m.accessors.size()))
     throw InputError(c.path, field, "accessor index out of range");
   const tinygltf::Accessor& a = m.accessors[index];
-  if (a.type != TINYGLTF_TYPE_SCALAR || a.bufferView < 0 || a.bufferView >= int(m.bufferViews.size()))
+  if (a.type != TINYGLTF_TYPE_SCALAR || a.bufferView < 0 ||
+      a.bufferView >= int(m.bufferViews.size()))
     throw InputError(c.path, field, "indices must be a scalar accessor with a bufferView");
   const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
   if (bv.buffer < 0 || bv.buffer >= int(m.buffers.size()))
     throw InputError(c.path, field, "buffer index out of range");
   const auto& buf = m.buffers[bv.buffer].data;
   int csize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
-  if (csize != 1 && csize != 2 && csize != 4) throw InputError(c.path, field, "invalid componentType");
+  if (csize != 1 && csize != 2 && csize != 4)
+    throw InputError(c.path, field, "invalid componentType");
   size_t stride = bv.byteStride ? bv.byteStride : size_t(csize);
   size_t start = bv.byteOffset + a.byteOffset;
   if (a.count > 0 && (start + stride * (a.count - 1) + csize > buf.size() ||
@@ -109,12 +120,18 @@ std::vector<uint32_t> readIndices(const Ctx& c, int index, size_t vertexCount) {
   for (size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = buf.data() + start + i * stride;
     uint32_t v = 0;
-    if (csize == 1) v = *p;
-    else if (csize == 2) { uint16_t u; std::memcpy(&u, p, 2); v = u; }
-    else std::memcpy(&v, p, 4);
+    if (csize == 1)
+      v = *p;
+    else if (csize == 2) {
+      uint16_t u;
+      std::memcpy(&u, p, 2);
+      v = u;
+    } else
+      std::memcpy(&v, p, 4);
     if (v >= vertexCount)
-      throw InputError(c.path, field, "index " + std::to_string(v) + " out of range (" +
-                                          std::to_string(vertexCount) + " vertices)");
+      throw InputError(c.path, field,
+                       "index " + std::to_string(v) + " out of range (" +
+                           std::to_string(vertexCount) + " vertices)");
     out[i] = v;
   }
   return out;
@@ -173,7 +190,8 @@ Material convertMaterial(Ctx& c, int index) {
   const auto& pbr = gm.pbrMetallicRoughness;
   Material m;
   m.name = gm.name.empty() ? field : gm.name;
-  Vec3 base{float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2])};
+  Vec3 base{float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+            float(pbr.baseColorFactor[2])};
   float metal = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
   float rough = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
   // Metallic-roughness -> Blinn-Phong (see docs/scene-format.md).
@@ -184,11 +202,15 @@ Material convertMaterial(Ctx& c, int index) {
   m.specularExponent = std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 4096.0f);
   m.reflectivity = metal * (1.0f - rough);
   m.diffuseOpacity = float(pbr.baseColorFactor[3]);
-  float strength = float(extNumber(gm.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0));
+  float strength =
+      float(extNumber(gm.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0));
   if (gm.emissiveFactor.size() == 3)
-    m.emission = Vec3(float(gm.emissiveFactor[0]), float(gm.emissiveFactor[1]), float(gm.emissiveFactor[2])) * strength;
+    m.emission = Vec3(float(gm.emissiveFactor[0]), float(gm.emissiveFactor[1]),
+                      float(gm.emissiveFactor[2])) *
+                 strength;
   m.ior = float(extNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5));
-  float transmission = float(extNumber(gm.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0));
+  float transmission =
+      float(extNumber(gm.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0));
   m.opacity = 1.0f - std::clamp(transmission, 0.0f, 1.0f);
   if (gm.alphaMode == "MASK") {
     m.alphaMode = AlphaMode::Mask;
@@ -209,10 +231,13 @@ Material convertMaterial(Ctx& c, int index) {
   if (tt != pbr.baseColorTexture.extensions.end()) {
     const auto& v = tt->second;
     if (v.Has("offset") && v.Get("offset").ArrayLen() == 2)
-      m.offset = {float(v.Get("offset").Get(0).GetNumberAsDouble()), float(v.Get("offset").Get(1).GetNumberAsDouble())};
+      m.offset = {float(v.Get("offset").Get(0).GetNumberAsDouble()),
+                  float(v.Get("offset").Get(1).GetNumberAsDouble())};
     if (v.Has("scale") && v.Get("scale").ArrayLen() == 2)
-      m.tiling = {float(v.Get("scale").Get(0).GetNumberAsDouble()), float(v.Get("scale").Get(1).GetNumberAsDouble())};
-    if (v.Has("rotation") && v.Get("rotation").IsNumber()) m.uvRotation = float(v.Get("rotation").GetNumberAsDouble());
+      m.tiling = {float(v.Get("scale").Get(0).GetNumberAsDouble()),
+                  float(v.Get("scale").Get(1).GetNumberAsDouble())};
+    if (v.Has("rotation") && v.Get("rotation").IsNumber())
+      m.uvRotation = float(v.Get("rotation").GetNumberAsDouble());
   }
   if (!isFinite(m.emission) || !isFinite(m.diffuse) || !std::isfinite(m.ior))
     throw InputError(c.path, field, "non-finite material value");
@@ -227,9 +252,11 @@ Mat4 nodeMatrix(const Ctx& c, const tinygltf::Node& n, int index) {
   } else {
     Vec3 t(0.0f), s(1.0f);
     Vec4 q(0, 0, 0, 1);
-    if (n.translation.size() == 3) t = {float(n.translation[0]), float(n.translation[1]), float(n.translation[2])};
+    if (n.translation.size() == 3)
+      t = {float(n.translation[0]), float(n.translation[1]), float(n.translation[2])};
     if (n.scale.size() == 3) s = {float(n.scale[0]), float(n.scale[1]), float(n.scale[2])};
-    if (n.rotation.size() == 4) q = {float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]), float(n.rotation[3])};
+    if (n.rotation.size() == 4)
+      q = {float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]), float(n.rotation[3])};
     r = Mat4::translate(t) * Mat4::fromQuaternion(q) * Mat4::scale(s);
   }
   for (auto& row : r.m)
@@ -241,28 +268,36 @@ Mat4 nodeMatrix(const Ctx& c, const tinygltf::Node& n, int index) {
 void addPrimitive(Ctx& c, const tinygltf::Mesh& gmesh, int meshIndex, size_t primIndex,
                   const Mat4& world, std::map<int, int>& materialIds, int& defaultMaterial) {
   const tinygltf::Primitive& p = gmesh.primitives[primIndex];
-  const std::string field = "meshes[" + std::to_string(meshIndex) + "].primitives[" + std::to_string(primIndex) + "]";
+  const std::string field =
+      "meshes[" + std::to_string(meshIndex) + "].primitives[" + std::to_string(primIndex) + "]";
   if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES)
     throw InputError(c.path, field + ".mode", "only TRIANGLES primitives are supported");
   auto pos = p.attributes.find("POSITION");
   if (pos == p.attributes.end()) throw InputError(c.path, field, "no POSITION attribute");
   Mesh mesh;
   std::vector<float> v = readAccessor(c, pos->second, 3, field + ".POSITION");
-  for (size_t i = 0; i < v.size() / 3; ++i) mesh.positions.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
+  for (size_t i = 0; i < v.size() / 3; ++i)
+    mesh.positions.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
   if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
     v = readAccessor(c, it->second, 3, field + ".NORMAL");
-    if (v.size() / 3 != mesh.positions.size()) throw InputError(c.path, field + ".NORMAL", "count differs from POSITION");
-    for (size_t i = 0; i < v.size() / 3; ++i) mesh.normals.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
+    if (v.size() / 3 != mesh.positions.size())
+      throw InputError(c.path, field + ".NORMAL", "count differs from POSITION");
+    for (size_t i = 0; i < v.size() / 3; ++i)
+      mesh.normals.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
   }
   if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
     v = readAccessor(c, it->second, 2, field + ".TEXCOORD_0");
-    if (v.size() / 2 != mesh.positions.size()) throw InputError(c.path, field + ".TEXCOORD_0", "count differs from POSITION");
+    if (v.size() / 2 != mesh.positions.size())
+      throw InputError(c.path, field + ".TEXCOORD_0", "count differs from POSITION");
     for (size_t i = 0; i < v.size() / 2; ++i) mesh.uvs.push_back({v[2 * i], v[2 * i + 1]});
   }
   if (auto it = p.attributes.find("TANGENT"); it != p.attributes.end()) {
     v = readAccessor(c, it->second, 4, field + ".TANGENT");
-    if (v.size() / 4 != mesh.positions.size()) throw InputError(c.path, field + ".TANGENT", "count differs from POSITION");
-    for (size_t i = 0; i < v.size() / 4; ++i) mesh.tangents.push_back({v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3] < 0 ? -1.0f : 1.0f});
+    if (v.size() / 4 != mesh.positions.size())
+      throw InputError(c.path, field + ".TANGENT", "count differs from POSITION");
+    for (size_t i = 0; i < v.size() / 4; ++i)
+      mesh.tangents.push_back(
+          {v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3] < 0 ? -1.0f : 1.0f});
   }
   if (p.indices >= 0) {
     mesh.indices = readIndices(c, p.indices, mesh.positions.size());
@@ -277,7 +312,9 @@ void addPrimitive(Ctx& c, const tinygltf::Mesh& gmesh, int meshIndex, size_t pri
     if (p.material >= int(c.model.materials.size()))
       throw InputError(c.path, field + ".material", "material index out of range");
     auto it = materialIds.find(p.material);
-    if (it == materialIds.end()) it = materialIds.emplace(p.material, c.scene.addMaterial(convertMaterial(c, p.material))).first;
+    if (it == materialIds.end())
+      it = materialIds.emplace(p.material, c.scene.addMaterial(convertMaterial(c, p.material)))
+               .first;
     material = it->second;
   } else {
     if (defaultMaterial < 0) defaultMaterial = c.scene.addMaterial(Material{});
@@ -312,7 +349,8 @@ void addLight(Ctx& c, int lightIndex, const Mat4& world) {
   } else {
     throw InputError(c.path, field + ".type", "unknown light type '" + gl.type + "'");
   }
-  if (!std::isfinite(l.intensity) || l.intensity < 0) throw InputError(c.path, field + ".intensity", "must be finite and >= 0");
+  if (!std::isfinite(l.intensity) || l.intensity < 0)
+    throw InputError(c.path, field + ".intensity", "must be finite and >= 0");
   c.scene.lights.push_back(l);
 }
 
@@ -342,7 +380,8 @@ Scene loadGltf(const std::string& path) {
   std::function<void(int, const Mat4&, int)> visit = [&](int n, const Mat4& parent, int depth) {
     if (n < 0 || n >= int(model.nodes.size()))
       throw InputError(path, "nodes", "node index " + std::to_string(n) + " out of range");
-    if (depth > 256 || visiting.count(n)) throw InputError(path, "nodes[" + std::to_string(n) + "]", "node hierarchy has a cycle");
+    if (depth > 256 || visiting.count(n))
+      throw InputError(path, "nodes[" + std::to_string(n) + "]", "node hierarchy has a cycle");
     visiting.insert(n);
     const tinygltf::Node& node = model.nodes[n];
     Mat4 world = parent * nodeMatrix(c, node, n);
@@ -354,7 +393,8 @@ Scene loadGltf(const std::string& path) {
     }
     if (node.camera >= 0 && !s.hasCamera) {
       if (node.camera >= int(model.cameras.size()))
-        throw InputError(path, "nodes[" + std::to_string(n) + "].camera", "camera index out of range");
+        throw InputError(path, "nodes[" + std::to_string(n) + "].camera",
+                         "camera index out of range");
       const tinygltf::Camera& cam = model.cameras[node.camera];
       s.camera.position = world.transformPoint({0, 0, 0});
       s.camera.lookAt = s.camera.position + normalize(world.transformVector({0, 0, -1}));
@@ -378,7 +418,8 @@ Scene loadGltf(const std::string& path) {
   };
   int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (!model.scenes.empty()) {
-    if (sceneIndex >= int(model.scenes.size())) throw InputError(path, "scene", "default scene index out of range");
+    if (sceneIndex >= int(model.scenes.size()))
+      throw InputError(path, "scene", "default scene index out of range");
     for (int n : model.scenes[sceneIndex].nodes) visit(n, Mat4(), 0);
   } else {
     for (int n = 0; n < int(model.nodes.size()); ++n) visit(n, Mat4(), 0);

@@ -10,9 +10,9 @@ namespace tandem {
 
 struct Mesh {
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;   // per vertex, unit; same count as positions
-  std::vector<Vec4> tangents;  // xyz unit, w = bitangent sign; same count as positions
-  std::vector<Vec2> uvs;       // same count as positions (zeros when the source has none)
+  std::vector<Vec3> normals;      // per vertex, unit; same count as positions
+  std::vector<Vec4> tangents;     // xyz unit, w = bitangent sign; same count as positions
+  std::vector<Vec2> uvs;          // same count as positions (zeros when the source has none)
   std::vector<uint32_t> indices;  // 3 per triangle
 
   size_t triangleCount() const { return indices.size() / 3; }

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <map>
+#include <sstream>
 #include <tuple>
 
 #include "core/error.h"
@@ -17,7 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Vec3 toVec3(const float* v) { return {v[0], v[1], v[2]}; }
+Vec3 toVec3(const float* v) {
+  return {v[0], v[1], v[2]};
+}
 
 int loadTexture(Scene& s, std::map<std::string, int>& cache, const std::string& mtlPath,
                 const std::string& baseDir, const std::string& name, const std::string& field,
@@ -62,8 +64,8 @@ Material convertMaterial(const tinyobj::material_t& m, Scene& s, std::map<std::s
     default:
       break;
   }
-  for (float* c : {&out.diffuse.x, &out.diffuse.y, &out.diffuse.z, &out.specular.x,
-                   &out.specular.y, &out.specular.z})
+  for (float* c : {&out.diffuse.x, &out.diffuse.y, &out.diffuse.z, &out.specular.x, &out.specular.y,
+                   &out.specular.z})
     *c = std::clamp(*c, 0.0f, 1.0f);
   out.emission = vmax(out.emission, Vec3(0.0f));
   if (!isFinite(out.emission) || !isFinite(out.diffuse) || !std::isfinite(out.ior))
@@ -75,7 +77,8 @@ Material convertMaterial(const tinyobj::material_t& m, Scene& s, std::map<std::s
   if (out.diffuseTexture >= 0 && m.diffuse_texopt.scale[0] != 1.0f) {
     out.tiling = {m.diffuse_texopt.scale[0], m.diffuse_texopt.scale[1]};
   }
-  if (out.diffuseTexture >= 0) out.offset = {m.diffuse_texopt.origin_offset[0], m.diffuse_texopt.origin_offset[1]};
+  if (out.diffuseTexture >= 0)
+    out.offset = {m.diffuse_texopt.origin_offset[0], m.diffuse_texopt.origin_offset[1]};
   return out;
 }
 
@@ -92,7 +95,8 @@ void checkVertexLines(const std::string& path) {
       char* end = nullptr;
       double d = std::strtod(tok.c_str(), &end);
       if (end == tok.c_str() || !std::isfinite(d))
-        throw InputError(path, "line " + std::to_string(n), "vertex coordinate '" + tok + "' is NaN or infinite or not a number");
+        throw InputError(path, "line " + std::to_string(n),
+                         "vertex coordinate '" + tok + "' is NaN or infinite or not a number");
     }
   }
 }
@@ -173,7 +177,8 @@ Scene loadObj(const std::string& path) {
       if (m.indices.empty()) continue;
       if (!hasNormals[mat]) m.normals.clear();
       for (const Vec3& n : m.normals)
-        if (!isFinite(n)) throw InputError(path, "shape '" + shape.name + "'", "normal is NaN or infinite");
+        if (!isFinite(n))
+          throw InputError(path, "shape '" + shape.name + "'", "normal is NaN or infinite");
       int material = mat;
       if (material < 0) {
         if (defaultMat < 0) defaultMat = s.addMaterial(Material{});

@@ -43,7 +43,8 @@ Mesh makeCube() {
       m.uvs.push_back({0.5f * (c[0] + 1), 0.5f * (c[1] + 1)});
     }
     // Orientation check: (p1-p0) x (p2-p0) must point along n.
-    Vec3 fn = cross(m.positions[base + 1] - m.positions[base], m.positions[base + 2] - m.positions[base]);
+    Vec3 fn =
+        cross(m.positions[base + 1] - m.positions[base], m.positions[base + 2] - m.positions[base]);
     if (dot(fn, n) > 0)
       m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     else

@@ -5,9 +5,9 @@
 
 namespace tandem {
 
-Mesh makePlane(int subdivisions = 1);             // XZ plane [-1,1]^2 facing +Y
-Mesh makeCube();                                  // [-1,1]^3, faceted, 24 vertices
-Mesh makeUvSphere(int slices = 32, int stacks = 16);  // radius 1
+Mesh makePlane(int subdivisions = 1);                   // XZ plane [-1,1]^2 facing +Y
+Mesh makeCube();                                        // [-1,1]^3, faceted, 24 vertices
+Mesh makeUvSphere(int slices = 32, int stacks = 16);    // radius 1
 Mesh makeCylinder(int segments, int rings, bool caps);  // radius 1, y in [0,1]
 // Half-ring arch in the XY plane: inner radius r0, outer r1, depth d (z in [-d/2, d/2]).
 Mesh makeArch(float r0, float r1, float depth, int segments);

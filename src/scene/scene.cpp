@@ -115,8 +115,9 @@ void validateScene(const Scene& s, const std::string& source) {
     if (m.indices.size() % 3) throw InputError(source, where, "index count not a multiple of 3");
     for (uint32_t i : m.indices)
       if (i >= m.positions.size())
-        throw InputError(source, where, "vertex index " + std::to_string(i) + " out of range (" +
-                                            std::to_string(m.positions.size()) + " vertices)");
+        throw InputError(source, where,
+                         "vertex index " + std::to_string(i) + " out of range (" +
+                             std::to_string(m.positions.size()) + " vertices)");
     for (const Vec3& p : m.positions)
       if (!isFinite(p)) throw InputError(source, where, "vertex position is NaN or infinite");
   }

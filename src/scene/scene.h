@@ -38,13 +38,13 @@ struct Object {
 };
 
 struct Skybox {
-  Vec3 color{0.05f, 0.05f, 0.05f};  // used when no faces are given (linear)
+  Vec3 color{0.05f, 0.05f, 0.05f};          // used when no faces are given (linear)
   int faces[6] = {-1, -1, -1, -1, -1, -1};  // textures for +X, -X, +Y, -Y, +Z, -Z
   bool hasFaces() const { return faces[0] >= 0; }
 };
 
 struct LoadStats {
-  size_t degenerateTriangles = 0;  // skipped while loading
+  size_t degenerateTriangles = 0;    // skipped while loading
   std::vector<std::string> sources;  // files this scene was built from
 };
 

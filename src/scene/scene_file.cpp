@@ -40,7 +40,8 @@ int readTexture(FileCtx& c, JsonFields& f, const std::string& key, bool srgb) {
   return id;
 }
 
-Material readMaterial(FileCtx& c, const Json& j, const std::string& name, const std::string& where) {
+Material readMaterial(FileCtx& c, const Json& j, const std::string& name,
+                      const std::string& where) {
   JsonFields f(j, c.path, where);
   Material m;
   m.name = name;
@@ -58,10 +59,14 @@ Material readMaterial(FileCtx& c, const Json& j, const std::string& name, const 
   m.castsShadows = f.boolean("castsShadows", true);
   m.doubleSided = f.boolean("doubleSided", false);
   std::string alpha = f.string("alphaMode", "opaque");
-  if (alpha == "opaque") m.alphaMode = AlphaMode::Opaque;
-  else if (alpha == "mask") m.alphaMode = AlphaMode::Mask;
-  else if (alpha == "blend") m.alphaMode = AlphaMode::Blend;
-  else f.fail("alphaMode", "expected opaque, mask or blend, got '" + alpha + "'");
+  if (alpha == "opaque")
+    m.alphaMode = AlphaMode::Opaque;
+  else if (alpha == "mask")
+    m.alphaMode = AlphaMode::Mask;
+  else if (alpha == "blend")
+    m.alphaMode = AlphaMode::Blend;
+  else
+    f.fail("alphaMode", "expected opaque, mask or blend, got '" + alpha + "'");
   m.alphaCutoff = f.number("alphaCutoff", 0.5f, 0.0f, 1.0f);
   m.diffuseTexture = readTexture(c, f, "diffuseMap", true);
   m.emissionTexture = readTexture(c, f, "emissionMap", true);
@@ -166,10 +171,14 @@ Light readLight(const FileCtx& c, const Json& j, size_t index) {
   JsonFields f(j, c.path, "lights[" + std::to_string(index) + "]");
   Light l;
   std::string type = f.string("type", "");
-  if (type == "directional") l.type = LightType::Directional;
-  else if (type == "point") l.type = LightType::Point;
-  else if (type == "spot") l.type = LightType::Spot;
-  else f.fail("type", "expected directional, point or spot, got '" + type + "'");
+  if (type == "directional")
+    l.type = LightType::Directional;
+  else if (type == "point")
+    l.type = LightType::Point;
+  else if (type == "spot")
+    l.type = LightType::Spot;
+  else
+    f.fail("type", "expected directional, point or spot, got '" + type + "'");
   l.name = f.string("name", type + std::to_string(index));
   l.color = f.vec3("color", l.color);
   l.intensity = f.number("intensity", 1.0f, 0.0f, 1e9f);
@@ -197,9 +206,12 @@ void readCamera(FileCtx& c, const Json& j) {
   JsonFields f(j, c.path, "camera");
   CameraDesc& d = c.scene.camera;
   std::string proj = f.string("projection", "perspective");
-  if (proj == "perspective") d.projection = Projection::Perspective;
-  else if (proj == "orthographic") d.projection = Projection::Orthographic;
-  else f.fail("projection", "expected perspective or orthographic");
+  if (proj == "perspective")
+    d.projection = Projection::Perspective;
+  else if (proj == "orthographic")
+    d.projection = Projection::Orthographic;
+  else
+    f.fail("projection", "expected perspective or orthographic");
   d.position = f.vec3("position", d.position);
   d.lookAt = f.vec3("lookAt", d.lookAt);
   d.up = f.vec3("up", d.up);
@@ -221,11 +233,13 @@ void readSkybox(FileCtx& c, const Json& j) {
   c.scene.skybox.color = f.vec3("color", c.scene.skybox.color);
   if (f.has("faces")) {
     const Json& faces = f.raw("faces");
-    if (!faces.is_array() || faces.size() != 6 || !std::all_of(faces.begin(), faces.end(), [](const Json& v) { return v.is_string(); }))
+    if (!faces.is_array() || faces.size() != 6 ||
+        !std::all_of(faces.begin(), faces.end(), [](const Json& v) { return v.is_string(); }))
       f.fail("faces", "expected 6 image paths (+X, -X, +Y, -Y, +Z, -Z)");
     for (int k = 0; k < 6; ++k) {
       std::string p = resolve(c, faces[k].get<std::string>());
-      if (!fs::is_regular_file(p)) f.fail("faces", "image '" + faces[k].get<std::string>() + "' not found");
+      if (!fs::is_regular_file(p))
+        f.fail("faces", "image '" + faces[k].get<std::string>() + "' not found");
       c.scene.skybox.faces[k] = c.scene.addTexture(textureFromImage(p, loadTextureFile(p), true));
     }
   }
@@ -250,7 +264,8 @@ Scene loadSceneFile(const std::string& path) {
     const Json& mats = f.raw("materials");
     if (!mats.is_object()) f.fail("materials", "expected an object of name -> material");
     for (auto it = mats.begin(); it != mats.end(); ++it)
-      c.materials[it.key()] = s.addMaterial(readMaterial(c, it.value(), it.key(), "materials." + it.key()));
+      c.materials[it.key()] =
+          s.addMaterial(readMaterial(c, it.value(), it.key(), "materials." + it.key()));
   }
   if (f.has("objects")) {
     const Json& objs = f.raw("objects");
@@ -302,7 +317,8 @@ Scene loadScene(const std::string& pathOrName, const LoadOptions& opts) {
     s = makeBuiltinScene(pathOrName);
   } else if (!fs::exists(pathOrName) && pathOrName.find('.') == std::string::npos &&
              pathOrName.find('/') == std::string::npos) {
-    throw InputError(pathOrName, "scene", "not a file and not a built-in scene (cornell, spheres, atrium)");
+    throw InputError(pathOrName, "scene",
+                     "not a file and not a built-in scene (cornell, spheres, atrium)");
   } else {
     s = loadSceneByExtension(pathOrName);
   }

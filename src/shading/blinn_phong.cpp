@@ -36,7 +36,8 @@ LightSample sampleLight(const Light& l, Vec3 p) {
   float att = 1.0f / std::max(l.attConstant + l.attLinear * dist + l.attQuadratic * dist2, 1e-8f);
   if (l.type == LightType::Spot) {
     float cosTheta = dot(-s.wi, l.direction);
-    float cone = smoothstep(std::cos(radians(l.outerConeDeg)), std::cos(radians(l.innerConeDeg)), cosTheta);
+    float cone =
+        smoothstep(std::cos(radians(l.outerConeDeg)), std::cos(radians(l.innerConeDeg)), cosTheta);
     if (l.outerConeDeg >= 90.0f && l.innerConeDeg >= 90.0f) cone = cosTheta > 0 ? 1.0f : 0.0f;
     if (l.cosinePower > 0) cone *= std::pow(std::max(cosTheta, 0.0f), l.cosinePower);
     att *= cone;
@@ -45,7 +46,8 @@ LightSample sampleLight(const Light& l, Vec3 p) {
   return s;
 }
 
-Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene, const float* lightVisibility) {
+Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,
+                     const float* lightVisibility) {
   Vec3 color = s.emission + scene.ambient * s.ambient;
   const Vec3 n = s.normal;
   const bool hasSpecular = maxComponent(s.specular) > 0.0f;

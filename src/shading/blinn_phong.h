@@ -14,9 +14,9 @@ namespace tandem {
 struct Scene;
 
 struct LightSample {
-  Vec3 wi;          // unit direction from the surface towards the light
-  float distance;   // to the light (infinity for directional)
-  Vec3 radiance;    // irradiance-at-normal-incidence factor: colour x intensity x attenuation
+  Vec3 wi;         // unit direction from the surface towards the light
+  float distance;  // to the light (infinity for directional)
+  Vec3 radiance;   // irradiance-at-normal-incidence factor: colour x intensity x attenuation
 };
 
 // Incident light from one light at point p (no visibility test).

@@ -6,8 +6,8 @@ namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSampleSlots() {
   static const std::vector<BufferSlot> slots = {
-      {"position", 3}, {"normal", 3}, {"geo_normal", 3}, {"diffuse", 4},     {"specular", 4},
-      {"emission", 3}, {"ambient", 3}, {"optical", 3},   {"object_id", 1}, {"material_id", 1}};
+      {"position", 3}, {"normal", 3},  {"geo_normal", 3}, {"diffuse", 4},   {"specular", 4},
+      {"emission", 3}, {"ambient", 3}, {"optical", 3},    {"object_id", 1}, {"material_id", 1}};
   return slots;
 }
 

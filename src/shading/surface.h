@@ -7,10 +7,10 @@
 namespace tandem {
 
 struct SurfaceSample {
-  Vec3 position;       // world space
-  Vec3 normal;         // shading normal (normal map applied), unit
-  Vec3 geoNormal;      // geometric normal, unit
-  Vec2 uv;             // texture-space UV (material tiling/offset applied)
+  Vec3 position;   // world space
+  Vec3 normal;     // shading normal (normal map applied), unit
+  Vec3 geoNormal;  // geometric normal, unit
+  Vec2 uv;         // texture-space UV (material tiling/offset applied)
   Vec3 emission{0, 0, 0};
   Vec3 ambient{0, 0, 0};
   Vec3 diffuse{0, 0, 0};
@@ -19,7 +19,7 @@ struct SurfaceSample {
   float specularExponent = 1.0f;
   float reflectivity = 0.0f, ior = 1.0f, opacity = 1.0f;  // optical properties (Table 1)
   int object = -1, material = -1;
-  float t = 0.0f;      // distance along the ray that found it
+  float t = 0.0f;  // distance along the ray that found it
 };
 
 }  // namespace tandem

@@ -73,9 +73,11 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
   }
   s.ambient = mat.ambient;
   s.emission = mat.emission;
-  if (mat.emissionTexture >= 0) s.emission = s.emission * scene.textures[mat.emissionTexture].sample(s.uv).xyz();
+  if (mat.emissionTexture >= 0)
+    s.emission = s.emission * scene.textures[mat.emissionTexture].sample(s.uv).xyz();
   s.specular = mat.specular;
-  if (mat.specularTexture >= 0) s.specular = s.specular * scene.textures[mat.specularTexture].sample(s.uv).xyz();
+  if (mat.specularTexture >= 0)
+    s.specular = s.specular * scene.textures[mat.specularTexture].sample(s.uv).xyz();
   s.specularExponent = mat.specularExponent;
   s.reflectivity = mat.reflectivity;
   s.ior = mat.ior;

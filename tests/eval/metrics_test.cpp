@@ -23,8 +23,8 @@ TEST(Metrics, SsimOfTinyImageMatchesHandComputation) {
   b.data = {0, 0.5f, 0};
   double w1 = std::exp(-1.0 / 4.5), w2 = std::exp(-4.0 / 4.5);
   double c1 = 1e-4, c2 = 9e-4;
-  auto pixelSsim = [&](double wl, double wc, double wr, double xl, double xc, double xr, double yl, double yc,
-                       double yr) {
+  auto pixelSsim = [&](double wl, double wc, double wr, double xl, double xc, double xr, double yl,
+                       double yc, double yr) {
     double s = wl + wc + wr;
     double mx = (wl * xl + wc * xc + wr * xr) / s, my = (wl * yl + wc * yc + wr * yr) / s;
     double exx = (wl * xl * xl + wc * xc * xc + wr * xr * xr) / s;

@@ -29,24 +29,32 @@ TEST(Pipeline, BuiltinsLoadAndValidate) {
 }
 
 TEST(Pipeline, WiringErrors) {
-  expectPipelineError(R"({"passes": [{"type": "deferred_shading"}]})", "is not produced by an earlier pass");
-  expectPipelineError(R"({"passes": [{"type": "raster_gbuffer"}], "output": "hdr"})", "'hdr' is not produced");
-  expectPipelineError(R"({"passes": [{"type": "raster_gbuffer"}, {"type": "tonemap", "inputs": {"hdr": "depth"}}]})",
-                      "has 1 channels, expected 3");
+  expectPipelineError(R"({"passes": [{"type": "deferred_shading"}]})",
+                      "is not produced by an earlier pass");
+  expectPipelineError(R"({"passes": [{"type": "raster_gbuffer"}], "output": "hdr"})",
+                      "'hdr' is not produced");
+  expectPipelineError(
+      R"({"passes": [{"type": "raster_gbuffer"}, {"type": "tonemap", "inputs": {"hdr": "depth"}}]})",
+      "has 1 channels, expected 3");
 }
 
 TEST(Pipeline, DescriptionErrors) {
   expectPipelineError(R"({"passes": [{"type": "warp_drive"}]})", "unknown pass type 'warp_drive'");
-  expectPipelineError(R"({"passes": [{"type": "tonemap", "params": {"exposur": 1}}]})", "unknown parameter");
-  expectPipelineError(R"({"passes": [{"type": "tonemap", "params": {"exposure": 99}}]})", "out of range");
-  expectPipelineError(R"({"passes": [{"type": "tonemap", "params": {"operator": "filmic"}}]})", "unknown choice");
+  expectPipelineError(R"({"passes": [{"type": "tonemap", "params": {"exposur": 1}}]})",
+                      "unknown parameter");
+  expectPipelineError(R"({"passes": [{"type": "tonemap", "params": {"exposure": 99}}]})",
+                      "out of range");
+  expectPipelineError(R"({"passes": [{"type": "tonemap", "params": {"operator": "filmic"}}]})",
+                      "unknown choice");
   expectPipelineError(R"({"passes": [{"type": "tonemap", "colour": 1}]})", "unknown field");
   expectPipelineError(R"({"passes": []})", "non-empty array");
 }
 
 TEST(Pipeline, ParametersRoundTripThroughJson) {
-  Pipeline p = Pipeline::fromJson(Json::parse(R"({"name": "x", "passes": [{"type": "raster_gbuffer"},
-      {"type": "deferred_shading"}, {"type": "tonemap", "params": {"exposure": 1.5, "operator": "reinhard"}}]})"), "x");
+  Pipeline p =
+      Pipeline::fromJson(Json::parse(R"({"name": "x", "passes": [{"type": "raster_gbuffer"},
+      {"type": "deferred_shading"}, {"type": "tonemap", "params": {"exposure": 1.5, "operator": "reinhard"}}]})"),
+                         "x");
   Pipeline q = Pipeline::fromJson(p.toJson(), "roundtrip");
   EXPECT_EQ(q.passes[2]->param("exposure"), 1.5);
   EXPECT_EQ(q.passes[2]->param("operator"), 1.0);
@@ -54,7 +62,8 @@ TEST(Pipeline, ParametersRoundTripThroughJson) {
 
 TEST(Pipeline, EveryPassTimedEveryFrame) {
   Scene s = makeCornellScene();
-  auto r = std::make_unique<Renderer>(s, Pipeline::load("deferred"), RenderSettings{.width = 64, .height = 48});
+  auto r = std::make_unique<Renderer>(s, Pipeline::load("deferred"),
+                                      RenderSettings{.width = 64, .height = 48});
   for (int f = 0; f < 3; ++f) {
     FrameTimings t = r->renderFrame(f, s.camera);
     ASSERT_EQ(t.passes.size(), 6u);  // scene_update + 3 passes + raster_gbuffer's 2 parts

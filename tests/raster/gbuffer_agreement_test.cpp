@@ -55,7 +55,8 @@ void expectAgreement(const Agreement& a, size_t pixels) {
   // depth agrees to 1e-4 relative on all but 0.1% of the pixels where ids agree.
   EXPECT_LE(a.idMismatch, pixels / 100) << a.idMismatch << " id mismatches";
   EXPECT_EQ(a.idMismatchInterior, 0u);
-  EXPECT_LE(a.depthBad, a.depthChecked / 1000 + 1) << a.depthBad << " depth mismatches, max relative " << a.maxRel;
+  EXPECT_LE(a.depthBad, a.depthChecked / 1000 + 1)
+      << a.depthBad << " depth mismatches, max relative " << a.maxRel;
 }
 
 }  // namespace
@@ -68,7 +69,8 @@ TEST_P(GBufferAgreement, RasterMatchesRayTraced) {
   expectAgreement(compareGBuffers(s, s.camera, w, h), size_t(w) * h);
 }
 
-INSTANTIATE_TEST_SUITE_P(Builtins, GBufferAgreement, ::testing::Values("cornell", "spheres", "atrium"));
+INSTANTIATE_TEST_SUITE_P(Builtins, GBufferAgreement,
+                         ::testing::Values("cornell", "spheres", "atrium"));
 
 TEST(GBufferAgreementFiles, CornellObjAndWaterBottle) {
   Scene c = loadScene(test::sharedScene("CornellBox/CornellBox-Sphere.obj"));

@@ -55,7 +55,8 @@ TEST(Rasterizer, SharedEdgeCoveredExactlyOnce) {
   // Corners on pixel centres: (-6.5, -6.5) .. (5.5, 5.5); the diagonal hits centres exactly.
   Vec3 a{-6.5f, -6.5f, 0}, b{5.5f, -6.5f, 0}, c{5.5f, 5.5f, 0}, d{-6.5f, 5.5f, 0};
   Scene first = trianglesScene({{a, b, c}}), second = trianglesScene({{a, c, d}});
-  VisibilityBuffer v1 = rasterize(first, orthoCamera(), 16, 16), v2 = rasterize(second, orthoCamera(), 16, 16);
+  VisibilityBuffer v1 = rasterize(first, orthoCamera(), 16, 16),
+                   v2 = rasterize(second, orthoCamera(), 16, 16);
   int both = 0, covered = 0;
   for (size_t i = 0; i < v1.object.size(); ++i) {
     bool c1 = v1.object[i] != kNoObject, c2 = v2.object[i] != kNoObject;
@@ -101,8 +102,10 @@ TEST(Rasterizer, BackFacesCulledUnlessDoubleSided) {
   std::array<Vec3, 3> cw = {Vec3(-4, -4, 0), Vec3(-4, 4, 0), Vec3(4, -4, 0)};
   VisibilityBuffer single = rasterize(trianglesScene({cw}, false), orthoCamera(), 16, 16);
   VisibilityBuffer both = rasterize(trianglesScene({cw}, true), orthoCamera(), 16, 16);
-  size_t a = std::count_if(single.object.begin(), single.object.end(), [](uint32_t o) { return o != kNoObject; });
-  size_t b = std::count_if(both.object.begin(), both.object.end(), [](uint32_t o) { return o != kNoObject; });
+  size_t a = std::count_if(single.object.begin(), single.object.end(),
+                           [](uint32_t o) { return o != kNoObject; });
+  size_t b = std::count_if(both.object.begin(), both.object.end(),
+                           [](uint32_t o) { return o != kNoObject; });
   EXPECT_EQ(a, 0u);
   EXPECT_GT(b, 20u);
 }

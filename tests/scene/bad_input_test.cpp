@@ -12,7 +12,8 @@ using tandem::test::writeText;
 namespace {
 
 // Loads `text` saved as `name` and expects an InputError whose message holds every fragment.
-void expectLoadError(const std::string& name, const std::string& text, std::vector<std::string> fragments) {
+void expectLoadError(const std::string& name, const std::string& text,
+                     std::vector<std::string> fragments) {
   auto dir = scratchDir("bad_" + name);
   auto path = (dir / name).string();
   writeText(dir / name, text);
@@ -22,11 +23,13 @@ void expectLoadError(const std::string& name, const std::string& text, std::vect
   } catch (const InputError& e) {
     std::string msg = e.what();
     EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+    for (const auto& f : fragments)
+      EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
   }
 }
 
-const std::string kTriangleGltfHead = R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],)";
+const std::string kTriangleGltfHead =
+    R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],)";
 const std::string kBuffer =
     R"("buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}])";
 
@@ -40,35 +43,48 @@ TEST(BadInput, MissingFiles) {
   EXPECT_THROW(loadSceneByExtension("/tmp/scene.xyz"), InputError);
 }
 
-TEST(BadInput, MalformedJson) { expectLoadError("a.json", "{\"objects\": [", {"malformed JSON"}); }
+TEST(BadInput, MalformedJson) {
+  expectLoadError("a.json", "{\"objects\": [", {"malformed JSON"});
+}
 
 TEST(BadInput, UnknownJsonField) {
-  expectLoadError("b.json", R"({"objects": [{"shape": "cube", "positon": [0, 0, 0]}]})", {"objects[0].positon", "unknown field"});
+  expectLoadError("b.json", R"({"objects": [{"shape": "cube", "positon": [0, 0, 0]}]})",
+                  {"objects[0].positon", "unknown field"});
 }
 
 TEST(BadInput, WrongJsonType) {
-  expectLoadError("c.json", R"({"objects": [{"shape": "cube", "position": "up"}]})", {"objects[0].position", "array of 3"});
-  expectLoadError("d.json", R"({"objects": [{"shape": "sphere", "slices": 2.5}]})", {"slices", "integer"});
-  expectLoadError("e.json", R"({"materials": {"m": {"ior": -1}}, "objects": [{"shape": "cube"}]})", {"materials.m.ior", "out of range"});
+  expectLoadError("c.json", R"({"objects": [{"shape": "cube", "position": "up"}]})",
+                  {"objects[0].position", "array of 3"});
+  expectLoadError("d.json", R"({"objects": [{"shape": "sphere", "slices": 2.5}]})",
+                  {"slices", "integer"});
+  expectLoadError("e.json", R"({"materials": {"m": {"ior": -1}}, "objects": [{"shape": "cube"}]})",
+                  {"materials.m.ior", "out of range"});
 }
 
 TEST(BadInput, UnknownMaterialAndShape) {
-  expectLoadError("f.json", R"({"objects": [{"shape": "cube", "material": "nope"}]})", {"objects[0].material", "unknown material 'nope'"});
+  expectLoadError("f.json", R"({"objects": [{"shape": "cube", "material": "nope"}]})",
+                  {"objects[0].material", "unknown material 'nope'"});
   expectLoadError("g.json", R"({"objects": [{"shape": "torus"}]})", {"objects[0].shape", "torus"});
 }
 
 TEST(BadInput, MissingTexture) {
-  expectLoadError("h.json", R"({"materials": {"m": {"diffuseMap": "missing.png"}}, "objects": [{"shape": "cube"}]})",
-                  {"materials.m.diffuseMap", "missing.png", "not found"});
+  expectLoadError(
+      "h.json",
+      R"({"materials": {"m": {"diffuseMap": "missing.png"}}, "objects": [{"shape": "cube"}]})",
+      {"materials.m.diffuseMap", "missing.png", "not found"});
 }
 
 TEST(BadInput, ObjIndexOutOfRange) {
   expectLoadError("i.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", {});
 }
 
-TEST(BadInput, ObjNanVertex) { expectLoadError("j.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", {"NaN"}); }
+TEST(BadInput, ObjNanVertex) {
+  expectLoadError("j.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", {"NaN"});
+}
 
-TEST(BadInput, ObjInfVertex) { expectLoadError("k.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", {"NaN or infinite"}); }
+TEST(BadInput, ObjInfVertex) {
+  expectLoadError("k.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", {"NaN or infinite"});
+}
 
 TEST(BadInput, ObjMissingTexture) {
   auto dir = scratchDir("obj_tex");
@@ -91,35 +107,47 @@ TEST(BadInput, DegenerateTrianglesAreSkippedAndCounted) {
 }
 
 TEST(BadInput, GltfRequiredExtensionUnsupported) {
-  expectLoadError("l.gltf", R"({"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_draco_mesh_compression"],
+  expectLoadError(
+      "l.gltf",
+      R"({"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_draco_mesh_compression"],
                                  "extensionsUsed": ["KHR_draco_mesh_compression"]})",
-                  {"extensionsRequired", "KHR_draco_mesh_compression"});
+      {"extensionsRequired", "KHR_draco_mesh_compression"});
 }
 
 TEST(BadInput, GltfAccessorOutOfRange) {
-  expectLoadError("m.gltf", kTriangleGltfHead + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 5}}]}],
-      "accessors": [], "bufferViews": [], )" + kBuffer + "}",
+  expectLoadError("m.gltf",
+                  kTriangleGltfHead +
+                      R"("meshes": [{"primitives": [{"attributes": {"POSITION": 5}}]}],
+      "accessors": [], "bufferViews": [], )" +
+                      kBuffer + "}",
                   {"POSITION", "out of range"});
 }
 
 TEST(BadInput, GltfIndexOutOfRange) {
   // Indices 0, 1, 9 as unsigned bytes after the 36 position bytes.
-  expectLoadError("n.gltf", kTriangleGltfHead + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+  expectLoadError(
+      "n.gltf",
+      kTriangleGltfHead +
+          R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
       "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
                     {"bufferView": 1, "componentType": 5121, "count": 3, "type": "SCALAR"}],
       "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 1, "byteLength": 3}],
       "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"},
                   {"byteLength": 3, "uri": "data:application/octet-stream;base64,AAEJ"}]})",
-                  {"indices", "index 9 out of range"});
+      {"indices", "index 9 out of range"});
 }
 
 TEST(BadInput, GltfNanVertex) {
   // Second vertex x = NaN (0x7fc00000).
-  expectLoadError("o.gltf", kTriangleGltfHead + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  expectLoadError(
+      "o.gltf",
+      kTriangleGltfHead + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
       "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
       "bufferViews": [{"buffer": 0, "byteLength": 36}],
       "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAADAfwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})",
-                  {"POSITION", "NaN"});
+      {"POSITION", "NaN"});
 }
 
-TEST(BadInput, GltfMalformed) { expectLoadError("p.gltf", "{ not json", {"cannot parse glTF"}); }
+TEST(BadInput, GltfMalformed) {
+  expectLoadError("p.gltf", "{ not json", {"cannot parse glTF"});
+}

@@ -46,7 +46,8 @@ TEST(EmissiveLights, CornellLightBecomesCosineSpotWithKeTimesArea) {
   EXPECT_NEAR(l.intensity, 17.0f * 0.1786f, 0.05f * 17.0f * 0.1786f);
   EXPECT_NEAR(l.position.y, 1.98f, 0.02f);
   // Turned off on request.
-  Scene off = loadScene(sharedScene("CornellBox/CornellBox-Original.obj"), {LoadOptions::EmissiveLights::Off});
+  Scene off = loadScene(sharedScene("CornellBox/CornellBox-Original.obj"),
+                        {LoadOptions::EmissiveLights::Off});
   EXPECT_TRUE(off.lights.empty());
 }
 
@@ -106,7 +107,8 @@ TEST(GltfLoader, ExtensionsLightsAndCamera) {
  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}],
  "bufferViews": [{"buffer": 0, "byteLength": 36}],
- "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)") + b64 + R"("}]
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)") +
+                     b64 + R"("}]
 })";
   writeText(dir / "t.gltf", gltf);
   Scene s = loadGltf((dir / "t.gltf").string());
@@ -138,7 +140,9 @@ TEST(SceneFile, PrimitivesMaterialsLightsCameraAnimation) {
      "heuristic": {"K": 2.5, "E": 3}},
     {"name": "floor", "shape": "plane", "scale": [5, 1, 5]},
     {"name": "box", "shape": "cube", "animation": [{"time": 0, "position": [0, 0, 0]}, {"time": 1, "position": [2, 0, 0]}]},
-    {"name": "bunny", "file": ")" + sharedScene("StanfordBunny/bunny.obj") + R"(", "scale": [2, 2, 2], "material": "red"}
+    {"name": "bunny", "file": ")" +
+                                sharedScene("StanfordBunny/bunny.obj") +
+                                R"(", "scale": [2, 2, 2], "material": "red"}
   ],
   "lights": [{"type": "point", "position": [0, 4, 0], "intensity": 20},
              {"type": "spot", "position": [0, 4, 0], "direction": [0, -1, 0], "innerCone": 10, "outerCone": 20},
@@ -166,7 +170,8 @@ TEST(SceneFile, PrimitivesMaterialsLightsCameraAnimation) {
 
 TEST(SceneFile, BaseBuiltinPlusModel) {
   auto dir = scratchDir("scene_base");
-  writeText(dir / "s.json", R"({"base": "cornell", "objects": [{"file": ")" + sharedScene("StanfordBunny/bunny.obj") +
+  writeText(dir / "s.json", R"({"base": "cornell", "objects": [{"file": ")" +
+                                sharedScene("StanfordBunny/bunny.obj") +
                                 R"(", "material": "glass", "position": [0, 0, 0]}]})");
   Scene s = loadSceneFile((dir / "s.json").string());
   Scene base = makeCornellScene();

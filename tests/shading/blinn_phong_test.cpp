@@ -53,7 +53,8 @@ TEST(BlinnPhong, LambertPlaneUnderPointLightMatchesInverseSquareCosine) {
       // L = rho / pi * I cos(theta) / d^2
       Vec3 expected = albedo * (kInvPi * l.intensity * cosTheta / (dist * dist));
       Vec3 got = hdr.rgb(x, y);
-      for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], expected[k], 1e-4f * std::max(1.0f, expected[k]));
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(got[k], expected[k], 1e-4f * std::max(1.0f, expected[k]));
       ++checked;
     }
   EXPECT_GT(checked, 50);
@@ -80,7 +81,7 @@ TEST(BlinnPhong, SpotConeFalloff) {
   l.intensity = 4;
   // Inside the inner cone: full intensity; outside the outer cone: none; between: partial.
   LightSample in = sampleLight(l, {0, 0, 0});
-  EXPECT_NEAR(in.radiance.x, 1.0f, 1e-6f);  // 4 / 2^2
+  EXPECT_NEAR(in.radiance.x, 1.0f, 1e-6f);      // 4 / 2^2
   LightSample out = sampleLight(l, {2, 0, 0});  // 45 degrees off axis
   EXPECT_EQ(out.radiance.x, 0.0f);
   LightSample mid = sampleLight(l, {2 * std::tan(radians(15)), 0, 0});
