@@ -42,7 +42,37 @@ Vec3 parseVec3(const std::string& opt, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
+// "x,y,z[,intensity[,r,g,b]]": a point light's position or a sun's travel direction.
+Light parseCliLight(const std::string& opt, const std::string& text, LightType type) {
+  auto v = parseNumbers(opt, text, 3, 7);
+  if (v.size() == 5 || v.size() == 6)
+    throw InputError("command line", opt, "colour needs 3 numbers");
+  Light l;
+  l.type = type;
+  Vec3 xyz{v[0], v[1], v[2]};
+  if (type == LightType::Point) {
+    l.name = "cli-point";
+    l.position = xyz;
+    l.intensity = 10.0f;
+  } else {
+    if (length(xyz) == 0) throw InputError("command line", opt, "direction must not be zero");
+    l.name = "cli-sun";
+    l.direction = normalize(xyz);
+    l.intensity = 3.0f;
+  }
+  if (v.size() > 3) l.intensity = v[3];
+  if (l.intensity < 0) throw InputError("command line", opt, "intensity must be >= 0");
+  if (v.size() == 7) l.color = {v[4], v[5], v[6]};
+  return l;
+}
+
 }  // namespace
+
+std::unique_ptr<tbb::global_control> limitThreads(const RenderOptions& o) {
+  if (o.threads <= 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                               o.threads);
+}
 
 void addRenderOptions(CLI::App* app, RenderOptions& o) {
   app->add_option("--scene", o.scene,
@@ -96,32 +126,10 @@ Scene loadSceneFor(const RenderOptions& o) {
       lo.emissiveLights = LoadOptions::EmissiveLights::Off;
   }
   Scene s = loadScene(o.scene, lo);
-  for (const std::string& p : o.pointLights) {
-    auto v = parseNumbers("--point-light", p, 3, 7);
-    if (v.size() == 5 || v.size() == 6)
-      throw InputError("command line", "--point-light", "colour needs 3 numbers");
-    Light l;
-    l.type = LightType::Point;
-    l.name = "cli-point";
-    l.position = {v[0], v[1], v[2]};
-    l.intensity = v.size() > 3 ? v[3] : 10.0f;
-    if (v.size() == 7) l.color = {v[4], v[5], v[6]};
-    s.lights.push_back(l);
-  }
-  for (const std::string& p : o.sunLights) {
-    auto v = parseNumbers("--sun-light", p, 3, 7);
-    if (v.size() == 5 || v.size() == 6)
-      throw InputError("command line", "--sun-light", "colour needs 3 numbers");
-    Light l;
-    l.type = LightType::Directional;
-    l.name = "cli-sun";
-    if (length(Vec3(v[0], v[1], v[2])) == 0)
-      throw InputError("command line", "--sun-light", "direction must not be zero");
-    l.direction = normalize(Vec3(v[0], v[1], v[2]));
-    l.intensity = v.size() > 3 ? v[3] : 3.0f;
-    if (v.size() == 7) l.color = {v[4], v[5], v[6]};
-    s.lights.push_back(l);
-  }
+  for (const std::string& p : o.pointLights)
+    s.lights.push_back(parseCliLight("--point-light", p, LightType::Point));
+  for (const std::string& p : o.sunLights)
+    s.lights.push_back(parseCliLight("--sun-light", p, LightType::Directional));
   return s;
 }
 

@@ -1,6 +1,8 @@
 // Options shared by every verb that renders (render, bench, later view/experiment).
 #pragma once
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,5 +33,7 @@ Scene loadSceneFor(const RenderOptions& o);
 // The scene camera with command-line overrides applied (a default view when it has none).
 CameraDesc cameraFor(const Scene& s, const RenderOptions& o);
 std::vector<std::string> splitList(const std::string& s);
+// Caps oneTBB's worker count for the lifetime of the returned object (null: all cores).
+std::unique_ptr<tbb::global_control> limitThreads(const RenderOptions& o);
 
 }  // namespace tandem

@@ -43,10 +43,7 @@ struct BenchVerb {
     validateRenderOptions(opts);
     if (warmup < 0 || warmup > 10000)
       throw InputError("command line", "--warmup", "must be in [0, 10000]");
-    std::unique_ptr<tbb::global_control> threads;
-    if (opts.threads > 0)
-      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      opts.threads);
+    auto threads = limitThreads(opts);
     Pipeline pipeline = Pipeline::load(opts.pipeline);
     Scene scene = loadSceneFor(opts);
     CameraDesc base = cameraFor(scene, opts);

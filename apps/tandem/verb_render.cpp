@@ -23,10 +23,7 @@ struct RenderVerb {
 
   int run() {
     validateRenderOptions(opts);
-    std::unique_ptr<tbb::global_control> threads;
-    if (opts.threads > 0)
-      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      opts.threads);
+    auto threads = limitThreads(opts);
     Pipeline pipeline = Pipeline::load(opts.pipeline);
     std::vector<std::string> aovs = splitList(opts.aov);
     std::vector<std::string> produced = pipeline.producedBuffers();

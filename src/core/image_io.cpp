@@ -32,8 +32,10 @@ namespace {
 // A temporary sibling name unique to this process; renamed over `path` once complete.
 std::string tempName(const std::string& path) {
   fs::path p(path);
-  return (p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(getpid())))
-      .string();
+  // Built with append(): GCC 12 warns falsely (-Wrestrict) on a chain of string operator+.
+  std::string name(".");
+  name.append(p.filename().string()).append(".tmp").append(std::to_string(getpid()));
+  return (p.parent_path() / name).string();
 }
 
 void commit(const std::string& tmp, const std::string& path) {

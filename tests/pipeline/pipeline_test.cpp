@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/error.h"
 #include "pipeline/pipeline.h"
@@ -121,4 +122,15 @@ TEST(Pipeline, MotionVectorsFollowAnimatedObject) {
     }
   EXPECT_GT(moving, 10);
   EXPECT_GT(still, 1000);
+}
+
+TEST(Pipeline, ImageIndependentOfThreadCount) {
+  Scene s = makeAtriumScene();
+  std::vector<float> one, all;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = test::renderOnce(s, "deferred", 200, 120, s.camera)->output().data;
+  }
+  all = test::renderOnce(s, "deferred", 200, 120, s.camera)->output().data;
+  EXPECT_EQ(one, all);
 }
