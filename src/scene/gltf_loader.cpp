@@ -195,12 +195,15 @@ Material convertMaterial(Ctx& c, int index) {
   float metal = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
   float rough = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
   // Metallic-roughness -> Blinn-Phong (see docs/scene-format.md).
-  m.diffuse = base * (1.0f - metal);
+  BlinnPhongTerms bp = fromMetallicRoughness(base, metal, rough);
+  m.diffuse = bp.diffuse;
   m.ambient = m.diffuse;
-  m.specular = lerp(Vec3(0.04f), base, metal);
-  float alpha = std::max(rough * rough, 1e-3f);
-  m.specularExponent = std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 4096.0f);
-  m.reflectivity = metal * (1.0f - rough);
+  m.specular = bp.specular;
+  m.specularExponent = bp.exponent;
+  m.reflectivity = bp.reflectivity;
+  m.baseColor = base;
+  m.metallic = metal;
+  m.roughness = rough;
   m.diffuseOpacity = float(pbr.baseColorFactor[3]);
   float strength =
       float(extNumber(gm.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0));
@@ -226,6 +229,8 @@ Material convertMaterial(Ctx& c, int index) {
   m.emissionTexture = texture(c, gm.emissiveTexture.index, true, field + ".emissiveTexture");
   m.normalTexture = texture(c, gm.normalTexture.index, false, field + ".normalTexture");
   m.normalScale = float(gm.normalTexture.scale);
+  m.metallicRoughnessTexture =
+      texture(c, pbr.metallicRoughnessTexture.index, false, field + ".metallicRoughnessTexture");
   // KHR_texture_transform on the base colour texture sets the material's tiling/offset.
   auto tt = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
   if (tt != pbr.baseColorTexture.extensions.end()) {

@@ -32,9 +32,22 @@ struct Material {
   int specularTexture = -1;  // sRGB
   int normalTexture = -1;    // tangent-space normal map, linear
   float normalScale = 1.0f;
+  // glTF metallic-roughness texture (B = metallic, G = roughness): when present, diffuse,
+  // specular, exponent and reflectivity are derived per texel from these factors.
+  int metallicRoughnessTexture = -1;
+  Vec3 baseColor{1, 1, 1};
+  float metallic = 0.0f, roughness = 1.0f;
 
   // Maps a mesh UV to texture space: offset + R(rotation) * (uv * tiling).
   Vec2 transformUv(Vec2 uv) const;
 };
+
+// Metallic-roughness -> Blinn-Phong terms (docs/scene-format.md), used by the glTF loader for the
+// factors and by surface resolve per texel.
+struct BlinnPhongTerms {
+  Vec3 diffuse, specular;
+  float exponent, reflectivity;
+};
+BlinnPhongTerms fromMetallicRoughness(Vec3 base, float metallic, float roughness);
 
 }  // namespace tandem

@@ -89,7 +89,8 @@ void Scene::append(const Scene& other, const Mat4& xf, int materialOverride) {
   meshes.insert(meshes.end(), other.meshes.begin(), other.meshes.end());
   textures.insert(textures.end(), other.textures.begin(), other.textures.end());
   for (Material m : other.materials) {
-    for (int* t : {&m.diffuseTexture, &m.emissionTexture, &m.specularTexture, &m.normalTexture})
+    for (int* t : {&m.diffuseTexture, &m.emissionTexture, &m.specularTexture, &m.normalTexture,
+                   &m.metallicRoughnessTexture})
       if (*t >= 0) *t += texBase;
     materials.push_back(m);
   }
@@ -129,7 +130,8 @@ void validateScene(const Scene& s, const std::string& source) {
       throw InputError(source, "object '" + o.name + "'", "material index out of range");
   }
   for (const Material& m : s.materials)
-    for (int t : {m.diffuseTexture, m.emissionTexture, m.specularTexture, m.normalTexture})
+    for (int t : {m.diffuseTexture, m.emissionTexture, m.specularTexture, m.normalTexture,
+                  m.metallicRoughnessTexture})
       if (t >= int(s.textures.size()))
         throw InputError(source, "material '" + m.name + "'", "texture index out of range");
 }

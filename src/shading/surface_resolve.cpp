@@ -80,6 +80,18 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
     s.specular = s.specular * scene.textures[mat.specularTexture].sample(s.uv).xyz();
   s.specularExponent = mat.specularExponent;
   s.reflectivity = mat.reflectivity;
+  if (mat.metallicRoughnessTexture >= 0) {
+    Vec4 mr = scene.textures[mat.metallicRoughnessTexture].sample(s.uv);
+    Vec3 base = mat.baseColor;
+    if (mat.diffuseTexture >= 0)
+      base = base * scene.textures[mat.diffuseTexture].sample(s.uv).xyz();
+    BlinnPhongTerms bp = fromMetallicRoughness(base, mat.metallic * mr.z, mat.roughness * mr.y);
+    s.diffuse = bp.diffuse;
+    s.ambient = bp.diffuse;
+    s.specular = bp.specular;
+    s.specularExponent = bp.exponent;
+    s.reflectivity = bp.reflectivity;
+  }
   s.ior = mat.ior;
   s.opacity = mat.opacity;
   if (mat.alphaMode == AlphaMode::Blend) s.opacity = std::min(s.opacity, s.diffuseOpacity);

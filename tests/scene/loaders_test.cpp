@@ -67,11 +67,26 @@ TEST(GltfLoader, WaterBottleHasTexturesAndNodeRotation) {
   EXPECT_GE(m.diffuseTexture, 0);
   EXPECT_GE(m.normalTexture, 0);
   EXPECT_GE(m.emissionTexture, 0);
+  EXPECT_GE(m.metallicRoughnessTexture, 0);
   // The node's 180 degree rotation about Y maps +X to -X.
   Vec3 x = s.objects[0].worldMatrix(0).transformVector({1, 0, 0});
   EXPECT_NEAR(x.x, -1.0f, 1e-5f);
   const Mesh& mesh = s.meshes[s.objects[0].mesh];
   EXPECT_EQ(mesh.tangents.size(), mesh.positions.size());
+}
+
+TEST(Material, MetallicRoughnessMapping) {
+  // Dielectric: all base colour is diffuse, F0 = 0.04; metal: no diffuse, specular = base.
+  BlinnPhongTerms d = fromMetallicRoughness({0.5f, 0.2f, 0.1f}, 0.0f, 1.0f);
+  EXPECT_EQ(d.diffuse.x, 0.5f);
+  EXPECT_NEAR(d.specular.y, 0.04f, 1e-7f);
+  EXPECT_EQ(d.exponent, 1.0f);  // 2 / 1 - 2 = 0, clamped to 1
+  EXPECT_EQ(d.reflectivity, 0.0f);
+  BlinnPhongTerms m = fromMetallicRoughness({0.9f, 0.6f, 0.2f}, 1.0f, 0.5f);
+  EXPECT_EQ(m.diffuse.x, 0.0f);
+  EXPECT_NEAR(m.specular.y, 0.6f, 1e-6f);
+  EXPECT_NEAR(m.exponent, 2.0f / (0.0625f * 0.0625f) - 2.0f, 1e-2f);  // alpha = 0.25
+  EXPECT_NEAR(m.reflectivity, 0.5f, 1e-6f);
 }
 
 TEST(GltfLoader, SuzanneMetallicRoughnessMapping) {
