@@ -85,7 +85,7 @@ TEST(Material, MetallicRoughnessMapping) {
   BlinnPhongTerms m = fromMetallicRoughness({0.9f, 0.6f, 0.2f}, 1.0f, 0.5f);
   EXPECT_EQ(m.diffuse.x, 0.0f);
   EXPECT_NEAR(m.specular.y, 0.6f, 1e-6f);
-  EXPECT_NEAR(m.exponent, 2.0f / (0.0625f * 0.0625f) - 2.0f, 1e-2f);  // alpha = 0.25
+  EXPECT_NEAR(m.exponent, 2.0f / (0.25f * 0.25f) - 2.0f, 1e-3f);  // alpha = r^2 = 0.25 -> 30
   EXPECT_NEAR(m.reflectivity, 0.5f, 1e-6f);
 }
 
