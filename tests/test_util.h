@@ -27,10 +27,10 @@ inline void writeText(const std::filesystem::path& p, const std::string& text) {
 
 // Renders one frame of `scene` through a built-in pipeline and returns the renderer.
 inline std::unique_ptr<Renderer> renderOnce(const Scene& scene, const std::string& pipeline, int w,
-                                            int h, const CameraDesc& cam) {
+                                            int h, const CameraDesc& cam, Vec2 jitter = {0, 0}) {
   auto r = std::make_unique<Renderer>(scene, Pipeline::load(pipeline),
                                       RenderSettings{.width = w, .height = h});
-  r->renderFrame(0, cam);
+  r->renderFrame(0, cam, jitter);
   return r;
 }
 

@@ -22,14 +22,14 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         size_t i = size_t(y) * ctx.width + x;
-        if (vis.object[i] == kNoObject) {
-          g.writeBackground(x, y);
-          continue;
-        }
         // Barycentrics come from the pixel's camera ray against the visible triangle, which is
         // exact and perspective-correct (and identical to what a primary ray would compute).
         Vec3 o, d;
         ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
+        if (vis.object[i] == kNoObject) {
+          g.writeBackground(x, y, backgroundMotion(ctx, d));
+          continue;
+        }
         SurfaceSample s = resolveSurface(ctx.frame, int(vis.object[i]), int(vis.prim[i]), o, d);
         g.write(x, y, s, vis.depth[i], motionVector(ctx, s.object, s.position));
       }

@@ -43,7 +43,7 @@ void RTGBufferPass::execute(FrameContext& ctx) {
         for (int k = 0; k < n; ++k) {
           const Hit& h = hits[k];
           if (!h.valid()) {
-            g.writeBackground(px[k], py[k]);
+            g.writeBackground(px[k], py[k], backgroundMotion(ctx, rs[k].dir));
             continue;
           }
           SurfaceSample s = resolveSurface(ctx.frame, h.object, h.prim, rs[k].origin, rs[k].dir);

@@ -12,7 +12,7 @@ Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings setting
   ctx_.seed = settings.seed;
 }
 
-FrameTimings Renderer::renderFrame(int index, const CameraDesc& camera) {
+FrameTimings Renderer::renderFrame(int index, const CameraDesc& camera, Vec2 jitter) {
   float t = float(index) / settings_.frameRate;
   // The first frame has no history: it is its own previous frame (zero motion, unless animated
   // objects moved during the frame interval, which we take from t - 1/frameRate).
@@ -22,7 +22,7 @@ FrameTimings Renderer::renderFrame(int index, const CameraDesc& camera) {
   ctx_.frame.update(scene_, t, tPrev);
   double updateMs = msSince(t0);
   ctx_.frameIndex = index;
-  ctx_.camera = Camera::make(camera, settings_.width, settings_.height);
+  ctx_.camera = Camera::make(camera, settings_.width, settings_.height, jitter);
   ctx_.prevCamera = Camera::make(prevDesc, settings_.width, settings_.height);
   ctx_.cameraMoved = std::memcmp(&ctx_.camera.viewProjUnjittered,
                                  &ctx_.prevCamera.viewProjUnjittered, sizeof(Mat4)) != 0;

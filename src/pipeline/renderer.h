@@ -16,8 +16,9 @@ class Renderer {
  public:
   Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings);
 
-  // Renders frame `index` seen through `camera` (scene time index / frameRate).
-  FrameTimings renderFrame(int index, const CameraDesc& camera);
+  // Renders frame `index` seen through `camera` (scene time index / frameRate), with an optional
+  // sub-pixel jitter in pixels (TAA); motion vectors never include the jitter.
+  FrameTimings renderFrame(int index, const CameraDesc& camera, Vec2 jitter = {0, 0});
   const Buffer& output() const { return ctx_.input(pipeline_.output); }
   FrameContext& context() { return ctx_; }
   Pipeline& pipeline() { return pipeline_; }

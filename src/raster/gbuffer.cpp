@@ -60,7 +60,7 @@ void GBufferView::write(int x, int y, const SurfaceSample& s, float d, Vec2 mv) 
   motion[2 * i + 1] = mv.y;
 }
 
-void GBufferView::writeBackground(int x, int y) {
+void GBufferView::writeBackground(int x, int y, Vec2 mv) {
   size_t i = size_t(y) * width + x;
   depth[i] = 0;
   put3(position + 3 * i, Vec3(0.0f));
@@ -72,24 +72,38 @@ void GBufferView::writeBackground(int x, int y) {
   put3(optical + 3 * i, Vec3(0.0f));
   objectId[i] = -1;
   materialId[i] = -1;
-  motion[2 * i] = motion[2 * i + 1] = 0;
+  motion[2 * i] = mv.x;
+  motion[2 * i + 1] = mv.y;
 }
+
+namespace {
+// Homogeneous point -> pixel coordinates; false behind the camera.
+bool toPixel(const Mat4& vp, const Camera& c, Vec4 q, Vec2& px) {
+  Vec4 h = vp * q;
+  if (h.w <= 1e-8f) return false;
+  px = {(h.x / h.w * 0.5f + 0.5f) * c.width, (0.5f - h.y / h.w * 0.5f) * c.height};
+  return true;
+}
+
+Vec2 screenMotion(const FrameContext& ctx, Vec4 now, Vec4 before) {
+  Vec2 a, b;
+  if (!toPixel(ctx.camera.viewProjUnjittered, ctx.camera, now, a) ||
+      !toPixel(ctx.prevCamera.viewProjUnjittered, ctx.prevCamera, before, b))
+    return {0, 0};
+  return a - b;
+}
+}  // namespace
 
 Vec2 motionVector(const FrameContext& ctx, int object, Vec3 p) {
   const FrameObject& fo = ctx.frame.objects[object];
   if (!fo.moved && !ctx.cameraMoved) return {0, 0};
-  Vec3 prevWorld = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
-  auto toPixel = [](const Mat4& vp, const Camera& c, Vec3 q, Vec2& px) {
-    Vec4 h = vp * Vec4(q, 1.0f);
-    if (h.w <= 1e-8f) return false;
-    px = {(h.x / h.w * 0.5f + 0.5f) * c.width, (0.5f - h.y / h.w * 0.5f) * c.height};
-    return true;
-  };
-  Vec2 now, before;
-  if (!toPixel(ctx.camera.viewProjUnjittered, ctx.camera, p, now) ||
-      !toPixel(ctx.prevCamera.viewProjUnjittered, ctx.prevCamera, prevWorld, before))
-    return {0, 0};
-  return now - before;
+  Vec3 prev = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
+  return screenMotion(ctx, Vec4(p, 1.0f), Vec4(prev, 1.0f));
+}
+
+Vec2 backgroundMotion(const FrameContext& ctx, Vec3 dir) {
+  if (!ctx.cameraMoved || ctx.camera.desc.projection != Projection::Perspective) return {0, 0};
+  return screenMotion(ctx, Vec4(dir, 0.0f), Vec4(dir, 0.0f));
 }
 
 }  // namespace tandem

@@ -34,10 +34,12 @@ struct GBufferView {
 
   static GBufferView create(FrameContext& ctx, const class Pass& pass);
   void write(int x, int y, const SurfaceSample& s, float depth, Vec2 motion);
-  void writeBackground(int x, int y);
+  void writeBackground(int x, int y, Vec2 motion);
 };
 
 // Screen-space motion of a surface point of `object`: where it is now minus where it was.
 Vec2 motionVector(const FrameContext& ctx, int object, Vec3 worldPos);
+// Motion of the background seen along `dir` (a point at infinity: only camera rotation moves it).
+Vec2 backgroundMotion(const FrameContext& ctx, Vec3 dir);
 
 }  // namespace tandem

@@ -22,6 +22,12 @@ struct ClipVert {
   Vec4 p;
 };
 
+// Round to 8-bit sub-pixel fixed point (std::lround is a libm call; this is one instruction).
+inline int32_t toFixed(float v) {
+  float f = v * kSubScale;
+  return int32_t(f + (f >= 0 ? 0.5f : -0.5f));
+}
+
 // Signed distance to the clip planes used here: near, far, left, right, bottom, top (guard).
 inline float planeDist(const Vec4& v, int plane) {
   switch (plane) {
@@ -144,8 +150,8 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
         float sy = (0.5f - poly[k].y * iw * 0.5f) * H;
         SX[k] = sx;
         SY[k] = sy;
-        X[k] = int32_t(std::lround(sx * kSubScale));
-        Y[k] = int32_t(std::lround(sy * kSubScale));
+        X[k] = toFixed(sx);
+        Y[k] = toFixed(sy);
         Z[k] = poly[k].z * iw;
       }
       // Triangle fan over the clipped polygon; all pieces share the original's orientation.

@@ -50,9 +50,16 @@ Vec4 Texture::sample(Vec2 uv) const {
 Texture textureFromImage(std::string name, Buffer rgba, bool srgb) {
   Texture t;
   t.name = std::move(name);
-  if (srgb)
+  if (srgb) {
+    // Texels come from 8-bit files (value = n / 255): decode through a 256-entry table.
+    float table[256];
+    for (int n = 0; n < 256; ++n) table[n] = srgbToLinear(n / 255.0f);
     for (size_t i = 0; i < rgba.pixelCount(); ++i)
-      for (int k = 0; k < 3; ++k) rgba.data[i * 4 + k] = srgbToLinear(rgba.data[i * 4 + k]);
+      for (int k = 0; k < 3; ++k) {
+        float& v = rgba.data[i * 4 + k];
+        v = table[std::clamp(int(std::lround(v * 255.0f)), 0, 255)];
+      }
+  }
   t.texels = std::move(rgba);
   return t;
 }

@@ -134,3 +134,38 @@ TEST(Pipeline, ImageIndependentOfThreadCount) {
   all = test::renderOnce(s, "deferred", 200, 120, s.camera)->output().data;
   EXPECT_EQ(one, all);
 }
+
+// With a moving camera, a static point's motion is its pixel now minus its pixel in last frame's
+// camera (checked against Camera::project); the sky moves only with camera rotation.
+TEST(Pipeline, MotionVectorsFollowCamera) {
+  Scene s = makeSpheresScene();
+  CameraDesc a = s.camera, b = s.camera;
+  b.position = a.position + Vec3(0.3f, 0.1f, 0);
+  b.lookAt = a.lookAt + Vec3(0.5f, 0, 0);
+  Renderer r(s, Pipeline::load("deferred"), RenderSettings{.width = 160, .height = 90});
+  r.renderFrame(0, a);
+  r.renderFrame(0, b);  // same scene time: only the camera moves
+  const Buffer& mv = r.context().input("motion");
+  const Buffer& pos = r.context().input("position");
+  const Buffer& id = r.context().input("object_id");
+  Camera now = Camera::make(b, 160, 90), before = Camera::make(a, 160, 90);
+  int surface = 0, sky = 0;
+  for (int y = 0; y < 90; y += 3)
+    for (int x = 0; x < 160; x += 3) {
+      Vec3 p = pos.rgb(x, y);
+      Vec2 pn, pb;
+      if (id.at(x, y)[0] < 0) {
+        Vec3 o, d;
+        now.generateRay(x + 0.5f, y + 0.5f, o, d);
+        p = o + d * 1e6f;  // far away stands in for the point at infinity
+        ++sky;
+      } else {
+        ++surface;
+      }
+      ASSERT_TRUE(now.project(p, pn) && before.project(p, pb));
+      EXPECT_NEAR(mv.at(x, y)[0], pn.x - pb.x, 0.02f) << x << "," << y;
+      EXPECT_NEAR(mv.at(x, y)[1], pn.y - pb.y, 0.02f) << x << "," << y;
+    }
+  EXPECT_GT(surface, 100);
+  EXPECT_GT(sky, 5);
+}

@@ -16,9 +16,10 @@ struct Agreement {
 };
 
 // A pixel is on an edge when any 8-neighbour of the raster id differs from it.
-Agreement compareGBuffers(const Scene& scene, const CameraDesc& cam, int w, int h) {
-  auto raster = test::renderOnce(scene, "deferred", w, h, cam);
-  auto rt = test::renderOnce(scene, "deferred-rt-gbuffer", w, h, cam);
+Agreement compareGBuffers(const Scene& scene, const CameraDesc& cam, int w, int h,
+                          Vec2 jitter = {0, 0}) {
+  auto raster = test::renderOnce(scene, "deferred", w, h, cam, jitter);
+  auto rt = test::renderOnce(scene, "deferred-rt-gbuffer", w, h, cam, jitter);
   const Buffer& idA = raster->context().input("object_id");
   const Buffer& idB = rt->context().input("object_id");
   const Buffer& dA = raster->context().input("depth");
@@ -97,4 +98,24 @@ TEST(GBufferAgreementFiles, CameraInsideGeometryNearPlaneClipping) {
   cam.vfovDeg = 100;
   cam.nearPlane = 0.05f;
   expectAgreement(compareGBuffers(s, cam, 240, 160), 240 * 160);
+}
+
+TEST(GBufferAgreementFiles, OrthographicCamera) {
+  Scene s = makeSpheresScene();
+  CameraDesc cam = s.camera;
+  cam.projection = Projection::Orthographic;
+  cam.orthoHeight = 12;
+  cam.nearPlane = 0.1f;
+  cam.farPlane = 60;
+  expectAgreement(compareGBuffers(s, cam, 240, 135), 240 * 135);
+}
+
+// Sub-pixel jitter moves raster sampling and primary rays identically.
+TEST(GBufferAgreementFiles, JitteredCamera) {
+  Scene s = makeSpheresScene();
+  expectAgreement(compareGBuffers(s, s.camera, 240, 135, {0.37f, -0.21f}), 240 * 135);
+  // And the jitter really moves the image: ids differ from the unjittered render somewhere.
+  auto a = test::renderOnce(s, "deferred", 240, 135, s.camera);
+  auto b = test::renderOnce(s, "deferred", 240, 135, s.camera, {0.37f, -0.21f});
+  EXPECT_NE(a->context().input("depth").data, b->context().input("depth").data);
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "core/image_io.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loaders.h"
 #include "test_util.h"
@@ -199,4 +200,52 @@ TEST(BuiltinScenes, AtriumIsAtPaperComplexity) {
   EXPECT_GT(s.triangleCount(), 200000u);
   EXPECT_LT(s.triangleCount(), 400000u);
   validateScene(s, "atrium");
+}
+
+// A binary glTF built by hand: 12-byte header, JSON chunk, BIN chunk with one triangle.
+TEST(GltfLoader, BinaryGlb) {
+  auto dir = scratchDir("glb");
+  std::string json =
+      R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36}]})";
+  while (json.size() % 4) json += ' ';
+  const float verts[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  auto u32 = [](std::string& s, uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); };
+  std::string glb;
+  u32(glb, 0x46546C67);  // "glTF"
+  u32(glb, 2);
+  u32(glb, uint32_t(12 + 8 + json.size() + 8 + 36));
+  u32(glb, uint32_t(json.size()));
+  u32(glb, 0x4E4F534A);  // "JSON"
+  glb += json;
+  u32(glb, 36);
+  u32(glb, 0x004E4942);  // "BIN"
+  glb.append(reinterpret_cast<const char*>(verts), 36);
+  writeText(dir / "t.glb", glb);
+  Scene s = loadScene((dir / "t.glb").string());
+  EXPECT_EQ(s.triangleCount(), 1u);
+  EXPECT_EQ(s.meshes[0].positions[1].x, 1.0f);
+}
+
+// Six constant-colour skybox faces: looking along each axis shows that face's colour.
+TEST(SceneFile, SkyboxFaces) {
+  auto dir = scratchDir("skybox");
+  const Vec3 colours[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
+  const char* names[6] = {"px.png", "nx.png", "py.png", "ny.png", "pz.png", "nz.png"};
+  for (int k = 0; k < 6; ++k) {
+    Buffer img(4, 4, 3);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) img.setRgb(x, y, colours[k]);
+    writePng((dir / names[k]).string(), img);
+  }
+  writeText(dir / "s.json", R"({"objects": [{"shape": "cube", "position": [0, -100, 0]}],
+    "skybox": {"faces": ["px.png", "nx.png", "py.png", "ny.png", "pz.png", "nz.png"]}})");
+  Scene s = loadSceneFile((dir / "s.json").string());
+  const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int k = 0; k < 6; ++k) {
+    Vec3 c = s.skyRadiance(axes[k]);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i], colours[k][i], 1e-5f) << "face " << k;
+  }
 }
