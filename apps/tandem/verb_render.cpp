@@ -39,9 +39,10 @@ struct RenderVerb {
     std::string out = opts.out.empty() ? "out" : opts.out;
     bool isFile = hasExtension(out, ".png") || hasExtension(out, ".exr");
     fs::path dir = isFile ? fs::path(out).parent_path() : fs::path(out);
-    if (!dir.empty() && !fs::exists(dir)) fs::create_directories(dir);
     Scene scene = loadSceneFor(opts);
     CameraDesc camera = cameraFor(scene, opts);
+    // Only once every input has been validated does the output folder appear.
+    if (!dir.empty() && !fs::exists(dir)) fs::create_directories(dir);
     std::string stem = isFile ? fs::path(out).stem().string() : scene.name + "_" + pipeline.name;
     fs::path base = dir / stem;
 

@@ -47,6 +47,7 @@ expect_error "unknown pipeline" "not a built-in pipeline" "$T" render --pipeline
 expect_error "unknown aov" "has no buffer 'nope'" "$T" render --aov nope --out "$D/err/x.png"
 expect_error "bad camera vector" "--camera-pos" "$T" render --camera-pos 1,2 --out "$D/err/x.png"
 expect_error "parallel up" "--up" "$T" render --camera-pos 0,5,0 --look-at 0,0,0 --up 0,1,0 --out "$D/err/x.png"
+expect_error "bad scene leaves no new folder" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/newdir/"
 echo '{"objects": [{"shape": "cube", "rotaton": [0,0,0]}]}' > "$D/bad.json"
 expect_error "unknown scene field" "objects[0].rotaton: unknown field" "$T" render --scene "$D/bad.json" --out "$D/err/x.png"
 expect_error "compare size mismatch" "differs" "$T" compare "$D/demo/cornell_deferred.png" "$D/bunny.png"
