@@ -38,6 +38,10 @@ check "bench writes json" "grep -q median_ms $D/bench.json"
   --camera-pos -0.017,0.13,0.30 --look-at -0.017,0.11,-0.0015 --vfov 45 --out "$D/bunny.png" >/dev/null
 check "camera and light overrides" "[ -s $D/bunny.png ]"
 
+SRC="$(cd "$(dirname "$0")/../.." && pwd)"
+"$T" render "$SRC/scenes/cornell_bunny.json" --width 96 --height 54 --out "$D/cb.png" >/dev/null
+check "shipped scene file renders" "[ -s $D/cb.png ]"
+
 mkdir -p "$D/err"
 expect_error "missing scene file" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/x.png"
 expect_error "unknown builtin" "not a file and not a built-in" "$T" render --scene nosuchscene --out "$D/err/x.png"
