@@ -151,3 +151,16 @@ TEST(BadInput, GltfNanVertex) {
 TEST(BadInput, GltfMalformed) {
   expectLoadError("p.gltf", "{ not json", {"cannot parse glTF"});
 }
+
+TEST(BadInput, GltfMissingImage) {
+  expectLoadError(
+      "q.gltf",
+      kTriangleGltfHead +
+          R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+      "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+      "textures": [{"source": 0}], "images": [{"uri": "nothere.png"}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}], )" +
+          kBuffer + "}",
+      {"materials[0].baseColorTexture", "nothere.png"});
+}
