@@ -61,6 +61,10 @@ struct RenderVerb {
     std::printf("  %-28s %9.2f ms\n", "frame", last.totalMs);
 
     FrameContext& ctx = renderer.context();
+    if (ctx.rasterStats.trianglesIn > 0)
+      std::printf("  raster: %zu triangles, %zu culled, %zu clipped, %zu set up and binned\n",
+                  ctx.rasterStats.trianglesIn, ctx.rasterStats.trianglesCulled,
+                  ctx.rasterStats.trianglesClipped, ctx.rasterStats.trianglesBinned);
     const std::string& outName = renderer.pipeline().output;
     if (isFile) {
       writeBuffer(out, outName, ctx.input(outName));

@@ -13,7 +13,7 @@ std::vector<BufferSlot> RasterGBufferPass::outputs() const {
 
 void RasterGBufferPass::execute(FrameContext& ctx) {
   auto t0 = Clock::now();
-  ctx.rasterizer.render(ctx.frame, ctx.camera, ctx.visibility);
+  ctx.rasterizer.render(ctx.frame, ctx.camera, ctx.visibility, &ctx.rasterStats);
   ctx.passParts.push_back({"visibility", msSince(t0), 0});
   auto t1 = Clock::now();
   GBufferView g = GBufferView::create(ctx, *this);

@@ -24,9 +24,10 @@ struct FrameContext {
   int frameIndex = 0;
   uint64_t seed = 0;
   std::map<std::string, Buffer> buffers;
-  Rasterizer rasterizer;              // owns binning scratch reused across frames
-  VisibilityBuffer visibility;        // last raster result (also shown as AOVs)
-  double passRays = 0;                // a pass adds the rays it traced; the pipeline records it
+  Rasterizer rasterizer;        // owns binning scratch reused across frames
+  VisibilityBuffer visibility;  // last raster result (also shown as AOVs)
+  RasterStats rasterStats;      // triangles in / culled / clipped / binned by the last raster pass
+  double passRays = 0;          // a pass adds the rays it traced; the pipeline records it
   std::vector<PassTiming> passParts;  // optional sub-timings a pass reports ("pass/part")
 
   // The ray tracer, (re)built for the current frame's geometry on first use in a frame.

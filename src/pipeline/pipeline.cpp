@@ -163,12 +163,6 @@ std::vector<std::string> Pipeline::producedBuffers() const {
   return names;
 }
 
-bool Pipeline::needsRayTracer() const {
-  for (const auto& p : passes)
-    if (p->type().rfind("rt_", 0) == 0) return true;
-  return false;
-}
-
 FrameTimings Pipeline::execute(FrameContext& ctx) {
   FrameTimings ft;
   auto frameStart = Clock::now();

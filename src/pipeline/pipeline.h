@@ -35,7 +35,6 @@ class Pipeline {
   void validate(const std::string& source) const;
   // Buffer names produced by the passes, in order (for --aov listings and the viewer).
   std::vector<std::string> producedBuffers() const;
-  bool needsRayTracer() const;
 
   FrameTimings execute(FrameContext& ctx);
   Json toJson() const;  // with current parameter values
