@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <fstream>
+
 #include "core/error.h"
 #include "pipeline/pipeline.h"
 #include "scene/builtin_scenes.h"
@@ -168,4 +170,16 @@ TEST(Pipeline, MotionVectorsFollowCamera) {
     }
   EXPECT_GT(surface, 100);
   EXPECT_GT(sky, 5);
+}
+
+// docs/passes.md documents every pass type and every parameter (guards against drift).
+TEST(Pipeline, PassesAreDocumented) {
+  std::ifstream in(std::string(TANDEM_SOURCE_DIR) + "/docs/passes.md");
+  ASSERT_TRUE(in.good());
+  std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const std::string& type : passTypes()) {
+    EXPECT_NE(doc.find("`" + type + "`"), std::string::npos) << type;
+    for (const ParamDesc& p : createPass(type)->params())
+      EXPECT_NE(doc.find("`" + p.name + "`"), std::string::npos) << type << "." << p.name;
+  }
 }
