@@ -40,8 +40,13 @@ std::vector<float> readAccessor(const Ctx& c, int index, int wantComponents,
   if (comps != wantComponents)
     throw InputError(c.path, field, "expected " + std::to_string(wantComponents) + " components");
   if (a.sparse.isSparse) throw InputError(c.path, field, "sparse accessors are not supported");
-  std::vector<float> out(a.count * comps, 0.0f);
-  if (a.bufferView < 0) return out;  // all zeros per spec
+  // Without a buffer view the data is all zeros; cap the count so a bogus one cannot make us
+  // allocate without limit (a buffer-backed count is bounded by the buffer checks below).
+  if (a.bufferView < 0) {
+    if (a.count > (size_t(1) << 26))
+      throw InputError(c.path, field, "absurd count without a bufferView");
+    return std::vector<float>(a.count * comps, 0.0f);
+  }
   if (a.bufferView >= int(m.bufferViews.size()))
     throw InputError(c.path, field, "bufferView index out of range");
   const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
@@ -52,11 +57,14 @@ std::vector<float> readAccessor(const Ctx& c, int index, int wantComponents,
   if (csize <= 0) throw InputError(c.path, field, "invalid componentType");
   size_t stride = bv.byteStride ? bv.byteStride : size_t(csize) * comps;
   size_t start = bv.byteOffset + a.byteOffset;
+  // Each element takes at least one byte: a larger count is bogus (and could overflow below).
+  if (a.count > buf.size()) throw InputError(c.path, field, "count exceeds its buffer");
   if (a.count > 0) {
     size_t end = start + stride * (a.count - 1) + size_t(csize) * comps;
     if (end > buf.size() || end > bv.byteOffset + bv.byteLength || stride < size_t(csize) * comps)
       throw InputError(c.path, field, "data extends past its buffer view");
   }
+  std::vector<float> out(a.count * comps, 0.0f);
   for (size_t i = 0; i < a.count; ++i)
     for (int k = 0; k < comps; ++k) {
       const unsigned char* p = buf.data() + start + i * stride + size_t(k) * csize;
@@ -113,6 +121,7 @@ std::vector<uint32_t> readIndices(const Ctx& c, int index, size_t vertexCount) {
     throw InputError(c.path, field, "invalid componentType");
   size_t stride = bv.byteStride ? bv.byteStride : size_t(csize);
   size_t start = bv.byteOffset + a.byteOffset;
+  if (a.count > buf.size()) throw InputError(c.path, field, "count exceeds its buffer");
   if (a.count > 0 && (start + stride * (a.count - 1) + csize > buf.size() ||
                       start + stride * (a.count - 1) + csize > bv.byteOffset + bv.byteLength))
     throw InputError(c.path, field, "data extends past its buffer view");

@@ -148,12 +148,12 @@ void readObject(FileCtx& c, const Json& j, size_t index) {
   std::string shape = f.string("shape", "");
   Mesh mesh;
   if (shape == "plane") {
-    mesh = makePlane(f.integer("subdivisions", 1, 1, 4096));
+    mesh = makePlane(f.integer("subdivisions", 1, 1, 1024));
   } else if (shape == "cube") {
     mesh = makeCube();
   } else if (shape == "sphere") {
-    int slices = f.integer("slices", 32, 3, 4096);
-    int stacks = f.integer("stacks", 16, 2, 4096);
+    int slices = f.integer("slices", 32, 3, 1024);
+    int stacks = f.integer("stacks", 16, 2, 1024);
     mesh = makeUvSphere(slices, stacks);
   } else if (shape.empty()) {
     f.fail("shape", "an object needs \"shape\" (plane, cube, sphere) or \"file\"");

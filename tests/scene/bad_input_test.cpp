@@ -164,3 +164,19 @@ TEST(BadInput, GltfMissingImage) {
           kBuffer + "}",
       {"materials[0].baseColorTexture", "nothere.png"});
 }
+
+TEST(BadInput, GltfAbsurdAccessorCount) {
+  expectLoadError("r.gltf",
+                  kTriangleGltfHead +
+                      R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4611686018427387904, "type": "VEC3"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}], )" +
+                      kBuffer + "}",
+                  {"POSITION", "count exceeds its buffer"});
+  expectLoadError("s.gltf",
+                  kTriangleGltfHead +
+                      R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "accessors": [{"componentType": 5126, "count": 4611686018427387904, "type": "VEC3"}], )" +
+                      kBuffer + "}",
+                  {"POSITION", "absurd count"});
+}
