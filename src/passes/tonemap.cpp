@@ -30,7 +30,7 @@ Vec3 tonemapPixel(Vec3 c, float ev, ToneOperator op) {
         v = aces(v);
         break;
     }
-    c[k] = linearToSrgb(v);
+    c[k] = linearToSrgbFast(v);
   }
   return c;
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "core/color.h"
 #include "core/math.h"
 #include "scene/camera.h"
 
@@ -42,4 +43,16 @@ TEST(Camera, ReversedZDepthIsOneAtNearAndFallsWithDistance) {
   EXPECT_NEAR(c.depthOf({0, 0, -0.1f}), 1.0f, 1e-6f);
   EXPECT_NEAR(c.depthOf({0, 0, -10.0f}), 0.01f, 1e-6f);
   EXPECT_GT(c.depthOf({0, 0, -1}), c.depthOf({0, 0, -2}));
+}
+
+TEST(Color, FastSrgbEncodingMatchesExactCurve) {
+  float worst = 0;
+  for (int i = 0; i <= 100000; ++i) {
+    float c = i / 100000.0f;
+    worst = std::max(worst, std::abs(linearToSrgbFast(c) - linearToSrgb(c)));
+  }
+  EXPECT_LT(worst, 2e-4f);  // half an 8-bit step is 2e-3
+  EXPECT_EQ(linearToSrgbFast(-1.0f), 0.0f);
+  EXPECT_EQ(linearToSrgbFast(5.0f), 1.0f);
+  EXPECT_EQ(linearToSrgbFast(std::nanf("")), 0.0f);
 }
