@@ -15,13 +15,14 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
   GBufferReader g(ctx, *this);
   Buffer& hdr = ctx.output(bufferName("hdr"), 3);
   const Scene& scene = *ctx.scene;
+  const ShadingContext shading = ShadingContext::from(scene);
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         Vec3 o, d;
         ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
         SurfaceSample s;
-        Vec3 c = g.read(x, y, s) ? shadeBlinnPhong(s, -d, scene) : scene.skyRadiance(d);
+        Vec3 c = g.read(x, y, s) ? shadeBlinnPhong(s, -d, shading) : scene.skyRadiance(d);
         hdr.setRgb(x, y, c);
       }
   });

@@ -15,13 +15,37 @@ float smoothstep(float e0, float e1, float x) {
 }
 }  // namespace
 
-LightSample sampleLight(const Light& l, Vec3 p) {
+PreparedLight PreparedLight::from(const Light& l) {
+  PreparedLight p;
+  p.type = l.type;
+  p.power = l.color * l.intensity;
+  p.position = l.position;
+  p.direction = l.direction;
+  p.attConstant = l.attConstant;
+  p.attLinear = l.attLinear;
+  p.attQuadratic = l.attQuadratic;
+  p.range = l.range;
+  p.cosOuter = std::cos(radians(l.outerConeDeg));
+  p.cosInner = std::cos(radians(l.innerConeDeg));
+  p.cosinePower = l.cosinePower;
+  p.hemisphere = l.outerConeDeg >= 90.0f && l.innerConeDeg >= 90.0f;
+  return p;
+}
+
+ShadingContext ShadingContext::from(const Scene& scene) {
+  ShadingContext c;
+  c.ambient = scene.ambient;
+  c.lights.reserve(scene.lights.size());
+  for (const Light& l : scene.lights) c.lights.push_back(PreparedLight::from(l));
+  return c;
+}
+
+LightSample sampleLight(const PreparedLight& l, Vec3 p) {
   LightSample s;
-  Vec3 power = l.color * l.intensity;
   if (l.type == LightType::Directional) {
     s.wi = -l.direction;
     s.distance = std::numeric_limits<float>::infinity();
-    s.radiance = power;
+    s.radiance = l.power;
     return s;
   }
   Vec3 d = l.position - p;
@@ -37,26 +61,25 @@ LightSample sampleLight(const Light& l, Vec3 p) {
   if (l.type == LightType::Spot) {
     float cosTheta = dot(-s.wi, l.direction);
     float cone =
-        smoothstep(std::cos(radians(l.outerConeDeg)), std::cos(radians(l.innerConeDeg)), cosTheta);
-    if (l.outerConeDeg >= 90.0f && l.innerConeDeg >= 90.0f) cone = cosTheta > 0 ? 1.0f : 0.0f;
+        l.hemisphere ? (cosTheta > 0 ? 1.0f : 0.0f) : smoothstep(l.cosOuter, l.cosInner, cosTheta);
     if (l.cosinePower > 0) cone *= std::pow(std::max(cosTheta, 0.0f), l.cosinePower);
     att *= cone;
   }
-  s.radiance = power * att;
+  s.radiance = l.power * att;
   return s;
 }
 
-Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,
+Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const ShadingContext& ctx,
                      const float* lightVisibility) {
-  Vec3 color = s.emission + scene.ambient * s.ambient;
+  Vec3 color = s.emission + ctx.ambient * s.ambient;
   const Vec3 n = s.normal;
   const bool hasSpecular = maxComponent(s.specular) > 0.0f;
   const float specNorm = (s.specularExponent + 8.0f) / (8.0f * kPi);
   const Vec3 diffuseBrdf = s.diffuse * kInvPi;
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
+  for (size_t i = 0; i < ctx.lights.size(); ++i) {
     float vis = lightVisibility ? lightVisibility[i] : 1.0f;
     if (vis <= 0.0f) continue;
-    LightSample ls = sampleLight(scene.lights[i], s.position);
+    LightSample ls = sampleLight(ctx.lights[i], s.position);
     float nDotL = dot(n, ls.wi);
     if (nDotL <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
     Vec3 f = diffuseBrdf;
@@ -68,6 +91,11 @@ Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,
     color += f * ls.radiance * (nDotL * vis);
   }
   return color;
+}
+
+Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,
+                     const float* lightVisibility) {
+  return shadeBlinnPhong(s, wo, ShadingContext::from(scene), lightVisibility);
 }
 
 }  // namespace tandem

@@ -6,6 +6,8 @@
 // Blinn-Phong (n + 8) / (8 pi), so light intensities are physical and later path-traced
 // references agree with raster shading of directly lit surfaces.
 #pragma once
+#include <vector>
+
 #include "scene/light.h"
 #include "shading/surface.h"
 
@@ -19,11 +21,36 @@ struct LightSample {
   Vec3 radiance;   // irradiance-at-normal-incidence factor: colour x intensity x attenuation
 };
 
+// A light with everything that does not depend on the shaded point worked out once per frame
+// (power, cone cosines), so no trigonometry runs per pixel.
+struct PreparedLight {
+  LightType type;
+  Vec3 power;  // colour x intensity
+  Vec3 position, direction;
+  float attConstant, attLinear, attQuadratic, range;
+  float cosOuter, cosInner, cosinePower;
+  bool hemisphere;  // spot with both cones at 90 degrees: a hard cut at the plane
+  static PreparedLight from(const Light& l);
+};
+
+// What shading needs from the scene, prepared once per frame and shared by every pixel/hit.
+struct ShadingContext {
+  Vec3 ambient{0, 0, 0};
+  std::vector<PreparedLight> lights;  // same order as Scene::lights
+  static ShadingContext from(const Scene& scene);
+};
+
 // Incident light from one light at point p (no visibility test).
-LightSample sampleLight(const Light& l, Vec3 p);
+LightSample sampleLight(const PreparedLight& l, Vec3 p);
+inline LightSample sampleLight(const Light& l, Vec3 p) {
+  return sampleLight(PreparedLight::from(l), p);
+}
 
 // Reflected radiance towards wo (unit, surface -> viewer). lightVisibility, when given, holds one
 // factor in [0,1] per scene light (shadow rays of later passes); null means fully visible.
+Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const ShadingContext& ctx,
+                     const float* lightVisibility = nullptr);
+// Convenience for one-off evaluations (tests): prepares the context from the scene each call.
 Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,
                      const float* lightVisibility = nullptr);
 
