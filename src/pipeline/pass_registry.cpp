@@ -1,15 +1,20 @@
 // The explicit list of pass types. Add a new pass here (and to src/CMakeLists.txt).
+#include "passes/blend.h"
 #include "passes/deferred_shading.h"
+#include "passes/heuristic.h"
 #include "passes/raster_gbuffer.h"
 #include "passes/rt_gbuffer.h"
+#include "passes/rt_secondary.h"
+#include "passes/rt_whitted.h"
 #include "passes/tonemap.h"
 #include "pipeline/pipeline.h"
 
 namespace tandem {
 
 const std::vector<std::string>& passTypes() {
-  static const std::vector<std::string> types = {"raster_gbuffer", "rt_gbuffer", "deferred_shading",
-                                                 "tonemap"};
+  static const std::vector<std::string> types = {
+      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic",
+      "rt_secondary",   "blend",      "rt_whitted",       "tonemap"};
   return types;
 }
 
@@ -17,6 +22,10 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "raster_gbuffer") return std::make_unique<RasterGBufferPass>();
   if (type == "rt_gbuffer") return std::make_unique<RTGBufferPass>();
   if (type == "deferred_shading") return std::make_unique<DeferredShadingPass>();
+  if (type == "heuristic") return std::make_unique<HeuristicPass>();
+  if (type == "rt_secondary") return std::make_unique<RTSecondaryPass>();
+  if (type == "blend") return std::make_unique<BlendPass>();
+  if (type == "rt_whitted") return std::make_unique<RTWhittedPass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

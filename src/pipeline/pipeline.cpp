@@ -29,6 +29,38 @@ const std::map<std::string, std::string>& builtins() {
     {"type": "tonemap"}
   ],
   "output": "output"
+})"},
+                                                       {"hybrid-heuristic", R"({
+  "name": "hybrid-heuristic",
+  "passes": [
+    {"type": "raster_gbuffer"},
+    {"type": "deferred_shading"},
+    {"type": "heuristic"},
+    {"type": "rt_secondary"},
+    {"type": "blend"},
+    {"type": "tonemap", "inputs": {"hdr": "composite"}}
+  ],
+  "output": "output"
+})"},
+                                                       {"hybrid-all", R"({
+  "name": "hybrid-all",
+  "passes": [
+    {"type": "raster_gbuffer"},
+    {"type": "deferred_shading"},
+    {"type": "heuristic", "params": {"select_all": true}},
+    {"type": "rt_secondary"},
+    {"type": "blend"},
+    {"type": "tonemap", "inputs": {"hdr": "composite"}}
+  ],
+  "output": "output"
+})"},
+                                                       {"rt-only", R"({
+  "name": "rt-only",
+  "passes": [
+    {"type": "rt_whitted"},
+    {"type": "tonemap"}
+  ],
+  "output": "output"
 })"}};
   return b;
 }

@@ -1,5 +1,6 @@
 #include "rt/ray_tracer.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -23,6 +24,14 @@ struct QueryContext {
   RTCIntersectContext ctx;
   const FrameScene* frame;
   bool cullBackfaces;
+  Vec3* transmittance;  // non-null: a shadow ray accumulating Listing 8b's attenuation
+  // Surfaces already counted by this shadow ray: a ray through a shared edge reports both
+  // triangles at the same distance, which must attenuate once.
+  struct Counted {
+    unsigned geom;
+    float t;
+  } counted[8];
+  int countedN = 0;
 };
 
 void errorCallback(void*, RTCError code, const char* str) {
@@ -54,8 +63,34 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
     if (info->alphaMask) {
       float u = RTCHitN_u(hit, args->N, i), v = RTCHitN_v(hit, args->N, i);
       unsigned prim = RTCHitN_primID(hit, args->N, i);
-      if (surfaceAlpha(*info->frame, info->object, int(prim), u, v) < mat.alphaCutoff)
+      if (surfaceAlpha(*info->frame, info->object, int(prim), u, v) < mat.alphaCutoff) {
         args->valid[i] = 0;
+        continue;
+      }
+    }
+    if (qc->transmittance) {
+      // Listing 8b: occluders that cast shadows attenuate by transparency x (1 - diffuse); the
+      // ray ends once nothing passes, otherwise the hit is ignored and traversal goes on.
+      // (The BVH is built without spatial splits, so each triangle is reported once.)
+      if (!mat.castsShadows) {
+        args->valid[i] = 0;
+        continue;
+      }
+      auto* q = const_cast<QueryContext*>(qc);
+      unsigned geom = RTCHitN_geomID(hit, args->N, i);
+      float tHit = RTCRayN_tfar(ray, args->N, i);
+      bool duplicate = false;
+      for (int k = 0; k < std::min(q->countedN, 8); ++k)
+        duplicate |= q->counted[k].geom == geom &&
+                     std::abs(q->counted[k].t - tHit) <= 1e-5f * std::max(1.0f, tHit);
+      if (duplicate) {
+        args->valid[i] = 0;
+        continue;
+      }
+      q->counted[q->countedN++ % 8] = {geom, tHit};  // a ring of the 8 most recent surfaces
+      Vec3& t = *qc->transmittance;
+      t = t * (Vec3(1.0f) - vmin(mat.diffuse, Vec3(1.0f))) * (1.0f - mat.opacity);
+      if (maxComponent(t) > 0.0f) args->valid[i] = 0;
     }
   }
 }
@@ -97,7 +132,8 @@ bool RayTracer::update(const FrameScene& fs) {
     GeometryInfo* info = geometryInfo_.back().get();
     rtcSetGeometryUserData(g, info);
     if (info->singleSided || info->alphaMask) rtcSetGeometryIntersectFilterFunction(g, filterHit);
-    if (info->alphaMask) rtcSetGeometryOccludedFilterFunction(g, filterHit);
+    // Occlusion queries always filter: shadow rays need castsShadows and transparency.
+    rtcSetGeometryOccludedFilterFunction(g, filterHit);
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(scene_, g, unsigned(o));
     rtcReleaseGeometry(g);
@@ -130,6 +166,7 @@ Hit RayTracer::intersect(const Ray& in, bool cullBackfaces) const {
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
   qc.cullBackfaces = cullBackfaces;
+  qc.transmittance = nullptr;
   RTCRayHit rh;
   setRay(rh.ray, in);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -152,11 +189,26 @@ bool RayTracer::occluded(const Ray& in) const {
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
   qc.cullBackfaces = false;
+  qc.transmittance = nullptr;
   RTCRay r;
   setRay(r, in);
   rtcOccluded1(scene_, &qc.ctx, &r);
   rays_.fetch_add(1, std::memory_order_relaxed);
   return r.tfar < 0;
+}
+
+Vec3 RayTracer::transmittance(const Ray& in) const {
+  Vec3 t(1.0f);
+  QueryContext qc;
+  rtcInitIntersectContext(&qc.ctx);
+  qc.frame = frame_;
+  qc.cullBackfaces = false;
+  qc.transmittance = &t;
+  RTCRay r;
+  setRay(r, in);
+  rtcOccluded1(scene_, &qc.ctx, &r);
+  rays_.fetch_add(1, std::memory_order_relaxed);
+  return r.tfar < 0 ? Vec3(0.0f) : t;
 }
 
 void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackfaces) const {
@@ -165,6 +217,7 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackf
   qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   qc.frame = frame_;
   qc.cullBackfaces = cullBackfaces;
+  qc.transmittance = nullptr;
   alignas(32) int valid[8];
   alignas(32) RTCRayHit8 rh;
   for (int i = 0; i < 8; ++i) {

@@ -40,9 +40,13 @@ class RayTracer {
 
   Hit intersect(const Ray& r, bool cullBackfaces = false) const;
   bool occluded(const Ray& r) const;
+  // Shadow ray (seed 002 Listing 8b): the product over occluders of transparency x (1 - diffuse),
+  // skipping materials that do not cast shadows; 0 once an opaque occluder is met.
+  Vec3 transmittance(const Ray& r) const;
   // Up to 8 rays in one Embree packet; `count` active lanes.
   void intersect8(const Ray* rays, int count, Hit* hits, bool cullBackfaces = false) const;
 
+  const FrameScene* frame() const { return frame_; }
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
   void resetRayCount() { rays_ = 0; }
 

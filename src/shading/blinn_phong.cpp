@@ -70,15 +70,15 @@ LightSample sampleLight(const PreparedLight& l, Vec3 p) {
 }
 
 Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const ShadingContext& ctx,
-                     const float* lightVisibility) {
+                     const Vec3* lightVisibility) {
   Vec3 color = s.emission + ctx.ambient * s.ambient;
   const Vec3 n = s.normal;
   const bool hasSpecular = maxComponent(s.specular) > 0.0f;
   const float specNorm = (s.specularExponent + 8.0f) / (8.0f * kPi);
   const Vec3 diffuseBrdf = s.diffuse * kInvPi;
   for (size_t i = 0; i < ctx.lights.size(); ++i) {
-    float vis = lightVisibility ? lightVisibility[i] : 1.0f;
-    if (vis <= 0.0f) continue;
+    Vec3 vis = lightVisibility ? lightVisibility[i] : Vec3(1.0f);
+    if (maxComponent(vis) <= 0.0f) continue;
     LightSample ls = sampleLight(ctx.lights[i], s.position);
     float nDotL = dot(n, ls.wi);
     if (nDotL <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
@@ -88,13 +88,13 @@ Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const ShadingContext& ctx,
       float nDotH = std::max(dot(n, h), 0.0f);
       f += s.specular * (specNorm * std::pow(nDotH, s.specularExponent));
     }
-    color += f * ls.radiance * (nDotL * vis);
+    color += f * ls.radiance * vis * nDotL;
   }
   return color;
 }
 
 Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,
-                     const float* lightVisibility) {
+                     const Vec3* lightVisibility) {
   return shadeBlinnPhong(s, wo, ShadingContext::from(scene), lightVisibility);
 }
 

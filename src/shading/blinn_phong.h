@@ -46,12 +46,12 @@ inline LightSample sampleLight(const Light& l, Vec3 p) {
   return sampleLight(PreparedLight::from(l), p);
 }
 
-// Reflected radiance towards wo (unit, surface -> viewer). lightVisibility, when given, holds one
-// factor in [0,1] per scene light (shadow rays of later passes); null means fully visible.
+// Reflected radiance towards wo (unit, surface -> viewer). lightVisibility, when given, holds an
+// RGB transmittance in [0,1] per scene light (shadow rays); null means fully visible.
 Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const ShadingContext& ctx,
-                     const float* lightVisibility = nullptr);
+                     const Vec3* lightVisibility = nullptr);
 // Convenience for one-off evaluations (tests): prepares the context from the scene each call.
 Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,
-                     const float* lightVisibility = nullptr);
+                     const Vec3* lightVisibility = nullptr);
 
 }  // namespace tandem

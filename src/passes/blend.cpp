@@ -1,0 +1,31 @@
+#include "passes/blend.h"
+
+#include "core/parallel.h"
+#include "pipeline/frame_context.h"
+#include "rt/whitted.h"
+
+namespace tandem {
+
+void BlendPass::execute(FrameContext& ctx) {
+  const Buffer& L = ctx.input(bufferName("hdr"));
+  const Buffer& S = ctx.input(bufferName("shadow"));
+  const Buffer& M = ctx.input(bufferName("reflection"));
+  const Buffer& R = ctx.input(bufferName("refraction"));
+  const Buffer& optical = ctx.input(bufferName("optical"));
+  const Buffer& mask = ctx.input(bufferName("heuristic_mask"));
+  Buffer& out = ctx.output(bufferName("composite"), 3);
+  parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        if (mask.at(x, y)[0] < 1e-4f) {
+          out.setRgb(x, y, L.rgb(x, y));
+          continue;
+        }
+        const float* op = optical.at(x, y);
+        Vec3 c = L.rgb(x, y) - (Vec3(1.0f) - S.rgb(x, y));  // eq. 4
+        out.setRgb(x, y, combineEffects(op[0], 1.0f - op[2], M.rgb(x, y), R.rgb(x, y), c));
+      }
+  });
+}
+
+}  // namespace tandem

@@ -1,0 +1,23 @@
+// blend: seed 002 §3.4 (Listing 10). Outside the heuristic mask the lighting L is kept; inside,
+// C = L - (1 - S) (eq. 4) and the result is the average of C_M and C_R (eq. 5-6).
+// Inputs: hdr (L), shadow, reflection, refraction, optical, heuristic_mask. Output: composite.
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class BlendPass : public Pass {
+ public:
+  std::string type() const override { return "blend"; }
+  std::string description() const override {
+    return "Combine lighting with ray-traced effects (eq. 4-6)";
+  }
+  std::vector<BufferSlot> inputs() const override {
+    return {{"hdr", 3},        {"shadow", 3},  {"reflection", 3},
+            {"refraction", 3}, {"optical", 3}, {"heuristic_mask", 1}};
+  }
+  std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem

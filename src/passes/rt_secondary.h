@@ -1,0 +1,29 @@
+// rt_secondary: seed 002 §3.3 (Listing 8a) for the pixels of the heuristic mask, starting from the
+// G-buffer (no primary rays): shadow rays to every light (Listing 8b), reflection and refraction
+// rays with recursion (Listing 8c, rt/whitted.h). Outside the mask: shadow 1, reflection and
+// refraction 0 (Figure 5's buffers).
+// Inputs: G-buffer sample targets, heuristic_mask. Outputs: shadow, reflection, refraction.
+// Parameters: max_depth, importance_cutoff.
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+// Parameters shared by every pass that traces Whitted rays.
+std::vector<ParamDesc> whittedParams();
+
+class RTSecondaryPass : public Pass {
+ public:
+  std::string type() const override { return "rt_secondary"; }
+  std::string description() const override {
+    return "Ray-traced shadows, reflections, refractions for masked pixels (seed 002 §3.3)";
+  }
+  std::vector<BufferSlot> inputs() const override;
+  std::vector<BufferSlot> outputs() const override {
+    return {{"shadow", 3}, {"reflection", 3}, {"refraction", 3}};
+  }
+  std::vector<ParamDesc> params() const override { return whittedParams(); }
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem

@@ -1,0 +1,46 @@
+// Camera rays for every pixel, traced in 8-wide Embree packets over 4x2 pixel blocks,
+// tile-parallel. Rays start at the near plane (where the rasterizer clips) and cull back faces of
+// single-sided materials (as the rasterizer does), so ray-traced and rasterized visibility agree.
+#pragma once
+#include <atomic>
+
+#include "core/parallel.h"
+#include "rt/ray_tracer.h"
+#include "scene/camera.h"
+
+namespace tandem {
+
+// body(x, y, ray, hit) is called once per pixel from worker threads. Returns the rays traced.
+template <class Body>
+uint64_t tracePrimaryRays(const Camera& cam, const RayTracer& rt, Body&& body) {
+  std::atomic<uint64_t> rays{0};
+  parallelTiles(cam.width, cam.height, [&](int x0, int y0, int x1, int y1) {
+    uint64_t local = 0;
+    for (int by = y0; by < y1; by += 2)
+      for (int bx = x0; bx < x1; bx += 4) {
+        Ray rs[8];
+        int px[8], py[8], n = 0;
+        for (int j = 0; j < 2; ++j)
+          for (int i = 0; i < 4; ++i) {
+            int x = bx + i, y = by + j;
+            if (x >= x1 || y >= y1) continue;
+            cam.generateRay(x + 0.5f, y + 0.5f, rs[n].origin, rs[n].dir);
+            float cosAxis = dot(rs[n].dir, cam.forward);
+            rs[n].tnear = cam.desc.projection == Projection::Perspective
+                              ? cam.desc.nearPlane / std::max(cosAxis, 1e-6f)
+                              : cam.desc.nearPlane;
+            px[n] = x;
+            py[n] = y;
+            ++n;
+          }
+        Hit hits[8];
+        rt.intersect8(rs, n, hits, /*cullBackfaces=*/true);
+        local += uint64_t(n);
+        for (int k = 0; k < n; ++k) body(px[k], py[k], rs[k], hits[k]);
+      }
+    rays += local;
+  });
+  return rays.load();
+}
+
+}  // namespace tandem

@@ -1,0 +1,122 @@
+#include "rt/whitted.h"
+
+#include <cmath>
+#include <limits>
+
+#include "scene/scene.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+Vec3 combineEffects(float om, float orr, Vec3 m, Vec3 r, Vec3 c) {
+  Vec3 cm = m * om + (r * orr + c * (1.0f - orr)) * (1.0f - om);
+  Vec3 cr = r * orr + (m * om + c * (1.0f - om)) * (1.0f - orr);
+  return (cm + cr) * 0.5f;
+}
+
+Vec3 reflectDir(Vec3 d, Vec3 n) {
+  return d - n * (2.0f * dot(d, n));
+}
+
+bool refractDir(Vec3 d, Vec3 n, float eta, Vec3& out) {
+  float cosi = -dot(d, n);
+  float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
+  if (k < 0.0f) return false;
+  out = normalize(d * eta + n * (eta * cosi - std::sqrt(k)));
+  return true;
+}
+
+namespace {
+
+// Offsets a ray origin off the surface towards the side `dir` leaves to, scaled to the position's
+// magnitude so large scenes do not self-intersect.
+Vec3 offsetOrigin(const SurfaceSample& s, Vec3 dir) {
+  float eps = 1e-4f * (1.0f + maxComponent(vmax(s.position, -s.position)));
+  return s.position + s.geoNormal * (dot(dir, s.geoNormal) > 0 ? eps : -eps);
+}
+
+}  // namespace
+
+void Whitted::lightVisibility(const SurfaceSample& s, Vec3* vis) const {
+  for (size_t i = 0; i < scene_.lights.size(); ++i) {
+    vis[i] = Vec3(1.0f);
+    const Light& l = scene_.lights[i];
+    if (!l.castsShadows) continue;
+    LightSample ls = sampleLight(shading_.lights[i], s.position);
+    if (dot(s.normal, ls.wi) <= 0.0f || maxComponent(ls.radiance) <= 0.0f)
+      continue;  // unlit anyway
+    Ray r;
+    r.origin = offsetOrigin(s, ls.wi);
+    r.dir = ls.wi;
+    r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
+                                     : ls.distance * (1.0f - 1e-4f);
+    vis[i] = rt_.transmittance(r);
+  }
+}
+
+Vec3 Whitted::reflectionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const {
+  Vec3 n = dot(s.normal, d) > 0 ? -s.normal : s.normal;
+  Vec3 dir = normalize(reflectDir(d, n));
+  return traceSecondary(offsetOrigin(s, dir), dir, depth, importance);
+}
+
+Vec3 Whitted::refractionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const {
+  // Entering through the front face: environment -> material; leaving: material -> environment.
+  bool entering = dot(s.geoNormal, d) < 0;
+  Vec3 n = dot(s.normal, d) > 0 ? -s.normal : s.normal;
+  float eta = entering ? scene_.environmentIor / s.ior : s.ior / scene_.environmentIor;
+  Vec3 dir;
+  if (!refractDir(d, n, eta, dir)) dir = normalize(reflectDir(d, n));  // total internal reflection
+  return traceSecondary(offsetOrigin(s, dir), dir, depth, importance);
+}
+
+Vec3 Whitted::primaryReflection(const SurfaceSample& s, Vec3 d) const {
+  return s.reflectivity > 0 ? reflectionFrom(s, d, 1, s.reflectivity) : Vec3(0.0f);
+}
+
+Vec3 Whitted::primaryRefraction(const SurfaceSample& s, Vec3 d) const {
+  float transparency = 1.0f - s.opacity;
+  return transparency > 0 ? refractionFrom(s, d, 1, transparency) : Vec3(0.0f);
+}
+
+Vec3 Whitted::traceSecondary(Vec3 origin, Vec3 dir, int depth, float importance) const {
+  Ray r;
+  r.origin = origin;
+  r.dir = dir;
+  Hit h = rt_.intersect(r);
+  if (!h.valid()) return scene_.skyRadiance(dir);  // Listing 8d
+  SurfaceSample s = resolveSurface(*rt_.frame(), h.object, h.prim, origin, dir);
+  const float om = s.reflectivity, orr = 1.0f - s.opacity;
+  // Listing 8c: lighting only where the surface is not purely a mirror or clear glass.
+  Vec3 lighting(0.0f);
+  if (om < 1.0f && orr < 1.0f) lighting = shadeBlinnPhong(s, -dir, shading_);
+  Vec3 refl(0.0f), refr(0.0f);
+  if (depth >= settings_.maxDepth) {
+    // Out of depth: the surface's own lighting stands in for further bounces.
+    lighting = shadeBlinnPhong(s, -dir, shading_);
+    refl = refr = lighting;
+  } else {
+    if (importance * om > settings_.importanceCutoff)
+      refl = reflectionFrom(s, dir, depth + 1, importance * om);
+    if (importance * orr > settings_.importanceCutoff)
+      refr = refractionFrom(s, dir, depth + 1, importance * orr);
+  }
+  return combineEffects(om, orr, refl, refr, lighting);
+}
+
+Vec3 Whitted::shadePrimary(const SurfaceSample& s, Vec3 d) const {
+  // No allocation per pixel for the usual light counts.
+  Vec3 stackVis[32];
+  std::vector<Vec3> heapVis;
+  Vec3* vis = stackVis;
+  if (scene_.lights.size() > 32) {
+    heapVis.resize(scene_.lights.size());
+    vis = heapVis.data();
+  }
+  lightVisibility(s, vis);
+  Vec3 lighting = shadeBlinnPhong(s, -d, shading_, vis);
+  return combineEffects(s.reflectivity, 1.0f - s.opacity, primaryReflection(s, d),
+                        primaryRefraction(s, d), lighting);
+}
+
+}  // namespace tandem

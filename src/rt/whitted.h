@@ -1,0 +1,61 @@
+// Whitted-style secondary effects of seed 002 §3.3 (Listings 8a-8d), shared by the hybrid
+// rt_secondary pass (starting from G-buffer samples) and the rt_whitted pass (starting from camera
+// rays), so the two produce the same image wherever the same objects are ray traced.
+//  - shadow rays to every light, attenuated through transparent occluders (Listing 8b);
+//  - reflection and refraction rays (Snell; total internal reflection falls back to reflection);
+//  - recursion in hit shading with an importance cutoff and a maximum depth (Listing 8c);
+//  - misses return the skybox (Listing 8d);
+//  - effects combined by eq. 5-6 (the average of C_M and C_R).
+// Hit shading goes through the one Blinn-Phong function.
+#pragma once
+#include <vector>
+
+#include "rt/ray_tracer.h"
+#include "shading/blinn_phong.h"
+
+namespace tandem {
+
+struct WhittedSettings {
+  int maxDepth = 10;               // [1, 64] recursion depth of secondary rays (paper: 10)
+  float importanceCutoff = 0.01f;  // [0, 1] stop when the ray's weight falls below this
+};
+
+// Eq. 5-6: C_M = OM M + (1 - OM)(OR R + (1 - OR) C), C_R = OR R + (1 - OR)(OM M + (1 - OM) C),
+// result (C_M + C_R) / 2, with OM the reflectivity and OR the transparency (1 - opacity).
+Vec3 combineEffects(float reflectivity, float transparency, Vec3 reflection, Vec3 refraction,
+                    Vec3 lighting);
+
+Vec3 reflectDir(Vec3 d, Vec3 n);
+// Refracts d at a surface with normal n facing against d, eta = n_incident / n_transmitted.
+// Returns false on total internal reflection.
+bool refractDir(Vec3 d, Vec3 n, float eta, Vec3& out);
+
+class Whitted {
+ public:
+  Whitted(const RayTracer& rt, const Scene& scene, const ShadingContext& shading,
+          WhittedSettings settings)
+      : rt_(rt), scene_(scene), shading_(shading), settings_(settings) {}
+
+  // Per-light RGB transmittance from the surface point to each light (1 where a light casts no
+  // shadows or does not face the point). `vis` has one entry per scene light.
+  void lightVisibility(const SurfaceSample& s, Vec3* vis) const;
+  // The reflection and refraction colours seen from a primary surface hit by direction d
+  // (zero where the surface is not reflective / not transparent).
+  Vec3 primaryReflection(const SurfaceSample& s, Vec3 d) const;
+  Vec3 primaryRefraction(const SurfaceSample& s, Vec3 d) const;
+  // A secondary ray (Listing 8c/8d): depth starts at 1 for rays leaving a primary surface.
+  Vec3 traceSecondary(Vec3 origin, Vec3 dir, int depth, float importance) const;
+  // Full ray-traced shading of a primary surface: shadows, reflection, refraction, combined.
+  Vec3 shadePrimary(const SurfaceSample& s, Vec3 d) const;
+
+ private:
+  Vec3 reflectionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const;
+  Vec3 refractionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const;
+
+  const RayTracer& rt_;
+  const Scene& scene_;
+  const ShadingContext& shading_;
+  WhittedSettings settings_;
+};
+
+}  // namespace tandem
