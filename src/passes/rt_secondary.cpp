@@ -49,9 +49,12 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         Vec3 o, d;
         ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
         // Listing 8a: the shadow buffer starts at 1 and loses the light each occluder blocks.
+        // One shading call weighted by (1 - visibility) sums exactly the light that is blocked;
+        // subtracting the light-independent terms leaves only the lights' share.
         whitted.lightVisibility(s, vis.data());
-        Vec3 blocked =
-            shadeBlinnPhong(s, -d, shading) - shadeBlinnPhong(s, -d, shading, vis.data());
+        for (Vec3& v : vis) v = Vec3(1.0f) - v;
+        Vec3 blocked = shadeBlinnPhong(s, -d, shading, vis.data()) -
+                       (s.emission + shading.ambient * s.ambient);
         shadow.setRgb(x, y, Vec3(1.0f) - blocked);
         reflection.setRgb(x, y, whitted.primaryReflection(s, d));
         refraction.setRgb(x, y, whitted.primaryRefraction(s, d));
