@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <tbb/task_arena.h>
+
 #include "shading/surface_resolve.h"
 
 namespace tandem {
@@ -97,7 +99,8 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-RayTracer::RayTracer() {
+RayTracer::RayTracer()
+    : rays_(new RayCounter[64]), rayCounters_(64) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(device_, errorCallback, nullptr);
@@ -144,6 +147,23 @@ bool RayTracer::update(const FrameScene& fs) {
   return true;
 }
 
+void RayTracer::countRays(uint64_t n) const {
+  // Thread slots are unique within an arena; the modulo only matters past 64 threads, where the
+  // atomic keeps sharing correct.
+  int slot = tbb::this_task_arena::current_thread_index();
+  rays_[size_t(slot < 0 ? 0 : slot) % rayCounters_].n.fetch_add(n, std::memory_order_relaxed);
+}
+
+uint64_t RayTracer::raysTraced() const {
+  uint64_t total = 0;
+  for (size_t i = 0; i < rayCounters_; ++i) total += rays_[i].n.load(std::memory_order_relaxed);
+  return total;
+}
+
+void RayTracer::resetRayCount() {
+  for (size_t i = 0; i < rayCounters_; ++i) rays_[i].n.store(0, std::memory_order_relaxed);
+}
+
 namespace {
 void setRay(RTCRay& r, const Ray& in) {
   r.org_x = in.origin.x;
@@ -172,7 +192,7 @@ Hit RayTracer::intersect(const Ray& in, bool cullBackfaces) const {
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &qc.ctx, &rh);
-  rays_.fetch_add(1, std::memory_order_relaxed);
+  countRays(1);
   Hit h;
   if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
     h.object = int(rh.hit.geomID);
@@ -193,7 +213,7 @@ bool RayTracer::occluded(const Ray& in) const {
   RTCRay r;
   setRay(r, in);
   rtcOccluded1(scene_, &qc.ctx, &r);
-  rays_.fetch_add(1, std::memory_order_relaxed);
+  countRays(1);
   return r.tfar < 0;
 }
 
@@ -207,7 +227,7 @@ Vec3 RayTracer::transmittance(const Ray& in) const {
   RTCRay r;
   setRay(r, in);
   rtcOccluded1(scene_, &qc.ctx, &r);
-  rays_.fetch_add(1, std::memory_order_relaxed);
+  countRays(1);
   return r.tfar < 0 ? Vec3(0.0f) : t;
 }
 
@@ -239,7 +259,7 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackf
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
   rtcIntersect8(valid, scene_, &qc.ctx, &rh);
-  rays_.fetch_add(uint64_t(count), std::memory_order_relaxed);
+  countRays(uint64_t(count));
   for (int i = 0; i < count; ++i) {
     Hit h;
     if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
