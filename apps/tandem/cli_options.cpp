@@ -99,6 +99,15 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
       "Add a directional light: dx,dy,dz[,intensity[,r,g,b]] (travel direction, W/m^2)");
   app->add_option("--emissive-lights", o.emissiveLights,
                   "Emissive meshes as punctual lights: auto (when the scene has none), on, off");
+  app->add_option("--set", o.set,
+                  "Set a pass parameter: pass.param=value (e.g. heuristic.budget_ms=40); "
+                  "repeatable");
+}
+
+Pipeline loadPipelineFor(const RenderOptions& o) {
+  Pipeline p = Pipeline::load(o.pipeline);
+  for (const std::string& a : o.set) p.setParam(a, "--set");
+  return p;
 }
 
 void validateRenderOptions(const RenderOptions& o) {

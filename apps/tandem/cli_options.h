@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/pipeline.h"
 #include "scene/scene.h"
 
 namespace tandem {
@@ -23,6 +24,7 @@ struct RenderOptions {
   float vfov = 0;  // 0 = scene's
   std::vector<std::string> pointLights, sunLights;
   std::string emissiveLights = "auto";  // auto | on | off
+  std::vector<std::string> set;         // pass parameters: label.param=value
 };
 
 void addRenderOptions(CLI::App* app, RenderOptions& o);
@@ -30,6 +32,8 @@ void addRenderOptions(CLI::App* app, RenderOptions& o);
 void validateRenderOptions(const RenderOptions& o);
 // Loads the scene, adds command-line lights.
 Scene loadSceneFor(const RenderOptions& o);
+// Loads the pipeline and applies --set parameters.
+Pipeline loadPipelineFor(const RenderOptions& o);
 // The scene camera with command-line overrides applied (a default view when it has none).
 CameraDesc cameraFor(const Scene& s, const RenderOptions& o);
 std::vector<std::string> splitList(const std::string& s);

@@ -44,7 +44,7 @@ struct BenchVerb {
     if (warmup < 0 || warmup > 10000)
       throw InputError("command line", "--warmup", "must be in [0, 10000]");
     auto threads = limitThreads(opts);
-    Pipeline pipeline = Pipeline::load(opts.pipeline);
+    Pipeline pipeline = loadPipelineFor(opts);
     Scene scene = loadSceneFor(opts);
     CameraDesc base = cameraFor(scene, opts);
     RenderSettings settings{.width = opts.width, .height = opts.height, .seed = opts.seed};

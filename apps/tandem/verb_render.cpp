@@ -24,7 +24,7 @@ struct RenderVerb {
   int run() {
     validateRenderOptions(opts);
     auto threads = limitThreads(opts);
-    Pipeline pipeline = Pipeline::load(opts.pipeline);
+    Pipeline pipeline = loadPipelineFor(opts);
     std::vector<std::string> aovs = splitList(opts.aov);
     std::vector<std::string> produced = pipeline.producedBuffers();
     for (const std::string& a : aovs)

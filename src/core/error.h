@@ -11,9 +11,12 @@ namespace tandem {
 class InputError : public std::runtime_error {
  public:
   InputError(const std::string& file, const std::string& field, const std::string& problem)
-      : std::runtime_error(compose(file, field, problem)) {}
+      : std::runtime_error(compose(file, field, problem)), problem_(problem) {}
+  // The problem alone, for rethrowing under a more precise file and field.
+  const std::string& problem() const { return problem_; }
 
  private:
+  std::string problem_;
   static std::string compose(const std::string& file, const std::string& field,
                              const std::string& problem) {
     std::string s = file.empty() ? std::string("input") : file;

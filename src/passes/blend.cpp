@@ -17,13 +17,18 @@ void BlendPass::execute(FrameContext& ctx) {
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
-        if (mask.at(x, y)[0] < 1e-4f) {
+        const float* m = mask.at(x, y);
+        if (m[kShadow] < 0.5f && m[kReflection] < 0.5f && m[kRefraction] < 0.5f) {
           out.setRgb(x, y, L.rgb(x, y));
           continue;
         }
+        // An effect that was not traced for this pixel plays no part (O_M or O_R taken as 0),
+        // as for an unselected object; the shadow buffer is already 1 where it was not traced.
         const float* op = optical.at(x, y);
+        const float om = m[kReflection] > 0.5f ? op[0] : 0.0f;
+        const float orr = m[kRefraction] > 0.5f ? 1.0f - op[2] : 0.0f;
         Vec3 c = L.rgb(x, y) - (Vec3(1.0f) - S.rgb(x, y));  // eq. 4
-        out.setRgb(x, y, combineEffects(op[0], 1.0f - op[2], M.rgb(x, y), R.rgb(x, y), c));
+        out.setRgb(x, y, combineEffects(om, orr, M.rgb(x, y), R.rgb(x, y), c));
       }
   });
 }

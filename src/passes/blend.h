@@ -1,5 +1,6 @@
 // blend: seed 002 §3.4 (Listing 10). Outside the heuristic mask the lighting L is kept; inside,
-// C = L - (1 - S) (eq. 4) and the result is the average of C_M and C_R (eq. 5-6).
+// C = L - (1 - S) (eq. 4) and the result is the average of C_M and C_R (eq. 5-6). With the
+// per-effect mask, an effect not traced for a pixel counts as absent (O_M or O_R = 0).
 // Inputs: hdr (L), shadow, reflection, refraction, optical, heuristic_mask. Output: composite.
 #pragma once
 #include "pipeline/pass.h"
@@ -14,7 +15,7 @@ class BlendPass : public Pass {
   }
   std::vector<BufferSlot> inputs() const override {
     return {{"hdr", 3},        {"shadow", 3},  {"reflection", 3},
-            {"refraction", 3}, {"optical", 3}, {"heuristic_mask", 1}};
+            {"refraction", 3}, {"optical", 3}, {"heuristic_mask", 3}};
   }
   std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
   void execute(FrameContext& ctx) override;

@@ -58,9 +58,10 @@ std::vector<uint32_t> countObjectPixels(const Buffer& objectId, size_t objectCou
   return total;
 }
 
-std::vector<ObjectHeuristic> evaluateObjects(const Scene& scene, const std::vector<Bounds3>& bounds,
-                                             const Camera& cam, const std::vector<uint32_t>& pixels,
-                                             const std::vector<uint8_t>& selectedLast, double I) {
+std::vector<ObjectHeuristic> evaluateObjects(
+    const Scene& scene, const std::vector<Bounds3>& bounds, const Camera& cam,
+    const std::vector<uint32_t>& pixels, const std::vector<uint8_t>& selectedLast, double I,
+    const std::vector<std::array<double, kEffectCount>>* raysPerPixel) {
   std::vector<ObjectHeuristic> out;
   const double lights = double(scene.lights.size());
   for (size_t o = 0; o < scene.objects.size(); ++o) {
@@ -75,15 +76,47 @@ std::vector<ObjectHeuristic> evaluateObjects(const Scene& scene, const std::vect
     h.P = clip.w > 1e-8f ? centreWeight(clip.x / clip.w, clip.y / clip.w) : 0.01;
     h.D = std::max(double(length(centre - cam.desc.position)), 1e-6);
     h.V = h.A * h.P / h.D;  // eq. 1
-    h.Q = lights;
-    if (m.reflectivity > 0) h.Q += lights + 1;
-    if (m.opacity < 1) h.Q += lights + 4;
-    h.S = o < selectedLast.size() && selectedLast[o];
+    h.q[kShadow] = lights;
+    h.q[kReflection] = m.reflectivity > 0 ? lights + 1 : 0;
+    h.q[kRefraction] = m.opacity < 1 ? lights + 4 : 0;
+    const uint8_t last = o < selectedLast.size() ? selectedLast[o] : 0;
+    h.Q = 0;
+    for (int e = 0; e < kEffectCount; ++e) {
+      // Measured rays replace the prior only where the effect applies at all.
+      if (raysPerPixel && h.q[e] > 0 && (*raysPerPixel)[o][e] > 0) h.q[e] = (*raysPerPixel)[o][e];
+      h.Q += h.q[e];
+      h.Se[e] = (last >> e) & 1;
+    }
+    h.S = last != 0;
     h.C = h.A * h.Q * hp.E;                // eq. 2
     h.R = ((h.S ? I : 0.0) + h.V) * hp.K;  // eq. 3
     out.push_back(h);
   }
   return out;
+}
+
+std::vector<HeuristicNode> heuristicNodes(const Scene& scene,
+                                          const std::vector<ObjectHeuristic>& objects,
+                                          bool perEffect, double I) {
+  std::vector<HeuristicNode> nodes;
+  for (const ObjectHeuristic& h : objects) {
+    if (!perEffect) {
+      nodes.push_back({h.object, h.C, h.R});
+      continue;
+    }
+    const HeuristicParams& hp = scene.objects[size_t(h.object)].heuristic;
+    for (int e = 0; e < kEffectCount; ++e)
+      if (h.q[e] > 0)
+        nodes.push_back({h.object * kEffectCount + e, h.A * h.q[e] * hp.E,
+                         ((h.Se[e] ? I : 0.0) + h.V) * hp.K});
+  }
+  return nodes;
+}
+
+void BudgetCalibration::observe(double selectedCost, double ms) {
+  if (!(selectedCost > 0) || !(ms > 0)) return;  // nothing traced: nothing learned
+  double sample = selectedCost / ms;
+  rate_ = rate_ > 0 ? 0.5 * rate_ + 0.5 * sample : sample;
 }
 
 std::vector<ParamDesc> HeuristicPass::params() const {
@@ -102,7 +135,42 @@ std::vector<ParamDesc> HeuristicPass::params() const {
        1e12,
        "I: relevancy bonus for objects selected last frame (stability)",
        {}},
-      {"select_all", ParamType::Bool, 0, 0, 1, "select every visible object (no heuristic)", {}}};
+      {"select_all", ParamType::Bool, 0, 0, 1, "select every visible object (no heuristic)", {}},
+      {"budget_ms",
+       ParamType::Float,
+       0,
+       0,
+       1e6,
+       "RT budget in ms; T is calibrated from measured RT time (0 = use budget)",
+       {}},
+      {"per_effect",
+       ParamType::Bool,
+       0,
+       0,
+       1,
+       "select shadows, reflections, refractions separately per object",
+       {}},
+      {"count_recursion",
+       ParamType::Bool,
+       0,
+       0,
+       1,
+       "cost from the rays actually traced per pixel, recursion included",
+       {}}};
+}
+
+void HeuristicPass::updateMeasuredRays(const RtStats& stats) {
+  // Each frame's RT figures are folded in once, smoothed like the time calibration.
+  if (stats.serial < 0 || stats.serial == measuredFrame_) return;
+  measuredFrame_ = stats.serial;
+  measuredRays_.resize(stats.pixels.size());
+  for (size_t o = 0; o < stats.pixels.size(); ++o)
+    for (int e = 0; e < kEffectCount; ++e) {
+      if (stats.pixels[o][e] == 0) continue;
+      double q = double(stats.rays[o][e]) / double(stats.pixels[o][e]);
+      double& m = measuredRays_[o][e];
+      m = m > 0 ? 0.5 * m + 0.5 * q : q;
+    }
 }
 
 void HeuristicPass::execute(FrameContext& ctx) {
@@ -114,29 +182,50 @@ void HeuristicPass::execute(FrameContext& ctx) {
       for (const Vec3& p : ctx.frame.objects[o].positions) bounds_[o].extend(p);
     boundsVersion_ = ctx.frame.geometryVersion;
   }
+  // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
+  if (ctx.rtStats.serial >= 0 && ctx.rtStats.serial == selectedFrame_)
+    calibration_.observe(selectedCost_, ctx.rtStats.ms);
+  updateMeasuredRays(ctx.rtStats);
+  measuredRays_.resize(n);
+
   const Buffer& ids = ctx.input(bufferName("object_id"));
   std::vector<uint32_t> pixels = countObjectPixels(ids, n);
   selectedLast_.resize(n, 0);
-  evaluated_ =
-      evaluateObjects(scene, bounds_, ctx.camera, pixels, selectedLast_, param("importance"));
-  std::vector<uint8_t> selected(n, 0);
+  const bool perEffect = param("per_effect") != 0;
+  evaluated_ = evaluateObjects(scene, bounds_, ctx.camera, pixels, selectedLast_,
+                               param("importance"),
+                               param("count_recursion") != 0 ? &measuredRays_ : nullptr);
+  std::vector<HeuristicNode> nodes =
+      heuristicNodes(scene, evaluated_, perEffect, param("importance"));
+  budget_ = param("budget_ms") > 0 ? calibration_.unitsFor(param("budget_ms")) : param("budget");
   if (param("select_all") != 0) {
     selected_.clear();
-    for (const ObjectHeuristic& h : evaluated_) selected_.push_back(h.object);
+    for (const HeuristicNode& node : nodes) selected_.push_back(node.id);
   } else {
-    std::vector<HeuristicNode> nodes;
-    for (const ObjectHeuristic& h : evaluated_) nodes.push_back({h.object, h.C, h.R});
-    selected_ = selectWithinBudget(std::move(nodes), param("budget"));
+    selected_ = selectWithinBudget(nodes, budget_);
   }
-  for (int o : selected_) selected[size_t(o)] = 1;
+  std::vector<double> costOf(perEffect ? n * kEffectCount : n, 0.0);
+  for (const HeuristicNode& node : nodes) costOf[size_t(node.id)] = node.cost;
+  std::vector<uint8_t> selected(n, 0);  // effect bits per object
+  selectedCost_ = 0;
+  for (int id : selected_) {
+    selectedCost_ += costOf[size_t(id)];
+    if (perEffect)
+      selected[size_t(id / kEffectCount)] |= uint8_t(1u << (id % kEffectCount));
+    else
+      selected[size_t(id)] = (1u << kEffectCount) - 1;
+  }
+  selectedFrame_ = ctx.serial;
   selectedLast_ = selected;
-  Buffer& mask = ctx.output(bufferName("heuristic_mask"), 1);
+  Buffer& mask = ctx.output(bufferName("heuristic_mask"), kEffectCount);
   parallelRange(
       mask.pixelCount(),
       [&](size_t b, size_t e) {
         for (size_t i = b; i < e; ++i) {
           float id = ids.data[i];
-          mask.data[i] = id >= 0 && selected[size_t(id)] ? 1.0f : 0.0f;
+          uint8_t bits = id >= 0 ? selected[size_t(id)] : 0;
+          for (int k = 0; k < kEffectCount; ++k)
+            mask.data[i * kEffectCount + size_t(k)] = float((bits >> k) & 1);
         }
       },
       1 << 14);

@@ -3,13 +3,23 @@
 // D (distance to the camera), V = A P / D (eq. 1), Q (lights; + lights + 1 if reflective;
 // + lights + 4 if refractive), S (selected last frame), C = A Q E (eq. 2), R = (S I + V) K (eq. 3).
 // Then phase 3: nodes sorted by cost, each pointing to cheaper-or-equal, more relevant nodes,
-// walked while budget T remains. Output: the per-pixel heuristic mask (Figure 2h).
-// Input: object_id. Output: heuristic_mask. Parameters: budget (T), importance (I), select_all.
+// walked while budget T remains. Output: the per-pixel heuristic mask (Figure 2h), one channel
+// per effect (shadow, reflection, refraction; the paper's mode sets all three together).
+// Beyond the paper, each switchable (defaults keep the paper's behaviour):
+//  - budget_ms: T derived every frame from a budget in milliseconds, calibrated against what the
+//    RT pass took in recent frames (cost units per ms, smoothed);
+//  - per_effect: nodes are (object, effect) pairs, so an object may get shadows but not its
+//    reflection (the paper's future work);
+//  - count_recursion: Q is the rays per pixel the RT pass actually traced for the object and
+//    effect (recursion included), the paper's Q being the prior until it has been traced.
+// Input: object_id. Output: heuristic_mask (3 channels).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "core/buffer.h"
+#include "pipeline/frame_context.h"
 #include "pipeline/pass.h"
 #include "scene/camera.h"
 #include "scene/frame_scene.h"
@@ -20,6 +30,10 @@ struct ObjectHeuristic {
   int object = -1;
   double A = 0, P = 0, D = 0, V = 0, Q = 0, C = 0, R = 0;
   bool S = false;
+  // Q split by effect: shadow = lights, reflection = lights + 1, refraction = lights + 4 (0 where
+  // the material lacks the effect), or measured rays per pixel when supplied. Q = their sum.
+  std::array<double, kEffectCount> q{};
+  std::array<bool, kEffectCount> Se{};  // effect selected last frame
 };
 
 struct HeuristicNode {
@@ -34,16 +48,37 @@ std::vector<int> selectWithinBudget(std::vector<HeuristicNode> nodes, double bud
 // P of §3.2: 1 at the view centre falling to 0.01 at (and beyond) the edge, from NDC x, y.
 double centreWeight(double ndcX, double ndcY);
 
-// Phase 2 of §3.2 for every visible object (A > 0). `pixelCounts[o]` is object o's visible area.
-std::vector<ObjectHeuristic> evaluateObjects(const Scene& scene,
-                                             const std::vector<Bounds3>& worldBounds,
-                                             const Camera& cam,
-                                             const std::vector<uint32_t>& pixelCounts,
-                                             const std::vector<uint8_t>& selectedLastFrame,
-                                             double importanceI);
+// Phase 2 of §3.2 for every visible object (A > 0). `pixelCounts[o]` is object o's visible area;
+// `selectedLast[o]` has bit e set when effect e of object o was selected last frame (S is any
+// bit). `raysPerPixel`, when given, replaces the paper's q_e wherever it is positive.
+std::vector<ObjectHeuristic> evaluateObjects(
+    const Scene& scene, const std::vector<Bounds3>& worldBounds, const Camera& cam,
+    const std::vector<uint32_t>& pixelCounts, const std::vector<uint8_t>& selectedLast,
+    double importanceI,
+    const std::vector<std::array<double, kEffectCount>>* raysPerPixel = nullptr);
+
+// The graph's nodes: one per object (cost C, relevancy R; id = object) or, per effect, one per
+// (object, effect) with cost A q_e E and relevancy (S_e I + V) K (id = object * 3 + effect).
+std::vector<HeuristicNode> heuristicNodes(const Scene& scene,
+                                          const std::vector<ObjectHeuristic>& objects,
+                                          bool perEffect, double importanceI);
 
 // Visible pixels per object in an object-id buffer (one parallel pass).
 std::vector<uint32_t> countObjectPixels(const Buffer& objectId, size_t objectCount);
+
+// Turns a budget in ms into cost units from the RT pass's measured time for the cost it was
+// given: units per ms, exponentially smoothed so one noisy frame does not swing the selection.
+class BudgetCalibration {
+ public:
+  // Cost units per ms assumed before any measurement (about this machine's two cores).
+  static constexpr double kPriorUnitsPerMs = 20000;
+  void observe(double selectedCost, double ms);
+  double unitsFor(double budgetMs) const { return budgetMs * unitsPerMs(); }
+  double unitsPerMs() const { return rate_ > 0 ? rate_ : kPriorUnitsPerMs; }
+
+ private:
+  double rate_ = 0;
+};
 
 class HeuristicPass : public Pass {
  public:
@@ -52,19 +87,29 @@ class HeuristicPass : public Pass {
     return "Per-object relevancy/cost selection under budget T (seed 002 §3.2)";
   }
   std::vector<BufferSlot> inputs() const override { return {{"object_id", 1}}; }
-  std::vector<BufferSlot> outputs() const override { return {{"heuristic_mask", 1}}; }
+  std::vector<BufferSlot> outputs() const override { return {{"heuristic_mask", 3}}; }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
 
   const std::vector<ObjectHeuristic>& lastEvaluation() const { return evaluated_; }
+  // Selected node ids (objects, or object * 3 + effect with per_effect).
   const std::vector<int>& lastSelection() const { return selected_; }
+  double lastBudget() const { return budget_; }            // T used this frame (cost units)
+  double lastSelectedCost() const { return selectedCost_; }  // sum of the selected costs
 
  private:
-  std::vector<uint8_t> selectedLast_;
+  void updateMeasuredRays(const RtStats& stats);
+
+  std::vector<uint8_t> selectedLast_;  // effect bits per object
   std::vector<ObjectHeuristic> evaluated_;
   std::vector<int> selected_;
   std::vector<Bounds3> bounds_;
   uint64_t boundsVersion_ = ~0ull;
+  std::vector<std::array<double, kEffectCount>> measuredRays_;
+  int64_t measuredFrame_ = -1;
+  BudgetCalibration calibration_;
+  double budget_ = 0, selectedCost_ = 0;
+  int64_t selectedFrame_ = -1;
 };
 
 }  // namespace tandem

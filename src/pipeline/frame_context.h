@@ -1,6 +1,7 @@
 // Everything one frame's passes share: the evaluated scene, camera (and last frame's), the ray
 // tracer, named buffers, and per-pass timings/counters.
 #pragma once
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,6 +16,18 @@
 
 namespace tandem {
 
+// Secondary effects the hybrid pipeline can ray trace per object (the heuristic mask's channels).
+enum Effect : int { kShadow = 0, kReflection = 1, kRefraction = 2 };
+constexpr int kEffectCount = 3;
+
+// What the last rt_secondary pass measured, fed back to the next frame's heuristic (the ms budget
+// calibrates against `ms`; recursion-aware costs use rays per pixel).
+struct RtStats {
+  int64_t serial = -1;  // FrameContext::serial of the frame measured; -1 before any RT pass ran
+  double ms = 0;        // wall time of the pass
+  std::vector<std::array<uint64_t, kEffectCount>> pixels, rays;  // per object, per effect
+};
+
 struct FrameContext {
   const Scene* scene = nullptr;
   FrameScene frame;
@@ -22,6 +35,7 @@ struct FrameContext {
   bool cameraMoved = false;  // this frame's unjittered view-projection differs from last frame's
   int width = 0, height = 0;
   int frameIndex = 0;
+  int64_t serial = -1;  // counts executed frames (frameIndex may repeat, e.g. a static shot)
   uint64_t seed = 0;
   std::map<std::string, Buffer> buffers;
   Rasterizer rasterizer;        // owns binning scratch reused across frames
@@ -29,6 +43,7 @@ struct FrameContext {
   RasterStats rasterStats;      // triangles in / culled / clipped / binned by the last raster pass
   double passRays = 0;          // a pass adds the rays it traced; the pipeline records it
   std::vector<PassTiming> passParts;  // optional sub-timings a pass reports ("pass/part")
+  RtStats rtStats;                    // the latest rt_secondary measurements
 
   // The ray tracer, (re)built for the current frame's geometry on first use in a frame.
   RayTracer& rayTracer();

@@ -93,6 +93,54 @@ Pipeline Pipeline::load(const std::string& nameOrFile) {
   return fromJson(readJsonFile(nameOrFile), nameOrFile);
 }
 
+void setPassParam(Pass& pass, const std::string& name, const Json& value) {
+  const std::vector<ParamDesc> all = pass.params();
+  auto d = std::find_if(all.begin(), all.end(), [&](const ParamDesc& x) { return x.name == name; });
+  auto fail = [&](const std::string& problem) { throw InputError("", name, problem); };
+  if (d == all.end()) fail("unknown parameter of pass '" + pass.type() + "'");
+  double v = 0;
+  if (d->type == ParamType::Enum && value.is_string()) {
+    auto c = std::find(d->choices.begin(), d->choices.end(), value.get<std::string>());
+    if (c == d->choices.end()) fail("unknown choice '" + value.get<std::string>() + "'");
+    v = double(c - d->choices.begin());
+  } else if (d->type == ParamType::Bool && value.is_boolean()) {
+    v = value.get<bool>() ? 1 : 0;
+  } else if (value.is_number()) {
+    v = value.get<double>();
+  } else {
+    fail("wrong type");
+  }
+  try {
+    pass.setParam(name, v);
+  } catch (const InputError& e) {
+    fail(e.problem());
+  }
+}
+
+void Pipeline::setParam(const std::string& assignment, const std::string& source) {
+  // label.param=value
+  size_t eq = assignment.find('='), dot = assignment.find('.');
+  if (eq == std::string::npos || dot == std::string::npos || dot > eq)
+    throw InputError(source, assignment, "expected pass.param=value");
+  std::string label = assignment.substr(0, dot), name = assignment.substr(dot + 1, eq - dot - 1);
+  std::string text = assignment.substr(eq + 1);
+  Json value = Json::parse(text, nullptr, false);
+  if (value.is_discarded()) value = text;  // an enum choice given bare
+  bool found = false;
+  for (auto& p : passes) {
+    if ((p->label.empty() ? p->type() : p->label) != label) continue;
+    found = true;
+    try {
+      setPassParam(*p, name, value);
+    } catch (const InputError& e) {
+      throw InputError(source, label + "." + name, e.problem());
+    }
+  }
+  if (!found)
+    throw InputError(source, assignment,
+                     "pipeline '" + this->name + "' has no pass labelled '" + label + "'");
+}
+
 Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
   JsonFields f(j, source, "");
   Pipeline p;
@@ -116,28 +164,10 @@ Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
       const Json& params = pf.raw("params");
       if (!params.is_object()) pf.fail("params", "expected an object");
       for (auto it = params.begin(); it != params.end(); ++it) {
-        const std::vector<ParamDesc> all = pass->params();
-        auto d = std::find_if(all.begin(), all.end(),
-                              [&](const ParamDesc& x) { return x.name == it.key(); });
-        if (d == all.end())
-          pf.fail("params." + it.key(), "unknown parameter of pass '" + type + "'");
-        double v;
-        if (d->type == ParamType::Enum && it.value().is_string()) {
-          auto c = std::find(d->choices.begin(), d->choices.end(), it.value().get<std::string>());
-          if (c == d->choices.end())
-            pf.fail("params." + it.key(), "unknown choice '" + it.value().get<std::string>() + "'");
-          v = double(c - d->choices.begin());
-        } else if (d->type == ParamType::Bool && it.value().is_boolean()) {
-          v = it.value().get<bool>() ? 1 : 0;
-        } else if (it.value().is_number()) {
-          v = it.value().get<double>();
-        } else {
-          pf.fail("params." + it.key(), "wrong type");
-        }
         try {
-          pass->setParam(it.key(), v);
+          setPassParam(*pass, it.key(), it.value());
         } catch (const InputError& e) {
-          pf.fail("params." + it.key(), e.what());
+          pf.fail("params." + it.key(), e.problem());
         }
       }
     }
@@ -198,6 +228,7 @@ std::vector<std::string> Pipeline::producedBuffers() const {
 FrameTimings Pipeline::execute(FrameContext& ctx) {
   FrameTimings ft;
   auto frameStart = Clock::now();
+  ++ctx.serial;
   for (auto& p : passes) {
     ctx.passRays = 0;
     ctx.passParts.clear();

@@ -18,6 +18,10 @@ struct FrameContext;
 std::unique_ptr<Pass> createPass(const std::string& type);
 const std::vector<std::string>& passTypes();
 
+// Sets one parameter from a JSON value, checked against the pass's ParamDesc; throws InputError
+// (field = parameter name) on an unknown name, wrong type or out-of-range value.
+void setPassParam(Pass& pass, const std::string& name, const Json& value);
+
 class Pipeline {
  public:
   std::string name;
@@ -35,6 +39,10 @@ class Pipeline {
   void validate(const std::string& source) const;
   // Buffer names produced by the passes, in order (for --aov listings and the viewer).
   std::vector<std::string> producedBuffers() const;
+
+  // Sets a parameter from "label.param=value" (value as JSON, or a bare enum choice) on every
+  // pass with that label; throws InputError naming `source` and the assignment.
+  void setParam(const std::string& assignment, const std::string& source);
 
   FrameTimings execute(FrameContext& ctx);
   Json toJson() const;  // with current parameter values

@@ -147,11 +147,21 @@ bool RayTracer::update(const FrameScene& fs) {
   return true;
 }
 
-void RayTracer::countRays(uint64_t n) const {
-  // Thread slots are unique within an arena; the modulo only matters past 64 threads, where the
-  // atomic keeps sharing correct.
+namespace {
+// Thread slots are unique within an arena; the modulo only matters past 64 threads, where the
+// atomics keep sharing correct (and per-thread differences approximate).
+size_t threadSlot(size_t slots) {
   int slot = tbb::this_task_arena::current_thread_index();
-  rays_[size_t(slot < 0 ? 0 : slot) % rayCounters_].n.fetch_add(n, std::memory_order_relaxed);
+  return size_t(slot < 0 ? 0 : slot) % slots;
+}
+}  // namespace
+
+void RayTracer::countRays(uint64_t n) const {
+  rays_[threadSlot(rayCounters_)].n.fetch_add(n, std::memory_order_relaxed);
+}
+
+uint64_t RayTracer::raysOnThisThread() const {
+  return rays_[threadSlot(rayCounters_)].n.load(std::memory_order_relaxed);
 }
 
 uint64_t RayTracer::raysTraced() const {

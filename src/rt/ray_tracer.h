@@ -48,6 +48,8 @@ class RayTracer {
 
   const FrameScene* frame() const { return frame_; }
   uint64_t raysTraced() const;
+  // Rays traced so far by the calling worker thread (differences give one pixel's rays).
+  uint64_t raysOnThisThread() const;
   void resetRayCount();
 
  private:

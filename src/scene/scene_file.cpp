@@ -97,6 +97,16 @@ int materialRef(FileCtx& c, JsonFields& f, const std::string& key) {
   return c.scene.addMaterial(readMaterial(c, v, "inline", f.field(key)));
 }
 
+// Seed 002 Table 3's per-object K (relevancy weight) and E (cost weight).
+HeuristicParams readHeuristic(const FileCtx& c, const Json& j, const std::string& where) {
+  JsonFields hf(j, c.path, where);
+  HeuristicParams h;
+  h.K = hf.number("K", 1.0f, 0.0f, 1e6f);
+  h.E = hf.number("E", 1.0f, 0.0f, 1e6f);
+  hf.finish();
+  return h;
+}
+
 void readObject(FileCtx& c, const Json& j, size_t index) {
   std::string where = "objects[" + std::to_string(index) + "]";
   JsonFields f(j, c.path, where);
@@ -120,12 +130,7 @@ void readObject(FileCtx& c, const Json& j, size_t index) {
     }
   }
   HeuristicParams h;
-  if (f.has("heuristic")) {
-    JsonFields hf(f.raw("heuristic"), c.path, f.field("heuristic"));
-    h.K = hf.number("K", 1.0f, 0.0f, 1e6f);
-    h.E = hf.number("E", 1.0f, 0.0f, 1e6f);
-    hf.finish();
-  }
+  if (f.has("heuristic")) h = readHeuristic(c, f.raw("heuristic"), f.field("heuristic"));
   auto place = [&](size_t firstObject) {
     for (size_t o = firstObject; o < c.scene.objects.size(); ++o) {
       c.scene.objects[o].heuristic = h;
@@ -276,6 +281,22 @@ Scene loadSceneFile(const std::string& path) {
     const Json& lights = f.raw("lights");
     if (!lights.is_array()) f.fail("lights", "expected an array");
     for (size_t i = 0; i < lights.size(); ++i) s.lights.push_back(readLight(c, lights[i], i));
+  }
+  if (f.has("objectHeuristics")) {
+    // K and E for objects that came from `base` or a model file, by object name.
+    const Json& oh = f.raw("objectHeuristics");
+    if (!oh.is_object()) f.fail("objectHeuristics", "expected an object of object name -> {K, E}");
+    for (auto it = oh.begin(); it != oh.end(); ++it) {
+      std::string where = "objectHeuristics." + it.key();
+      HeuristicParams h = readHeuristic(c, it.value(), where);
+      bool found = false;
+      for (Object& o : s.objects)
+        if (o.name == it.key()) {
+          o.heuristic = h;
+          found = true;
+        }
+      if (!found) throw InputError(path, where, "no object of that name in the scene");
+    }
   }
   s.ambient = f.vec3("ambient", s.ambient);
   s.environmentIor = f.number("environmentIor", s.environmentIor, 0.1f, 10.0f);
