@@ -79,7 +79,7 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
                   "Scene: .gltf/.glb/.obj/.json file or built-in (cornell, spheres, atrium)");
   app->add_option("--pipeline", o.pipeline,
                   "Pipeline: built-in name (deferred, deferred-rt-gbuffer, hybrid-heuristic, "
-                  "hybrid-all, rt-only) or JSON file");
+                  "hybrid-all, hybrid-budget, rt-only) or JSON file");
   app->add_option("--width", o.width, "Image width in pixels");
   app->add_option("--height", o.height, "Image height in pixels");
   app->add_option("--out", o.out, "Output image (.png/.exr) or folder");
@@ -165,6 +165,20 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
   // Keep the near plane sensible for tiny models seen from close up.
   float dist = length(c.lookAt - c.position);
   c.nearPlane = std::min(c.nearPlane, dist * 0.05f);
+  return c;
+}
+
+CameraDesc pathCamera(const Scene& s, const CameraDesc& base, int i, int n) {
+  float u = n > 1 ? float(i) / float(n - 1) : 0.0f;
+  if (!s.cameraPath.empty()) {
+    float t0 = s.cameraPath.front().time, t1 = s.cameraPath.back().time;
+    return sampleCameraPath(s.cameraPath, base, t0 + (t1 - t0) * u);
+  }
+  CameraDesc c = base;
+  Vec3 off = base.position - base.lookAt;
+  float a = radians(-20.0f + 40.0f * u);
+  c.position = base.lookAt + Vec3(off.x * std::cos(a) + off.z * std::sin(a), off.y,
+                                  -off.x * std::sin(a) + off.z * std::cos(a));
   return c;
 }
 

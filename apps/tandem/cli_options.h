@@ -36,6 +36,9 @@ Scene loadSceneFor(const RenderOptions& o);
 Pipeline loadPipelineFor(const RenderOptions& o);
 // The scene camera with command-line overrides applied (a default view when it has none).
 CameraDesc cameraFor(const Scene& s, const RenderOptions& o);
+// Camera for frame i of n along the scene's path (the path bench flies), or a gentle orbit of
+// `base` when the scene has none.
+CameraDesc pathCamera(const Scene& s, const CameraDesc& base, int i, int n);
 std::vector<std::string> splitList(const std::string& s);
 // Caps oneTBB's worker count for the lifetime of the returned object (null: all cores).
 std::unique_ptr<tbb::global_control> limitThreads(const RenderOptions& o);

@@ -1,4 +1,4 @@
-// tandem: the hybrid renderer's command line. Verbs: render, info, compare, bench.
+// tandem: the hybrid renderer's command line. Verbs: render, info, compare, bench, experiment.
 #include <cstdio>
 #include <map>
 
@@ -8,10 +8,12 @@
 int main(int argc, char** argv) {
   CLI::App app{"Tandem: a hybrid rasterization + ray tracing renderer"};
   app.require_subcommand(1);
-  std::map<std::string, tandem::VerbRunner> verbs = {{"render", tandem::addRenderVerb(app)},
-                                                     {"info", tandem::addInfoVerb(app)},
-                                                     {"compare", tandem::addCompareVerb(app)},
-                                                     {"bench", tandem::addBenchVerb(app)}};
+  std::map<std::string, tandem::VerbRunner> verbs = {
+      {"render", tandem::addRenderVerb(app)},
+      {"info", tandem::addInfoVerb(app)},
+      {"compare", tandem::addCompareVerb(app)},
+      {"bench", tandem::addBenchVerb(app)},
+      {"experiment", tandem::addExperimentVerb(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,13 +3,13 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <thread>
 
 #include "cli_options.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/json_fields.h"
 #include "pipeline/renderer.h"
 #include "verbs.h"
@@ -17,21 +17,6 @@
 namespace tandem {
 
 namespace {
-
-// Camera for benchmark frame i of n: along the scene's path, or a gentle orbit when it has none.
-CameraDesc benchCamera(const Scene& s, const CameraDesc& base, int i, int n) {
-  float u = n > 1 ? float(i) / float(n - 1) : 0.0f;
-  if (!s.cameraPath.empty()) {
-    float t0 = s.cameraPath.front().time, t1 = s.cameraPath.back().time;
-    return sampleCameraPath(s.cameraPath, base, t0 + (t1 - t0) * u);
-  }
-  CameraDesc c = base;
-  Vec3 off = base.position - base.lookAt;
-  float a = radians(-20.0f + 40.0f * u);
-  c.position = base.lookAt + Vec3(off.x * std::cos(a) + off.z * std::sin(a), off.y,
-                                  -off.x * std::sin(a) + off.z * std::cos(a));
-  return c;
-}
 
 struct BenchVerb {
   RenderOptions opts;
@@ -50,13 +35,13 @@ struct BenchVerb {
     RenderSettings settings{.width = opts.width, .height = opts.height, .seed = opts.seed};
     Renderer renderer(scene, std::move(pipeline), settings);
     for (int f = 0; f < warmup; ++f)
-      renderer.renderFrame(f, benchCamera(scene, base, 0, opts.frames));
+      renderer.renderFrame(f, pathCamera(scene, base, 0, opts.frames));
     std::vector<std::string> order;
     std::map<std::string, std::vector<double>> ms;
     std::map<std::string, double> rays, rayMs;
     std::vector<double> total;
     for (int f = 0; f < opts.frames; ++f) {
-      FrameTimings ft = renderer.renderFrame(warmup + f, benchCamera(scene, base, f, opts.frames));
+      FrameTimings ft = renderer.renderFrame(warmup + f, pathCamera(scene, base, f, opts.frames));
       for (const PassTiming& p : ft.passes) {
         if (!ms.count(p.name)) order.push_back(p.name);
         ms[p.name].push_back(p.ms);
@@ -102,13 +87,7 @@ struct BenchVerb {
                        {"max_ms", t.max},
                        {"fps", t.median > 0 ? 1000.0 / t.median : 0.0}};
     if (!json.empty()) {
-      std::string tmp = json + ".tmp";
-      {
-        std::ofstream f(tmp);
-        if (!f) throw InputError(json, "", "cannot write");
-        f << report.dump(2) << "\n";
-      }
-      std::filesystem::rename(tmp, json);
+      writeTextFile(json, report.dump(2) + "\n");
       std::printf("wrote %s\n", json.c_str());
     }
     return 0;

@@ -10,5 +10,6 @@ VerbRunner addRenderVerb(CLI::App& app);
 VerbRunner addInfoVerb(CLI::App& app);
 VerbRunner addCompareVerb(CLI::App& app);
 VerbRunner addBenchVerb(CLI::App& app);
+VerbRunner addExperimentVerb(CLI::App& app);
 
 }  // namespace tandem

@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "core/error.h"
 
@@ -56,6 +57,22 @@ void checkWritable(const std::string& path, const Buffer& img) {
 }
 
 }  // namespace
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw InputError(path, "", "output folder does not exist");
+  std::string tmp = tempName(path);
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f || !(f << text) || !f.flush()) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(path, "", "cannot write");
+    }
+  }
+  commit(tmp, path);
+}
 
 void writePng(const std::string& path, const Buffer& img) {
   checkWritable(path, img);

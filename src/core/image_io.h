@@ -17,6 +17,9 @@ Buffer loadImage(const std::string& path);
 // Loads an 8-bit image file for texturing: RGBA in [0,1], not yet linearised.
 Buffer loadTextureFile(const std::string& path);
 
+// Writes a text file (reports, CSV, JSON) through the same temporary-and-rename path.
+void writeTextFile(const std::string& path, const std::string& text);
+
 bool hasExtension(const std::string& path, const std::string& ext);  // case-insensitive
 
 }  // namespace tandem

@@ -22,12 +22,13 @@ void BlendPass::execute(FrameContext& ctx) {
           out.setRgb(x, y, L.rgb(x, y));
           continue;
         }
-        // An effect that was not traced for this pixel plays no part (O_M or O_R taken as 0),
-        // as for an unselected object; the shadow buffer is already 1 where it was not traced.
+        // An effect that was not traced for this pixel plays no part (no shadowing, O_M or O_R
+        // taken as 0), as for an unselected object.
         const float* op = optical.at(x, y);
         const float om = m[kReflection] > 0.5f ? op[0] : 0.0f;
         const float orr = m[kRefraction] > 0.5f ? 1.0f - op[2] : 0.0f;
-        Vec3 c = L.rgb(x, y) - (Vec3(1.0f) - S.rgb(x, y));  // eq. 4
+        Vec3 c = L.rgb(x, y);
+        if (m[kShadow] > 0.5f) c = c - (Vec3(1.0f) - S.rgb(x, y));  // eq. 4
         out.setRgb(x, y, combineEffects(om, orr, M.rgb(x, y), R.rgb(x, y), c));
       }
   });

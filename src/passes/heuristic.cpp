@@ -107,8 +107,8 @@ std::vector<HeuristicNode> heuristicNodes(const Scene& scene,
     const HeuristicParams& hp = scene.objects[size_t(h.object)].heuristic;
     for (int e = 0; e < kEffectCount; ++e)
       if (h.q[e] > 0)
-        nodes.push_back({h.object * kEffectCount + e, h.A * h.q[e] * hp.E,
-                         ((h.Se[e] ? I : 0.0) + h.V) * hp.K});
+        nodes.push_back(
+            {h.object * kEffectCount + e, h.A * h.q[e] * hp.E, ((h.Se[e] ? I : 0.0) + h.V) * hp.K});
   }
   return nodes;
 }
@@ -192,9 +192,9 @@ void HeuristicPass::execute(FrameContext& ctx) {
   std::vector<uint32_t> pixels = countObjectPixels(ids, n);
   selectedLast_.resize(n, 0);
   const bool perEffect = param("per_effect") != 0;
-  evaluated_ = evaluateObjects(scene, bounds_, ctx.camera, pixels, selectedLast_,
-                               param("importance"),
-                               param("count_recursion") != 0 ? &measuredRays_ : nullptr);
+  evaluated_ =
+      evaluateObjects(scene, bounds_, ctx.camera, pixels, selectedLast_, param("importance"),
+                      param("count_recursion") != 0 ? &measuredRays_ : nullptr);
   std::vector<HeuristicNode> nodes =
       heuristicNodes(scene, evaluated_, perEffect, param("importance"));
   budget_ = param("budget_ms") > 0 ? calibration_.unitsFor(param("budget_ms")) : param("budget");

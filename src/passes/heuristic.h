@@ -94,7 +94,7 @@ class HeuristicPass : public Pass {
   const std::vector<ObjectHeuristic>& lastEvaluation() const { return evaluated_; }
   // Selected node ids (objects, or object * 3 + effect with per_effect).
   const std::vector<int>& lastSelection() const { return selected_; }
-  double lastBudget() const { return budget_; }            // T used this frame (cost units)
+  double lastBudget() const { return budget_; }              // T used this frame (cost units)
   double lastSelectedCost() const { return selectedCost_; }  // sum of the selected costs
 
  private:

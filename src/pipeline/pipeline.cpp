@@ -54,6 +54,19 @@ const std::map<std::string, std::string>& builtins() {
   ],
   "output": "output"
 })"},
+                                                       {"hybrid-budget", R"({
+  "name": "hybrid-budget",
+  "passes": [
+    {"type": "raster_gbuffer"},
+    {"type": "deferred_shading"},
+    {"type": "heuristic",
+     "params": {"budget_ms": 50, "per_effect": true, "count_recursion": true}},
+    {"type": "rt_secondary"},
+    {"type": "blend"},
+    {"type": "tonemap", "inputs": {"hdr": "composite"}}
+  ],
+  "output": "output"
+})"},
                                                        {"rt-only", R"({
   "name": "rt-only",
   "passes": [

@@ -99,8 +99,7 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-RayTracer::RayTracer()
-    : rays_(new RayCounter[64]), rayCounters_(64) {
+RayTracer::RayTracer() : rays_(new RayCounter[64]), rayCounters_(64) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(device_, errorCallback, nullptr);
@@ -135,8 +134,11 @@ bool RayTracer::update(const FrameScene& fs) {
     GeometryInfo* info = geometryInfo_.back().get();
     rtcSetGeometryUserData(g, info);
     if (info->singleSided || info->alphaMask) rtcSetGeometryIntersectFilterFunction(g, filterHit);
-    // Occlusion queries always filter: shadow rays need castsShadows and transparency.
-    rtcSetGeometryOccludedFilterFunction(g, filterHit);
+    // Occlusion queries filter only where a hit may not end the shadow ray: transparent,
+    // alpha-masked or non-shadow-casting materials; an opaque caster's first hit is final and
+    // needs no callback.
+    if (mat.opacity < 1 || !mat.castsShadows || info->alphaMask)
+      rtcSetGeometryOccludedFilterFunction(g, filterHit);
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(scene_, g, unsigned(o));
     rtcReleaseGeometry(g);

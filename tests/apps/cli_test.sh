@@ -19,7 +19,7 @@ expect_error() {
 }
 
 "$T" --help >/dev/null; check "help" "[ $? -eq 0 ]"
-for v in render info compare bench; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
+for v in render info compare bench experiment; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
 
 "$T" render --width 160 --height 90 --out "$D/demo" --aov depth,normal,object_id,motion >/dev/null
 check "render writes png+exr+aovs" "[ -s $D/demo/cornell_deferred.png ] && [ -s $D/demo/cornell_deferred.exr ] && [ -s $D/demo/cornell_deferred_object_id.png ]"
@@ -42,7 +42,29 @@ SRC="$(cd "$(dirname "$0")/../.." && pwd)"
 "$T" render "$SRC/scenes/cornell_bunny.json" --width 96 --height 54 --out "$D/cb.png" >/dev/null
 check "shipped scene file renders" "[ -s $D/cb.png ]"
 
+"$T" render spheres --pipeline hybrid-budget --width 96 --height 54 --set heuristic.budget_ms=5 \
+  --aov heuristic_mask --out "$D/hb/" >/dev/null
+check "--set and the effect mask AOV" "[ -s $D/hb/spheres_hybrid-budget_heuristic_mask.png ]"
+
+# The seed 002 experiment, tiny: every table, CSV and image it promises.
+"$T" experiment heuristic --scenes spheres,"$SRC/scenes/cornell_spheres.json" --width 64 --height 36 \
+  --warmup 1 --static-frames 1 --path-frames 3 --out "$D/exp" >/dev/null
+check "experiment writes results.md with Tables 5 and 6" \
+  "grep -q 'Table 5' $D/exp/results.md && grep -q 'Table 6' $D/exp/results.md && grep -q 'RAYT ONLY FRAME' $D/exp/results.md"
+check "experiment CSVs have a row per scene / frame" \
+  "[ \$(wc -l < $D/exp/table5.csv) -eq 3 ] && [ \$(wc -l < $D/exp/table6.csv) -eq 3 ] && [ \$(wc -l < $D/exp/budget_frames.csv) -eq 7 ]"
+check "experiment writes images" \
+  "[ -s $D/exp/spheres_hybrid-heuristic.png ] && [ -s $D/exp/cornell_spheres_rt-only.png ] && [ -s $D/exp/spheres_heuristic_mask.png ]"
+check "experiment: hybrid-all agrees with rt-only" \
+  "awk -F, 'NR>1 && \$14 < 0.97 {bad=1} END {exit bad}' $D/exp/table5.csv"
+
 mkdir -p "$D/err"
+expect_error "--set unknown parameter" "unknown parameter" "$T" render --pipeline hybrid-heuristic --set heuristic.nope=1 --out "$D/err/x.png"
+expect_error "--set out of range" "out of range" "$T" render --pipeline hybrid-heuristic --set heuristic.budget_ms=-3 --out "$D/err/x.png"
+expect_error "--set unknown pass" "no pass labelled" "$T" render --set nopass.x=1 --out "$D/err/x.png"
+expect_error "--set malformed" "pass.param=value" "$T" render --set budget --out "$D/err/x.png"
+expect_error "experiment bad scene" "not found" "$T" experiment heuristic --scenes /nonexistent.json --out "$D/err/exp"
+expect_error "experiment bad frames" "--path-frames" "$T" experiment heuristic --path-frames 0 --out "$D/err/exp"
 expect_error "missing scene file" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/x.png"
 expect_error "unknown builtin" "not a file and not a built-in" "$T" render --scene nosuchscene --out "$D/err/x.png"
 expect_error "zero width" "--width" "$T" render --width 0 --out "$D/err/x.png"

@@ -85,3 +85,99 @@ TEST(Heuristic, EquationsByHand) {
   // Invisible objects are rejected.
   EXPECT_TRUE(evaluateObjects(s, bounds, cam, {0, 0}, {0, 0}, 1.0).empty());
 }
+
+namespace {
+
+// A plain object and a glass mirror, two lights, seen from +Z.
+struct TwoObjects {
+  Scene s;
+  Camera cam;
+  std::vector<Bounds3> bounds{2};
+  TwoObjects() {
+    int mesh = s.addMesh(makeCube());
+    Material plain, glassMirror;
+    glassMirror.reflectivity = 0.5f;
+    glassMirror.opacity = 0.2f;
+    s.addObject("a", mesh, s.addMaterial(plain));
+    s.addObject("b", mesh, s.addMaterial(glassMirror));
+    s.objects[1].heuristic = {2.0f, 3.0f};  // K, E
+    s.lights.resize(2);
+    CameraDesc cd;
+    cd.position = {0, 0, 10};
+    cd.lookAt = {0, 0, 0};
+    cam = Camera::make(cd, 100, 100);
+    bounds[0].extend({-1, -1, -1});
+    bounds[0].extend({1, 1, 1});
+    bounds[1].extend({4, -1, -1});
+    bounds[1].extend({6, 1, 1});
+  }
+};
+
+}  // namespace
+
+// Per-effect nodes: one per effect the material has, cost A q_e E, relevancy (S_e I + V) K.
+TEST(Heuristic, PerEffectNodesByHand) {
+  TwoObjects t;
+  // Object b had only its reflection selected last frame (bit 1).
+  std::vector<ObjectHeuristic> h =
+      evaluateObjects(t.s, t.bounds, t.cam, {400, 100}, {0, 1u << kReflection}, 50.0);
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_EQ(h[0].q, (std::array<double, 3>{2, 0, 0}));  // shadows only
+  EXPECT_EQ(h[1].q, (std::array<double, 3>{2, 3, 6}));
+  EXPECT_TRUE(h[1].Se[kReflection]);
+  EXPECT_FALSE(h[1].Se[kShadow]);
+  std::vector<HeuristicNode> nodes = heuristicNodes(t.s, h, true, 50.0);
+  ASSERT_EQ(nodes.size(), 4u);  // a: shadow; b: shadow, reflection, refraction
+  EXPECT_EQ(nodes[0].id, 0 * 3 + kShadow);
+  EXPECT_DOUBLE_EQ(nodes[0].cost, 400 * 2 * 1.0);
+  EXPECT_NEAR(nodes[0].relevancy, h[0].V, 1e-9);
+  EXPECT_EQ(nodes[2].id, 1 * 3 + kReflection);
+  EXPECT_DOUBLE_EQ(nodes[2].cost, 100 * 3 * 3.0);
+  EXPECT_NEAR(nodes[2].relevancy, (50.0 + h[1].V) * 2.0, 1e-9);  // S_e = 1
+  EXPECT_NEAR(nodes[3].relevancy, h[1].V * 2.0, 1e-9);           // refraction: S_e = 0
+  EXPECT_DOUBLE_EQ(nodes[3].cost, 100 * 6 * 3.0);
+  // The per-object costs are the sums of the per-effect ones.
+  std::vector<HeuristicNode> whole = heuristicNodes(t.s, h, false, 50.0);
+  ASSERT_EQ(whole.size(), 2u);
+  EXPECT_DOUBLE_EQ(whole[1].cost, nodes[1].cost + nodes[2].cost + nodes[3].cost);
+}
+
+// Under a budget too small for the whole glass mirror, per-effect selection still gives it
+// the effects that fit, where the paper's all-or-nothing selection gives it none.
+TEST(Heuristic, PerEffectSelectionTakesWhatFits) {
+  TwoObjects t;
+  std::vector<ObjectHeuristic> h = evaluateObjects(t.s, t.bounds, t.cam, {400, 100}, {0, 0}, 0);
+  double T = 100 * 5 * 3.0;  // b's shadow (600) fits, its shadow + reflection (1500) does not
+  std::vector<int> whole = selectWithinBudget(heuristicNodes(t.s, h, false, 0), T);
+  EXPECT_TRUE(std::find(whole.begin(), whole.end(), 1) == whole.end());
+  std::vector<int> perEffect = selectWithinBudget(heuristicNodes(t.s, h, true, 0), T);
+  EXPECT_TRUE(std::find(perEffect.begin(), perEffect.end(), 1 * 3 + kShadow) != perEffect.end());
+  double sum = 0;
+  for (const HeuristicNode& n : heuristicNodes(t.s, h, true, 0))
+    if (std::find(perEffect.begin(), perEffect.end(), n.id) != perEffect.end()) sum += n.cost;
+  EXPECT_LE(sum, T);
+}
+
+// Measured rays per pixel replace the paper's q_e only where the material has the effect.
+TEST(Heuristic, MeasuredRaysReplaceThePrior) {
+  TwoObjects t;
+  std::vector<std::array<double, 3>> measured = {{1.5, 9, 9}, {2, 7.25, 0}};
+  std::vector<ObjectHeuristic> h =
+      evaluateObjects(t.s, t.bounds, t.cam, {400, 100}, {0, 0}, 0, &measured);
+  EXPECT_EQ(h[0].q, (std::array<double, 3>{1.5, 0, 0}));   // a has no reflection/refraction
+  EXPECT_EQ(h[1].q, (std::array<double, 3>{2, 7.25, 6}));  // not measured: prior lights + 4
+  EXPECT_DOUBLE_EQ(h[1].Q, 2 + 7.25 + 6);
+  EXPECT_DOUBLE_EQ(h[1].C, 100 * (2 + 7.25 + 6) * 3.0);
+}
+
+TEST(Heuristic, BudgetCalibrationSmoothsUnitsPerMs) {
+  BudgetCalibration c;
+  EXPECT_DOUBLE_EQ(c.unitsPerMs(), BudgetCalibration::kPriorUnitsPerMs);
+  c.observe(1000, 10);  // 100 units/ms
+  EXPECT_DOUBLE_EQ(c.unitsFor(5), 500);
+  c.observe(3000, 10);  // sample 300: halfway
+  EXPECT_DOUBLE_EQ(c.unitsPerMs(), 200);
+  c.observe(0, 10);  // nothing traced: nothing learned
+  c.observe(100, 0);
+  EXPECT_DOUBLE_EQ(c.unitsPerMs(), 200);
+}

@@ -180,3 +180,12 @@ TEST(BadInput, GltfAbsurdAccessorCount) {
                       kBuffer + "}",
                   {"POSITION", "absurd count"});
 }
+
+TEST(BadInput, ObjectHeuristics) {
+  expectLoadError("oh1.json", R"({"base": "cornell", "objectHeuristics": {"nosuch": {"K": 2}}})",
+                  {"objectHeuristics.nosuch", "no object of that name"});
+  expectLoadError("oh2.json", R"({"base": "cornell", "objectHeuristics": {"floor": {"K": -1}}})",
+                  {"objectHeuristics.floor", "K"});
+  expectLoadError("oh3.json", R"({"base": "cornell", "objectHeuristics": [1]})",
+                  {"objectHeuristics", "expected an object"});
+}

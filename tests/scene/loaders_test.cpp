@@ -195,6 +195,33 @@ TEST(SceneFile, BaseBuiltinPlusModel) {
   EXPECT_EQ(s.materials[s.objects.back().material].name, "glass");
 }
 
+// objectHeuristics sets K and E on objects that came from the base scene, by name.
+TEST(SceneFile, ObjectHeuristicsByName) {
+  auto dir = scratchDir("scene_object_heuristics");
+  writeText(dir / "s.json", R"({"base": ")" + sharedScene("CornellBox/CornellBox-Sphere.obj") +
+                                R"(", "objectHeuristics": {"leftSphere": {"K": 4, "E": 0.5}}})");
+  Scene s = loadSceneFile((dir / "s.json").string());
+  int found = 0;
+  for (const Object& o : s.objects) {
+    bool left = o.name == "leftSphere";
+    found += left;
+    EXPECT_FLOAT_EQ(o.heuristic.K, left ? 4.0f : 1.0f) << o.name;
+    EXPECT_FLOAT_EQ(o.heuristic.E, left ? 0.5f : 1.0f) << o.name;
+  }
+  EXPECT_EQ(found, 1);
+}
+
+// The experiment's scene files load (they reference ../shared/scenes beside the checkout).
+TEST(SceneFile, ExperimentScenesLoad) {
+  for (const char* name : {"atrium_spheres", "atrium_bunny", "cornell_spheres", "cornell_bunny"}) {
+    Scene s = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/" + name + ".json");
+    EXPECT_FALSE(s.cameraPath.empty()) << name;
+    int relevant = 0;
+    for (const Object& o : s.objects) relevant += o.heuristic.K > 1;
+    EXPECT_GT(relevant, 0) << name;
+  }
+}
+
 TEST(BuiltinScenes, AtriumIsAtPaperComplexity) {
   Scene s = makeAtriumScene();
   EXPECT_GT(s.triangleCount(), 200000u);
