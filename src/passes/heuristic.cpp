@@ -1,6 +1,7 @@
 #include "passes/heuristic.h"
 
 #include <tbb/combinable.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -95,20 +96,27 @@ std::vector<ObjectHeuristic> evaluateObjects(
   return out;
 }
 
-std::vector<HeuristicNode> heuristicNodes(const Scene& scene,
-                                          const std::vector<ObjectHeuristic>& objects,
-                                          bool perEffect, double I) {
+std::vector<HeuristicNode> heuristicNodes(
+    const Scene& scene, const std::vector<ObjectHeuristic>& objects, bool perEffect, double I,
+    const std::vector<std::array<double, kEffectCount>>* costPerPixel) {
   std::vector<HeuristicNode> nodes;
   for (const ObjectHeuristic& h : objects) {
+    const HeuristicParams& hp = scene.objects[size_t(h.object)].heuristic;
+    // Cost of effect e: A q_e E (eq. 2 split by effect), or A E x the given cost per pixel.
+    auto cost = [&](int e) {
+      if (h.q[size_t(e)] <= 0) return 0.0;
+      double perPixel =
+          costPerPixel ? (*costPerPixel)[size_t(h.object)][size_t(e)] : h.q[size_t(e)];
+      return h.A * perPixel * hp.E;
+    };
     if (!perEffect) {
-      nodes.push_back({h.object, h.C, h.R});
+      nodes.push_back({h.object, costPerPixel ? cost(0) + cost(1) + cost(2) : h.C, h.R});
       continue;
     }
-    const HeuristicParams& hp = scene.objects[size_t(h.object)].heuristic;
     for (int e = 0; e < kEffectCount; ++e)
-      if (h.q[e] > 0)
+      if (h.q[size_t(e)] > 0)
         nodes.push_back(
-            {h.object * kEffectCount + e, h.A * h.q[e] * hp.E, ((h.Se[e] ? I : 0.0) + h.V) * hp.K});
+            {h.object * kEffectCount + e, cost(e), ((h.Se[size_t(e)] ? I : 0.0) + h.V) * hp.K});
   }
   return nodes;
 }
@@ -163,6 +171,14 @@ void HeuristicPass::updateMeasuredRays(const RtStats& stats) {
   // Each frame's RT figures are folded in once, smoothed like the time calibration.
   if (stats.serial < 0 || stats.serial == measuredFrame_) return;
   measuredFrame_ = stats.serial;
+  msPerPixel_.resize(stats.pixels.size());
+  for (size_t o = 0; o < stats.pixels.size() && o < stats.cpuMs.size(); ++o)
+    for (size_t e = 0; e < size_t(kEffectCount); ++e) {
+      if (stats.pixels[o][e] == 0) continue;
+      double ms = stats.cpuMs[o][e] / double(stats.pixels[o][e]);
+      double& m = msPerPixel_[o][e];
+      m = m > 0 ? 0.5 * m + 0.5 * ms : ms;
+    }
   measuredRays_.resize(stats.pixels.size());
   for (size_t o = 0; o < stats.pixels.size(); ++o)
     for (int e = 0; e < kEffectCount; ++e) {
@@ -195,9 +211,38 @@ void HeuristicPass::execute(FrameContext& ctx) {
   evaluated_ =
       evaluateObjects(scene, bounds_, ctx.camera, pixels, selectedLast_, param("importance"),
                       param("count_recursion") != 0 ? &measuredRays_ : nullptr);
-  std::vector<HeuristicNode> nodes =
-      heuristicNodes(scene, evaluated_, perEffect, param("importance"));
-  budget_ = param("budget_ms") > 0 ? calibration_.unitsFor(param("budget_ms")) : param("budget");
+  // With a ms budget, costs are predicted CPU ms and T is in CPU ms (the calibration's rate is
+  // CPU ms per wall ms of the RT pass; its prior, the worker count).
+  const bool msBudget = param("budget_ms") > 0;
+  ctx.rtStats.timeEffects = msBudget;  // this frame's RT pass times each object and effect
+  if (!calibrationPrior_) {
+    calibration_ = BudgetCalibration(double(tbb::this_task_arena::max_concurrency()));
+    calibrationPrior_ = true;
+  }
+  std::vector<HeuristicNode> nodes;
+  if (msBudget) {
+    // Objects and effects not measured yet are priced at the mean measured cost per pixel of
+    // that effect over the visible objects (weighted by area), or at the prior ray rate.
+    msPerPixel_.resize(n);
+    std::array<double, kEffectCount> sum{}, area{};
+    for (size_t o = 0; o < n; ++o)
+      for (size_t e = 0; e < size_t(kEffectCount); ++e)
+        if (msPerPixel_[o][e] > 0) {
+          sum[e] += msPerPixel_[o][e] * pixels[o];
+          area[e] += pixels[o];
+        }
+    std::vector<std::array<double, kEffectCount>> perPixel = msPerPixel_;
+    for (const ObjectHeuristic& h : evaluated_)
+      for (size_t e = 0; e < size_t(kEffectCount); ++e) {
+        double& p = perPixel[size_t(h.object)][e];
+        if (p <= 0)
+          p = area[e] > 0 ? sum[e] / area[e] : h.q[e] / BudgetCalibration::kPriorRaysPerMs;
+      }
+    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"), &perPixel);
+  } else {
+    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"));
+  }
+  budget_ = msBudget ? calibration_.unitsFor(param("budget_ms")) : param("budget");
   if (param("select_all") != 0) {
     selected_.clear();
     for (const HeuristicNode& node : nodes) selected_.push_back(node.id);

@@ -6,8 +6,9 @@
 // walked while budget T remains. Output: the per-pixel heuristic mask (Figure 2h), one channel
 // per effect (shadow, reflection, refraction; the paper's mode sets all three together).
 // Beyond the paper, each switchable (defaults keep the paper's behaviour):
-//  - budget_ms: T derived every frame from a budget in milliseconds, calibrated against what the
-//    RT pass took in recent frames (cost units per ms, smoothed);
+//  - budget_ms: costs become predicted CPU ms (A E x the CPU ms per pixel the RT pass measured
+//    for that object and effect, recursion included) and T is the budget times the measured
+//    ratio of predicted CPU ms to RT wall ms (smoothed), so the RT stage follows the budget;
 //  - per_effect: nodes are (object, effect) pairs, so an object may get shadows but not its
 //    reflection (the paper's future work);
 //  - count_recursion: Q is the rays per pixel the RT pass actually traced for the object and
@@ -59,25 +60,31 @@ std::vector<ObjectHeuristic> evaluateObjects(
 
 // The graph's nodes: one per object (cost C, relevancy R; id = object) or, per effect, one per
 // (object, effect) with cost A q_e E and relevancy (S_e I + V) K (id = object * 3 + effect).
-std::vector<HeuristicNode> heuristicNodes(const Scene& scene,
-                                          const std::vector<ObjectHeuristic>& objects,
-                                          bool perEffect, double importanceI);
+// `costPerPixel[o][e]`, when given, replaces q_e as the cost of one visible pixel (the ms budget
+// passes measured CPU ms per pixel, so costs are predicted milliseconds).
+std::vector<HeuristicNode> heuristicNodes(
+    const Scene& scene, const std::vector<ObjectHeuristic>& objects, bool perEffect,
+    double importanceI,
+    const std::vector<std::array<double, kEffectCount>>* costPerPixel = nullptr);
 
 // Visible pixels per object in an object-id buffer (one parallel pass).
 std::vector<uint32_t> countObjectPixels(const Buffer& objectId, size_t objectCount);
 
 // Turns a budget in ms into cost units from the RT pass's measured time for the cost it was
 // given: units per ms, exponentially smoothed so one noisy frame does not swing the selection.
+// The heuristic's ms-budget costs are predicted CPU ms, so the rate is the RT pass's effective
+// parallelism (CPU ms per wall ms), and its prior the worker count.
 class BudgetCalibration {
  public:
-  // Cost units per ms assumed before any measurement (about this machine's two cores).
-  static constexpr double kPriorUnitsPerMs = 20000;
+  // Rays per CPU ms assumed before any effect has been measured (about this machine).
+  static constexpr double kPriorRaysPerMs = 10000;
+  explicit BudgetCalibration(double priorUnitsPerMs = 1) : prior_(priorUnitsPerMs) {}
   void observe(double selectedCost, double ms);
   double unitsFor(double budgetMs) const { return budgetMs * unitsPerMs(); }
-  double unitsPerMs() const { return rate_ > 0 ? rate_ : kPriorUnitsPerMs; }
+  double unitsPerMs() const { return rate_ > 0 ? rate_ : prior_; }
 
  private:
-  double rate_ = 0;
+  double prior_, rate_ = 0;
 };
 
 class HeuristicPass : public Pass {
@@ -108,6 +115,8 @@ class HeuristicPass : public Pass {
   std::vector<std::array<double, kEffectCount>> measuredRays_;
   int64_t measuredFrame_ = -1;
   BudgetCalibration calibration_;
+  bool calibrationPrior_ = false;  // prior set to the worker count on first use
+  std::vector<std::array<double, kEffectCount>> msPerPixel_;  // measured, smoothed
   double budget_ = 0, selectedCost_ = 0;
   int64_t selectedFrame_ = -1;
 };

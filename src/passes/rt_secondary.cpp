@@ -2,6 +2,7 @@
 
 #include <tbb/combinable.h>
 
+#include "core/cycle_clock.h"
 #include "core/parallel.h"
 #include "pipeline/frame_context.h"
 #include "rt/whitted.h"
@@ -27,12 +28,16 @@ std::vector<BufferSlot> RTSecondaryPass::inputs() const {
 }
 
 namespace {
-// Pixels and rays per object and effect, gathered per thread and summed once.
-using EffectCounts = std::vector<std::array<uint64_t, 2 * kEffectCount>>;
+// Per worker thread and object: pixels, rays and time-stamp ticks of each effect.
+struct EffectTally {
+  std::array<uint64_t, kEffectCount> pixels{}, rays{}, ticks{};
+};
+using EffectTallies = std::vector<EffectTally>;
 }  // namespace
 
 void RTSecondaryPass::execute(FrameContext& ctx) {
   const auto start = Clock::now();
+  const TickRate tickRate;
   RayTracer& rt = ctx.rayTracer();
   const uint64_t raysBefore = rt.raysTraced();
   const Scene& scene = *ctx.scene;
@@ -44,10 +49,11 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   Buffer& shadow = ctx.output(bufferName("shadow"), 3);
   Buffer& reflection = ctx.output(bufferName("reflection"), 3);
   Buffer& refraction = ctx.output(bufferName("refraction"), 3);
-  tbb::combinable<EffectCounts> counts([&] { return EffectCounts(objects); });
+  const bool timed = ctx.rtStats.timeEffects;
+  tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
     std::vector<Vec3> vis(scene.lights.size());
-    EffectCounts& count = counts.local();
+    EffectTallies& tally = tallies.local();
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const float* m = mask.at(x, y);
@@ -56,10 +62,20 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         SurfaceSample s;
         Vec3 shadowRgb(1.0f), reflectionRgb(0.0f), refractionRgb(0.0f);
         if ((want[0] || want[1] || want[2]) && g.read(x, y, s)) {
-          auto& c = count[size_t(s.object)];
+          EffectTally& t = tally[size_t(s.object)];
           Vec3 o, d;
           ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
-          uint64_t r0 = rt.raysOnThisThread();
+          // What each effect costs this object, in rays and in time (the heuristic's ms budget
+          // and recursion-aware costs are built from these).
+          uint64_t r0 = rt.raysOnThisThread(), c0 = timed ? cycleNow() : 0;
+          auto account = [&](int e) {
+            uint64_t r1 = rt.raysOnThisThread(), c1 = timed ? cycleNow() : 0;
+            t.pixels[size_t(e)] += 1;
+            t.rays[size_t(e)] += r1 - r0;
+            t.ticks[size_t(e)] += c1 - c0;
+            r0 = r1;
+            c0 = c1;
+          };
           if (want[kShadow]) {
             // Listing 8a: the shadow buffer starts at 1 and loses the light each occluder
             // blocks. One shading call weighted by (1 - visibility) sums exactly the blocked
@@ -69,22 +85,15 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
             Vec3 blocked = shadeBlinnPhong(s, -d, shading, vis.data()) -
                            (s.emission + shading.ambient * s.ambient);
             shadowRgb = Vec3(1.0f) - blocked;
-            uint64_t r1 = rt.raysOnThisThread();
-            c[kShadow] += 1;
-            c[kEffectCount + kShadow] += r1 - r0;
-            r0 = r1;
+            account(kShadow);
           }
           if (want[kReflection] && s.reflectivity > 0) {
             reflectionRgb = whitted.primaryReflection(s, d);
-            uint64_t r1 = rt.raysOnThisThread();
-            c[kReflection] += 1;
-            c[kEffectCount + kReflection] += r1 - r0;
-            r0 = r1;
+            account(kReflection);
           }
           if (want[kRefraction] && s.opacity < 1) {
             refractionRgb = whitted.primaryRefraction(s, d);
-            c[kRefraction] += 1;
-            c[kEffectCount + kRefraction] += rt.raysOnThisThread() - r0;
+            account(kRefraction);
           }
         }
         shadow.setRgb(x, y, shadowRgb);
@@ -95,11 +104,14 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   RtStats& stats = ctx.rtStats;
   stats.pixels.assign(objects, {});
   stats.rays.assign(objects, {});
-  counts.combine_each([&](const EffectCounts& c) {
+  stats.cpuMs.assign(objects, {});
+  const double msPerTick = 1.0 / tickRate.ticksPerMs();
+  tallies.combine_each([&](const EffectTallies& tally) {
     for (size_t o = 0; o < objects; ++o)
-      for (int e = 0; e < kEffectCount; ++e) {
-        stats.pixels[o][size_t(e)] += c[o][size_t(e)];
-        stats.rays[o][size_t(e)] += c[o][size_t(kEffectCount + e)];
+      for (size_t e = 0; e < size_t(kEffectCount); ++e) {
+        stats.pixels[o][e] += tally[o].pixels[e];
+        stats.rays[o][e] += tally[o].rays[e];
+        stats.cpuMs[o][e] += double(tally[o].ticks[e]) * msPerTick;
       }
   });
   stats.serial = ctx.serial;

@@ -171,9 +171,9 @@ TEST(Heuristic, MeasuredRaysReplaceThePrior) {
 }
 
 TEST(Heuristic, BudgetCalibrationSmoothsUnitsPerMs) {
-  BudgetCalibration c;
-  EXPECT_DOUBLE_EQ(c.unitsPerMs(), BudgetCalibration::kPriorUnitsPerMs);
-  c.observe(1000, 10);  // 100 units/ms
+  BudgetCalibration c(2.0);
+  EXPECT_DOUBLE_EQ(c.unitsPerMs(), 2.0);  // the prior until something is measured
+  c.observe(1000, 10);                    // 100 units/ms
   EXPECT_DOUBLE_EQ(c.unitsFor(5), 500);
   c.observe(3000, 10);  // sample 300: halfway
   EXPECT_DOUBLE_EQ(c.unitsPerMs(), 200);

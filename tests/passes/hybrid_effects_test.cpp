@@ -2,6 +2,8 @@
 // measurements, the ms-budget calibration and the equivalences between modes.
 #include <gtest/gtest.h>
 
+#include <tbb/task_arena.h>
+
 #include "passes/blend.h"
 #include "passes/heuristic.h"
 #include "pipeline/frame_context.h"
@@ -96,20 +98,30 @@ TEST(HybridEffects, ModesAgreeAtTheExtremes) {
   EXPECT_TRUE(heuristicOf(*none).lastSelection().empty());
 }
 
-// The ms budget turns into cost units from what the RT pass measured: T = budget_ms x
-// (cost selected last frame / RT ms last frame). The measured time is set by hand here so the
-// check is exact; the real loop reads it from the RT pass.
+// The ms budget: costs are predicted CPU ms (visible pixels x the CPU ms per pixel the RT pass
+// measured for that object and effect), and T = budget_ms x (predicted ms selected last frame /
+// RT wall ms last frame). The measured wall time is set by hand so the check is exact.
 TEST(HybridEffects, MsBudgetCalibratesFromTheLastRtPass) {
   Scene s = makeSpheresScene();
   auto r = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=10"}, 96, 54);
   r->renderFrame(0, s.camera);
   const HeuristicPass& h = heuristicOf(*r);
-  EXPECT_DOUBLE_EQ(h.lastBudget(), 10 * BudgetCalibration::kPriorUnitsPerMs);
+  const double threads = double(tbb::this_task_arena::max_concurrency());
+  EXPECT_DOUBLE_EQ(h.lastBudget(), 10 * threads);  // prior: CPU ms per wall ms = workers
   const double cost1 = h.lastSelectedCost();
   ASSERT_GT(cost1, 0);
   EXPECT_LE(cost1, h.lastBudget());
   r->context().rtStats.ms = 4.0;
   r->renderFrame(1, s.camera);
-  EXPECT_NEAR(h.lastBudget(), 10 * cost1 / 4.0, 1e-6 * h.lastBudget());
+  EXPECT_NEAR(h.lastBudget(), 10 * cost1 / 4.0, 1e-9 * h.lastBudget());
   EXPECT_LE(h.lastSelectedCost(), h.lastBudget());
+  // The RT pass timed exactly the object-effects it traced (the next frame's costs per pixel).
+  const RtStats& st = r->context().rtStats;
+  for (size_t o = 0; o < s.objects.size(); ++o)
+    for (size_t e = 0; e < size_t(kEffectCount); ++e) {
+      if (st.pixels[o][e] > 0)
+        EXPECT_GT(st.cpuMs[o][e], 0.0) << o << " " << e;
+      else
+        EXPECT_EQ(st.cpuMs[o][e], 0.0) << o << " " << e;
+    }
 }
