@@ -123,8 +123,17 @@ std::vector<HeuristicNode> heuristicNodes(
 
 void BudgetCalibration::observe(double selectedCost, double ms) {
   if (!(selectedCost > 0) || !(ms > 0)) return;  // nothing traced: nothing learned
-  double sample = selectedCost / ms;
-  rate_ = rate_ > 0 ? 0.5 * rate_ + 0.5 * sample : sample;
+  samples_[size_t(count_ % 3)] = selectedCost / ms;
+  ++count_;
+}
+
+double BudgetCalibration::unitsPerMs() const {
+  if (count_ == 0) return prior_;
+  if (count_ == 1) return samples_[0];
+  if (count_ == 2) return 0.5 * (samples_[0] + samples_[1]);
+  std::array<double, 3> s = samples_;
+  std::sort(s.begin(), s.end());
+  return s[1];
 }
 
 std::vector<ParamDesc> HeuristicPass::params() const {

@@ -71,9 +71,10 @@ std::vector<HeuristicNode> heuristicNodes(
 std::vector<uint32_t> countObjectPixels(const Buffer& objectId, size_t objectCount);
 
 // Turns a budget in ms into cost units from the RT pass's measured time for the cost it was
-// given: units per ms, exponentially smoothed so one noisy frame does not swing the selection.
-// The heuristic's ms-budget costs are predicted CPU ms, so the rate is the RT pass's effective
-// parallelism (CPU ms per wall ms), and its prior the worker count.
+// given. The rate is the median of the last three frames' cost / ms: one frame the OS stalls
+// (or one mispriced object) does not halve the next frame's budget, and a real change is
+// followed within two frames. The heuristic's ms-budget costs are predicted CPU ms, so the rate
+// is the RT pass's effective parallelism (CPU ms per wall ms), and its prior the worker count.
 class BudgetCalibration {
  public:
   // Rays per CPU ms assumed before any effect has been measured (about this machine).
@@ -81,10 +82,12 @@ class BudgetCalibration {
   explicit BudgetCalibration(double priorUnitsPerMs = 1) : prior_(priorUnitsPerMs) {}
   void observe(double selectedCost, double ms);
   double unitsFor(double budgetMs) const { return budgetMs * unitsPerMs(); }
-  double unitsPerMs() const { return rate_ > 0 ? rate_ : prior_; }
+  double unitsPerMs() const;
 
  private:
-  double prior_, rate_ = 0;
+  double prior_;
+  std::array<double, 3> samples_{};
+  int count_ = 0;  // samples observed (the ring holds the last three)
 };
 
 class HeuristicPass : public Pass {

@@ -21,11 +21,11 @@ enum Effect : int { kShadow = 0, kReflection = 1, kRefraction = 2 };
 constexpr int kEffectCount = 3;
 
 // What the last rt_secondary pass measured, fed back to the next frame's heuristic (the ms budget
-// calibrates against `ms`; recursion-aware costs use rays per pixel).
+// prices nodes from cpuMs and calibrates against `ms`; recursion-aware costs use rays per pixel).
 struct RtStats {
   int64_t serial = -1;  // FrameContext::serial of the frame measured; -1 before any RT pass ran
   bool timeEffects = false;  // asked for by the heuristic (ms budget): fills cpuMs
-  double ms = 0;        // wall time of the pass
+  double ms = 0;             // wall time of the pass
   std::vector<std::array<uint64_t, kEffectCount>> pixels, rays;  // per object, per effect
   std::vector<std::array<double, kEffectCount>> cpuMs;  // thread time per object and effect
                                                         // (timing costs ~8 %, so only on request)

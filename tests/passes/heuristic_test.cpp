@@ -170,14 +170,21 @@ TEST(Heuristic, MeasuredRaysReplaceThePrior) {
   EXPECT_DOUBLE_EQ(h[1].C, 100 * (2 + 7.25 + 6) * 3.0);
 }
 
-TEST(Heuristic, BudgetCalibrationSmoothsUnitsPerMs) {
+TEST(Heuristic, BudgetCalibrationIsTheMedianOfThreeFrames) {
   BudgetCalibration c(2.0);
   EXPECT_DOUBLE_EQ(c.unitsPerMs(), 2.0);  // the prior until something is measured
   c.observe(1000, 10);                    // 100 units/ms
   EXPECT_DOUBLE_EQ(c.unitsFor(5), 500);
-  c.observe(3000, 10);  // sample 300: halfway
+  c.observe(3000, 10);  // two samples: their mean
   EXPECT_DOUBLE_EQ(c.unitsPerMs(), 200);
   c.observe(0, 10);  // nothing traced: nothing learned
   c.observe(100, 0);
   EXPECT_DOUBLE_EQ(c.unitsPerMs(), 200);
+  c.observe(1000, 10);  // 100, 300, 100: median 100
+  EXPECT_DOUBLE_EQ(c.unitsPerMs(), 100);
+  c.observe(500, 10);  // one stalled frame (50) among 300, 100: ignored
+  EXPECT_DOUBLE_EQ(c.unitsPerMs(), 100);
+  c.observe(3000, 10);  // 100, 50, 300 -> 100; a lasting change wins within two frames
+  c.observe(3000, 10);  // 50, 300, 300 -> 300
+  EXPECT_DOUBLE_EQ(c.unitsPerMs(), 300);
 }
