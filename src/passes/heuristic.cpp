@@ -176,25 +176,21 @@ std::vector<ParamDesc> HeuristicPass::params() const {
        {}}};
 }
 
-void HeuristicPass::updateMeasuredRays(const RtStats& stats) {
-  // Each frame's RT figures are folded in once, smoothed like the time calibration.
+void HeuristicPass::updateMeasurements(const RtStats& stats) {
+  // Each frame's RT figures are folded in once: ½ old + ½ new (the first taken as is).
   if (stats.serial < 0 || stats.serial == measuredFrame_) return;
   measuredFrame_ = stats.serial;
+  auto fold = [](double& m, double v) { m = m > 0 ? 0.5 * m + 0.5 * v : v; };
   msPerPixel_.resize(stats.pixels.size());
-  for (size_t o = 0; o < stats.pixels.size() && o < stats.cpuMs.size(); ++o)
-    for (size_t e = 0; e < size_t(kEffectCount); ++e) {
-      if (stats.pixels[o][e] == 0) continue;
-      double ms = stats.cpuMs[o][e] / double(stats.pixels[o][e]);
-      double& m = msPerPixel_[o][e];
-      m = m > 0 ? 0.5 * m + 0.5 * ms : ms;
-    }
   measuredRays_.resize(stats.pixels.size());
   for (size_t o = 0; o < stats.pixels.size(); ++o)
-    for (int e = 0; e < kEffectCount; ++e) {
-      if (stats.pixels[o][e] == 0) continue;
-      double q = double(stats.rays[o][e]) / double(stats.pixels[o][e]);
-      double& m = measuredRays_[o][e];
-      m = m > 0 ? 0.5 * m + 0.5 * q : q;
+    for (size_t e = 0; e < size_t(kEffectCount); ++e) {
+      const double pixels = double(stats.pixels[o][e]);
+      if (pixels == 0) continue;
+      fold(measuredRays_[o][e], double(stats.rays[o][e]) / pixels);
+      // Time only when the RT pass was asked to measure it (ms budget).
+      if (o < stats.cpuMs.size() && stats.cpuMs[o][e] > 0)
+        fold(msPerPixel_[o][e], stats.cpuMs[o][e] / pixels);
     }
 }
 
@@ -210,7 +206,7 @@ void HeuristicPass::execute(FrameContext& ctx) {
   // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
   if (ctx.rtStats.serial >= 0 && ctx.rtStats.serial == selectedFrame_)
     calibration_.observe(selectedCost_, ctx.rtStats.ms);
-  updateMeasuredRays(ctx.rtStats);
+  updateMeasurements(ctx.rtStats);
   measuredRays_.resize(n);
 
   const Buffer& ids = ctx.input(bufferName("object_id"));

@@ -108,7 +108,7 @@ class HeuristicPass : public Pass {
   double lastSelectedCost() const { return selectedCost_; }  // sum of the selected costs
 
  private:
-  void updateMeasuredRays(const RtStats& stats);
+  void updateMeasurements(const RtStats& stats);
 
   std::vector<uint8_t> selectedLast_;  // effect bits per object
   std::vector<ObjectHeuristic> evaluated_;
