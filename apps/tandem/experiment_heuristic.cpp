@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "eval/metrics.h"
+#include "machine_info.h"
 #include "passes/heuristic.h"
 #include "pipeline/renderer.h"
 
@@ -133,6 +134,7 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
     scenes.push_back(loadSceneFor(ro));
   }
   if (!o.out.empty() && !fs::exists(o.out)) fs::create_directories(o.out);
+  const MachineInfo machine = machineInfo();
   const fs::path dir(o.out);
   const std::string T = "heuristic.budget=" + fmt(o.budget, 0);
   const std::string budgetMs = "heuristic.budget_ms=" + fmt(o.budgetMs, 3);
@@ -244,10 +246,11 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   // The Markdown report: the paper's table layout (rows = measures, columns = scenes).
   std::ostringstream md;
   md << "# Heuristic hybrid rendering (seed 002): experiment results\n\n"
-     << "Machine: " << std::thread::hardware_concurrency() << " hardware threads"
-     << (o.threads ? ", limited to " + std::to_string(o.threads) : std::string()) << "; " << o.width
-     << "x" << o.height << "; static shots: median of " << o.staticFrames << " frames after "
-     << o.warmup << " warm-up; path: " << o.pathFrames
+     << "Machine: " << machine.oneLine()
+     << (o.threads ? "; limited to " + std::to_string(o.threads) + " threads" : std::string())
+     << ".\n\n"
+     << o.width << "x" << o.height << "; static shots: median of " << o.staticFrames
+     << " frames after " << o.warmup << " warm-up; path: " << o.pathFrames
      << " frames. hybrid-heuristic uses T = " << fmt(o.budget, 0)
      << " cost units; hybrid-budget uses " << fmt(o.budgetMs, 1)
      << " ms with per-effect selection and recursion-aware costs.\n\n";

@@ -51,6 +51,7 @@ check "--set and the effect mask AOV" "[ -s $D/hb/spheres_hybrid-budget_heuristi
   --warmup 1 --static-frames 1 --path-frames 3 --out "$D/exp" >/dev/null
 check "experiment writes results.md with Tables 5 and 6" \
   "grep -q 'Table 5' $D/exp/results.md && grep -q 'Table 6' $D/exp/results.md && grep -q 'RAYT ONLY FRAME' $D/exp/results.md"
+check "experiment records machine, build and commit" "grep -q 'hardware threads; [A-Za-z]* build; commit ' $D/exp/results.md"
 check "experiment CSVs have a row per scene / frame" \
   "[ \$(wc -l < $D/exp/table5.csv) -eq 3 ] && [ \$(wc -l < $D/exp/table6.csv) -eq 3 ] && [ \$(wc -l < $D/exp/budget_frames.csv) -eq 7 ]"
 check "experiment writes images" \
