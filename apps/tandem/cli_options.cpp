@@ -79,7 +79,7 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
                   "Scene: .gltf/.glb/.obj/.json file or built-in (cornell, spheres, atrium)");
   app->add_option("--pipeline", o.pipeline,
                   "Pipeline: built-in name (deferred, deferred-rt-gbuffer, hybrid-heuristic, "
-                  "hybrid-all, hybrid-budget, rt-only) or JSON file");
+                  "hybrid-all, hybrid-budget, rt-only, reference) or JSON file");
   app->add_option("--width", o.width, "Image width in pixels");
   app->add_option("--height", o.height, "Image height in pixels");
   app->add_option("--out", o.out, "Output image (.png/.exr) or folder");

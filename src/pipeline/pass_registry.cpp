@@ -2,6 +2,7 @@
 #include "passes/blend.h"
 #include "passes/deferred_shading.h"
 #include "passes/heuristic.h"
+#include "passes/pt_reference.h"
 #include "passes/raster_gbuffer.h"
 #include "passes/rt_gbuffer.h"
 #include "passes/rt_secondary.h"
@@ -13,8 +14,8 @@ namespace tandem {
 
 const std::vector<std::string>& passTypes() {
   static const std::vector<std::string> types = {
-      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic",
-      "rt_secondary",   "blend",      "rt_whitted",       "tonemap"};
+      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic", "rt_secondary",
+      "blend",          "rt_whitted", "pt_reference",     "tonemap"};
   return types;
 }
 
@@ -26,6 +27,7 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "rt_secondary") return std::make_unique<RTSecondaryPass>();
   if (type == "blend") return std::make_unique<BlendPass>();
   if (type == "rt_whitted") return std::make_unique<RTWhittedPass>();
+  if (type == "pt_reference") return std::make_unique<PTReferencePass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

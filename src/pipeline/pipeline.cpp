@@ -67,6 +67,14 @@ const std::map<std::string, std::string>& builtins() {
   ],
   "output": "output"
 })"},
+                                                       {"reference", R"({
+  "name": "reference",
+  "passes": [
+    {"type": "pt_reference"},
+    {"type": "tonemap"}
+  ],
+  "output": "output"
+})"},
                                                        {"rt-only", R"({
   "name": "rt-only",
   "passes": [

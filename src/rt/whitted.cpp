@@ -26,16 +26,10 @@ bool refractDir(Vec3 d, Vec3 n, float eta, Vec3& out) {
   return true;
 }
 
-namespace {
-
-// Offsets a ray origin off the surface towards the side `dir` leaves to, scaled to the position's
-// magnitude so large scenes do not self-intersect.
-Vec3 offsetOrigin(const SurfaceSample& s, Vec3 dir) {
+Vec3 offsetRayOrigin(const SurfaceSample& s, Vec3 dir) {
   float eps = 1e-4f * (1.0f + maxComponent(vmax(s.position, -s.position)));
   return s.position + s.geoNormal * (dot(dir, s.geoNormal) > 0 ? eps : -eps);
 }
-
-}  // namespace
 
 void Whitted::lightVisibility(const SurfaceSample& s, Vec3* vis) const {
   for (size_t i = 0; i < scene_.lights.size(); ++i) {
@@ -46,7 +40,7 @@ void Whitted::lightVisibility(const SurfaceSample& s, Vec3* vis) const {
     if (dot(s.normal, ls.wi) <= 0.0f || maxComponent(ls.radiance) <= 0.0f)
       continue;  // unlit anyway
     Ray r;
-    r.origin = offsetOrigin(s, ls.wi);
+    r.origin = offsetRayOrigin(s, ls.wi);
     r.dir = ls.wi;
     r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
                                      : ls.distance * (1.0f - 1e-4f);
@@ -57,7 +51,7 @@ void Whitted::lightVisibility(const SurfaceSample& s, Vec3* vis) const {
 Vec3 Whitted::reflectionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const {
   Vec3 n = dot(s.normal, d) > 0 ? -s.normal : s.normal;
   Vec3 dir = normalize(reflectDir(d, n));
-  return traceSecondary(offsetOrigin(s, dir), dir, depth, importance);
+  return traceSecondary(offsetRayOrigin(s, dir), dir, depth, importance);
 }
 
 Vec3 Whitted::refractionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const {
@@ -67,7 +61,7 @@ Vec3 Whitted::refractionFrom(const SurfaceSample& s, Vec3 d, int depth, float im
   float eta = entering ? scene_.environmentIor / s.ior : s.ior / scene_.environmentIor;
   Vec3 dir;
   if (!refractDir(d, n, eta, dir)) dir = normalize(reflectDir(d, n));  // total internal reflection
-  return traceSecondary(offsetOrigin(s, dir), dir, depth, importance);
+  return traceSecondary(offsetRayOrigin(s, dir), dir, depth, importance);
 }
 
 Vec3 Whitted::primaryReflection(const SurfaceSample& s, Vec3 d) const {

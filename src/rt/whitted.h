@@ -26,6 +26,9 @@ Vec3 combineEffects(float reflectivity, float transparency, Vec3 reflection, Vec
                     Vec3 lighting);
 
 Vec3 reflectDir(Vec3 d, Vec3 n);
+// A secondary ray's origin: the surface point moved off the surface towards the side `dir`
+// leaves to, by an amount scaled to the position's magnitude (large scenes do not self-hit).
+Vec3 offsetRayOrigin(const SurfaceSample& s, Vec3 dir);
 // Refracts d at a surface with normal n facing against d, eta = n_incident / n_transmitted.
 // Returns false on total internal reflection.
 bool refractDir(Vec3 d, Vec3 n, float eta, Vec3& out);

@@ -28,6 +28,7 @@ int addLightsForEmissiveMeshes(Scene& s) {
     centroid = centroid / float(area);
     Light l;
     l.name = "emissive:" + o.name;
+    l.fromEmissiveMesh = true;
     float lum = maxComponent(m.emission);
     l.color = m.emission / lum;
     // Planar when the summed normal is (almost) as long as the total area.

@@ -22,6 +22,9 @@ struct Light {
   float innerConeDeg = 30.0f, outerConeDeg = 45.0f;  // spot: full intensity inside inner
   float cosinePower = 0.0f;  // spot: extra cos^n(theta) falloff (1 for an emissive quad)
   bool castsShadows = true;
+  // Stands in for an emissive mesh (loaders.h): a path tracer, which sees the mesh's emission
+  // itself, must not count it twice.
+  bool fromEmissiveMesh = false;
 };
 
 }  // namespace tandem

@@ -1,0 +1,264 @@
+#include "rt/path_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rt/whitted.h"
+#include "scene/scene.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+Pcg32::Pcg32(uint64_t seed, uint64_t stream) {
+  inc_ = (stream << 1u) | 1u;
+  next();
+  state_ += seed;
+  next();
+}
+
+uint32_t Pcg32::next() {
+  uint64_t old = state_;
+  state_ = old * 6364136223846793005ull + inc_;
+  uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+  uint32_t rot = uint32_t(old >> 59u);
+  return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+}
+
+namespace {
+
+// Unpolarised Fresnel reflectance of a dielectric; eta = n_incident / n_transmitted.
+float fresnelDielectric(float cosi, float eta) {
+  float sin2t = eta * eta * (1.0f - cosi * cosi);
+  if (sin2t >= 1.0f) return 1.0f;  // total internal reflection
+  float cost = std::sqrt(1.0f - sin2t);
+  float rs = (eta * cosi - cost) / (eta * cosi + cost);
+  float rp = (cosi - eta * cost) / (cosi + eta * cost);
+  return 0.5f * (rs * rs + rp * rp);
+}
+
+Vec3 toWorld(Vec3 local, Vec3 n) {
+  Vec3 t, b;
+  orthonormalBasis(n, t, b);
+  return t * local.x + b * local.y + n * local.z;
+}
+
+Vec3 sampleCosine(Vec3 n, float u1, float u2) {
+  float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+  return toWorld({r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))}, n);
+}
+
+// Half vector with density (e + 1) / (2 pi) cos^e(theta_h) around n.
+Vec3 sampleBlinnHalf(Vec3 n, float e, float u1, float u2) {
+  float cosT = std::pow(u1, 1.0f / (e + 1.0f));
+  float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)), phi = 2.0f * kPi * u2;
+  return toWorld({sinT * std::cos(phi), sinT * std::sin(phi), cosT}, n);
+}
+
+float average(Vec3 v) {
+  return (v.x + v.y + v.z) * (1.0f / 3.0f);
+}
+
+float powerHeuristic(float a, float b) {
+  return a * a / (a * a + b * b);
+}
+
+// Density of the mixture the glossy lobe samples from (cosine with probability pd, else the
+// Blinn-Phong half-vector lobe), per unit solid angle.
+float bsdfPdf(Vec3 n, Vec3 wo, Vec3 wi, float pd, float e) {
+  float cosI = dot(n, wi);
+  if (cosI <= 0.0f) return 0.0f;
+  Vec3 h = normalize(wo + wi);
+  float lobe = (e + 1.0f) / (2.0f * kPi) * std::pow(std::max(dot(n, h), 0.0f), e);
+  return pd * cosI / kPi + (1.0f - pd) * lobe / std::max(4.0f * dot(wo, h), 1e-6f);
+}
+
+Vec3 blinnPhongBrdf(Vec3 n, Vec3 wo, Vec3 wi, Vec3 kd, Vec3 ks, float e) {
+  Vec3 h = normalize(wo + wi);
+  return kd * (1.0f / kPi) +
+         ks * ((e + 8.0f) / (8.0f * kPi) * std::pow(std::max(dot(n, h), 0.0f), e));
+}
+
+}  // namespace
+
+EmitterTable::EmitterTable(const FrameScene& fs) {
+  const Scene& scene = *fs.scene;
+  objectFirst_.assign(fs.objects.size(), -1);
+  for (size_t o = 0; o < fs.objects.size(); ++o) {
+    const Material& m = scene.materials[scene.objects[o].material];
+    float lum = average(m.emission);
+    if (!(lum > 0.0f)) continue;
+    const Mesh& mesh = scene.meshes[scene.objects[o].mesh];
+    const std::vector<Vec3>& p = fs.objects[o].positions;
+    objectFirst_[o] = int(tris_.size());
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      Tri tri{int(o),
+              int(t),
+              p[mesh.indices[3 * t]],
+              p[mesh.indices[3 * t + 1]],
+              p[mesh.indices[3 * t + 2]],
+              0.0f};
+      tri.area = 0.5f * length(cross(tri.b - tri.a, tri.c - tri.a));
+      tris_.push_back(tri);
+      weight_.push_back(tri.area * lum);
+      total_ += double(tri.area * lum);
+      cdf_.push_back(total_);
+    }
+  }
+}
+
+bool EmitterTable::sample(float u, float u1, float u2, int& object, int& prim, Vec3& point,
+                          float& pdf) const {
+  if (empty()) return false;
+  size_t i = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), double(u) * total_) - cdf_.begin());
+  i = std::min(i, tris_.size() - 1);
+  const Tri& t = tris_[i];
+  if (!(t.area > 0.0f)) return false;
+  float su = std::sqrt(u1);  // uniform on the triangle
+  point = t.a * (1.0f - su) + t.b * (su * (1.0f - u2)) + t.c * (su * u2);
+  object = t.object;
+  prim = t.prim;
+  pdf = float(weight_[i] / total_) / t.area;
+  return true;
+}
+
+float EmitterTable::pdfArea(int object, int prim) const {
+  if (empty() || object < 0 || size_t(object) >= objectFirst_.size() ||
+      objectFirst_[size_t(object)] < 0)
+    return 0.0f;
+  const size_t i = size_t(objectFirst_[size_t(object)] + prim);
+  if (i >= tris_.size() || !(tris_[i].area > 0.0f)) return 0.0f;
+  return float(weight_[i] / total_) / tris_[i].area;
+}
+
+Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float pd,
+                           Pcg32& rng) const {
+  int object, prim;
+  Vec3 x;
+  float pdfA;
+  float u = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+  if (!emitters_.sample(u, u1, u2, object, prim, x, pdfA)) return Vec3(0.0f);
+  Vec3 toL = x - s.position;
+  float dist = length(toL);
+  if (!(dist > 0.0f)) return Vec3(0.0f);
+  Vec3 wi = toL / dist;
+  float cosI = dot(s.normal, wi);
+  if (cosI <= 0.0f) return Vec3(0.0f);
+  // One closest-hit ray both tests visibility and reads the emitter's (textured) emission.
+  Ray r;
+  r.origin = offsetRayOrigin(s, wi);
+  r.dir = wi;
+  r.tfar = dist * 1.001f + 1e-4f;
+  Hit h = rt_.intersect(r);
+  if (!h.valid() || h.object != object || h.prim != prim) return Vec3(0.0f);
+  SurfaceSample e = resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, wi);
+  float cosL = std::abs(dot(e.geoNormal, wi));
+  if (!(cosL > 1e-6f)) return Vec3(0.0f);
+  float pdfLight = pdfA * h.t * h.t / cosL;
+  float pdfBsdf = bsdfPdf(s.normal, wo, wi, pd, s.specularExponent);
+  Vec3 f = blinnPhongBrdf(s.normal, wo, wi, kd, ks, s.specularExponent);
+  return f * e.emission * (cosI * powerHeuristic(pdfLight, pdfBsdf) / pdfLight);
+}
+
+// Next-event estimation to every punctual light (delta lights cannot be hit by chance), with
+// the same BRDF shadeBlinnPhong evaluates.
+Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks) const {
+  Vec3 sum(0.0f);
+  const Vec3 n = s.normal;
+  const float e = s.specularExponent;
+  for (size_t i = 0; i < scene_.lights.size(); ++i) {
+    if (scene_.lights[i].fromEmissiveMesh) continue;  // its mesh's emission is hit instead
+    LightSample ls = sampleLight(shading_.lights[i], s.position);
+    float cosI = dot(n, ls.wi);
+    if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
+    Ray r;
+    r.origin = offsetRayOrigin(s, ls.wi);
+    r.dir = ls.wi;
+    r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
+                                     : ls.distance * (1.0f - 1e-4f);
+    if (scene_.lights[i].castsShadows && rt_.occluded(r)) continue;
+    sum += blinnPhongBrdf(n, wo, ls.wi, kd, ks, e) * ls.radiance * cosI;
+  }
+  return sum;
+}
+
+Vec3 PathTracer::radiance(Vec3 o, Vec3 d, Pcg32& rng) const {
+  Vec3 L(0.0f), beta(1.0f);
+  // The BSDF density of the last bounce (0 after the camera or a specular bounce: emission
+  // found then has no light-sampling counterpart and counts in full).
+  float lastPdf = 0.0f;
+  for (int depth = 0; depth < settings_.maxDepth; ++depth) {
+    Ray ray;
+    ray.origin = o;
+    ray.dir = d;
+    // Camera rays cull the backs of single-sided surfaces, as the rasterizer does.
+    Hit hit = rt_.intersect(ray, depth == 0);
+    if (!hit.valid()) {
+      L += beta * scene_.skyRadiance(d);
+      break;
+    }
+    SurfaceSample s = resolveSurface(*rt_.frame(), hit.object, hit.prim, o, d);
+    if (maxComponent(s.emission) > 0.0f) {
+      float w = 1.0f;
+      if (lastPdf > 0.0f) {
+        float cosL = std::abs(dot(s.geoNormal, d));
+        float pdfLight =
+            cosL > 1e-6f ? emitters_.pdfArea(hit.object, hit.prim) * hit.t * hit.t / cosL : 0.0f;
+        w = powerHeuristic(lastPdf, pdfLight);
+      }
+      L += beta * s.emission * w;
+    }
+    lastPdf = 0.0f;
+    const float t = 1.0f - s.opacity, m = (1.0f - t) * s.reflectivity;
+    const float lobe = rng.uniform();
+    Vec3 facing = dot(s.normal, d) > 0 ? -s.normal : s.normal;
+    if (lobe < t) {
+      // Fresnel dielectric: reflect with probability F, otherwise refract (weights cancel).
+      bool entering = dot(s.geoNormal, d) < 0;
+      float eta = entering ? scene_.environmentIor / s.ior : s.ior / scene_.environmentIor;
+      Vec3 next;
+      if (rng.uniform() < fresnelDielectric(-dot(d, facing), eta) ||
+          !refractDir(d, facing, eta, next))
+        next = reflectDir(d, facing);
+      d = normalize(next);
+    } else if (lobe < t + m) {
+      d = normalize(reflectDir(d, facing));
+    } else {
+      // Lambert + normalised Blinn-Phong, shaded from whichever side the path arrives.
+      Vec3 kd = vmax(s.diffuse, Vec3(0.0f)), ks = vmax(s.specular, Vec3(0.0f));
+      float total = maxComponent(kd + ks);
+      if (total > 1.0f) kd = kd / total, ks = ks / total;  // no energy created
+      s.normal = facing;
+      const Vec3 wo = -d;
+      L += beta * directLight(s, wo, kd, ks);
+      const float wd = average(kd), wsp = average(ks);
+      if (wd + wsp <= 0.0f) break;
+      const float pd = wd / (wd + wsp), e = s.specularExponent;
+      if (!emitters_.empty()) L += beta * areaLight(s, wo, kd, ks, pd, rng);
+      Vec3 wi;
+      if (rng.uniform() < pd) {
+        wi = sampleCosine(facing, rng.uniform(), rng.uniform());
+      } else {
+        Vec3 h = sampleBlinnHalf(facing, e, rng.uniform(), rng.uniform());
+        wi = reflectDir(d, h);
+      }
+      const float cosI = dot(facing, wi);
+      if (cosI <= 0.0f) break;
+      // One-sample MIS over the two strategies: the mixture density.
+      const float pdf = bsdfPdf(facing, wo, wi, pd, e);
+      if (!(pdf > 0.0f)) break;
+      beta = beta * blinnPhongBrdf(facing, wo, wi, kd, ks, e) * (cosI / pdf);
+      d = normalize(wi);
+      lastPdf = pdf;
+    }
+    o = offsetRayOrigin(s, d);
+    if (depth + 1 >= settings_.rouletteDepth) {
+      float q = std::min(maxComponent(beta), 0.95f);
+      if (!(q > 0.0f) || rng.uniform() >= q) break;
+      beta = beta / q;
+    }
+  }
+  return L;
+}
+
+}  // namespace tandem
