@@ -27,7 +27,8 @@ void PTReferencePass::execute(FrameContext& ctx) {
         Vec3 sum(0.0f);
         for (int i = 0; i < spp; ++i) {
           Vec3 o, d;
-          ctx.camera.generateRay(x + rng.uniform(), y + rng.uniform(), o, d);
+          const float jx = rng.uniform(), jy = rng.uniform();
+          ctx.camera.generateThinLensRay(x + jx, y + jy, rng.uniform(), rng.uniform(), o, d);
           Vec3 L = pt.radiance(o, d, rng);
           // A NaN or infinite sample (a degenerate pdf) must not poison the pixel.
           if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) sum += L;

@@ -60,6 +60,28 @@ void Camera::generateRay(float px, float py, Vec3& origin, Vec3& dir) const {
   }
 }
 
+void Camera::generateThinLensRay(float px, float py, float u1, float u2, Vec3& origin,
+                                 Vec3& dir) const {
+  generateRay(px, py, origin, dir);
+  if (desc.apertureDiameter <= 0.0f || desc.projection != Projection::Perspective) return;
+  // Concentric square-to-disk map (Shirley & Chiu 1997): uniform over the aperture.
+  float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f, r = 0.0f, phi = 0.0f;
+  if (a != 0.0f || b != 0.0f) {
+    if (std::abs(a) > std::abs(b)) {
+      r = a;
+      phi = kPi / 4.0f * (b / a);
+    } else {
+      r = b;
+      phi = kPi / 2.0f - kPi / 4.0f * (a / b);
+    }
+  }
+  const float radius = 0.5f * desc.apertureDiameter;
+  Vec3 focus = origin + dir * (desc.focusDistance / dot(dir, forward));
+  origin =
+      desc.position + right * (radius * r * std::cos(phi)) + upVec * (radius * r * std::sin(phi));
+  dir = normalize(focus - origin);
+}
+
 float Camera::depthOf(Vec3 p) const {
   float dist = dot(p - desc.position, forward);
   if (desc.projection == Projection::Perspective) return dist > 0 ? desc.nearPlane / dist : 0.0f;

@@ -1,5 +1,6 @@
 // Camera: perspective (vertical FoV) or orthographic, reversed-Z depth, sub-pixel jitter for
-// TAA, and the thin-lens parameters of seed 000 eq. 6 (stored now, used by later passes).
+// TAA, and the thin-lens parameters of seed 000 eq. 6 (the reference path tracer samples the
+// lens; the DoF passes will use them too).
 #pragma once
 #include "core/math.h"
 
@@ -36,6 +37,12 @@ struct Camera {
 
   // Primary ray through pixel coordinate (px, py) (pixel centres at +0.5), jitter applied.
   void generateRay(float px, float py, Vec3& origin, Vec3& dir) const;
+  // Thin-lens ray (seed 000 §3.2.2): from a point of the aperture disk (diameter
+  // apertureDiameter, picked by u1, u2 in [0,1)) through the point of the focus plane
+  // (focusDistance along the view axis) that the pinhole ray of (px, py) meets. A point on the
+  // focus plane stays sharp; one at depth z spreads over a disk of diameter
+  // aperture |z - focus| / focus at that depth. Pinhole (and orthographic) when aperture is 0.
+  void generateThinLensRay(float px, float py, float u1, float u2, Vec3& origin, Vec3& dir) const;
   // Reversed-Z depth of a world point: 1 at the near plane, -> 0 far away.
   float depthOf(Vec3 worldPos) const;
   // World point -> pixel coordinates (continuous); returns false behind the camera.

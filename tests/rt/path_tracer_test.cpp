@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "rt/path_tracer.h"
 #include "scene/loaders.h"
 #include "scene/primitives.h"
 #include "test_util.h"
@@ -114,4 +115,44 @@ TEST(PathTracer, LosslessMaterialsVanishInAUniformSky) {
     EXPECT_NEAR(meanChannel(hdr, 0), 1.0, 0.01);
     for (float v : hdr.data) EXPECT_LT(v, 1.3f);  // single pixels: noise, never a bright bias
   }
+}
+
+// Thin lens: every lens sample of a pixel passes through one point of the focus plane (sharp),
+// and at depth z the rays spread over a disk of diameter A |z - z_f| / z_f (the circle of
+// confusion in world units at that depth).
+TEST(PathTracer, ThinLensFocusAndCircleOfConfusion) {
+  CameraDesc cd;
+  cd.position = {0, 0, 0};
+  cd.lookAt = {0, 0, -1};
+  cd.apertureDiameter = 0.2f;
+  cd.focusDistance = 4.0f;
+  Camera cam = Camera::make(cd, 64, 64);
+  Pcg32 rng(1, 2);
+  const float zFar = 10.0f;
+  float minX = 1e9f, maxX = -1e9f, minY = 1e9f, maxY = -1e9f, focusSpread = 0.0f;
+  Vec3 o0, d0;
+  cam.generateRay(40.5f, 20.5f, o0, d0);
+  const Vec3 focusPoint = o0 + d0 * (4.0f / -d0.z);
+  for (int i = 0; i < 4000; ++i) {
+    Vec3 o, d;
+    cam.generateThinLensRay(40.5f, 20.5f, rng.uniform(), rng.uniform(), o, d);
+    ASSERT_NEAR(o.z, 0.0f, 1e-6f);
+    ASSERT_LE(std::hypot(o.x, o.y), 0.1f + 1e-5f);  // on the aperture disk
+    Vec3 atFocus = o + d * ((-4.0f - o.z) / d.z);
+    focusSpread = std::max(focusSpread, length(atFocus - focusPoint));
+    Vec3 atFar = o + d * ((-zFar - o.z) / d.z);
+    minX = std::min(minX, atFar.x), maxX = std::max(maxX, atFar.x);
+    minY = std::min(minY, atFar.y), maxY = std::max(maxY, atFar.y);
+  }
+  EXPECT_LT(focusSpread, 1e-4f);
+  const float coc = 0.2f * (zFar - 4.0f) / 4.0f;  // 0.3
+  EXPECT_NEAR(maxX - minX, coc, 0.01f * coc);
+  EXPECT_NEAR(maxY - minY, coc, 0.01f * coc);
+  // A zero aperture is the pinhole camera.
+  cd.apertureDiameter = 0;
+  Camera pin = Camera::make(cd, 64, 64);
+  Vec3 o, d;
+  pin.generateThinLensRay(40.5f, 20.5f, 0.9f, 0.1f, o, d);
+  EXPECT_EQ(length(o - o0), 0.0f);
+  EXPECT_NEAR(length(d - d0), 0.0f, 1e-7f);
 }
