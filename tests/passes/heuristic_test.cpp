@@ -46,46 +46,6 @@ TEST(Heuristic, CentreWeight) {
   EXPECT_NEAR(centreWeight(0.5, 0), 0.5 * 0.99 + 0.01, 1e-12);
 }
 
-// Hand-computed eq. 1-3 for two objects: a plain one at the view centre and a glass mirror.
-TEST(Heuristic, EquationsByHand) {
-  Scene s;
-  int mesh = s.addMesh(makeCube());
-  Material plain, glassMirror;
-  glassMirror.reflectivity = 0.5f;
-  glassMirror.opacity = 0.2f;
-  s.addObject("a", mesh, s.addMaterial(plain));
-  s.addObject("b", mesh, s.addMaterial(glassMirror));
-  s.objects[1].heuristic = {2.0f, 3.0f};  // K, E
-  s.lights.resize(2);
-  CameraDesc cd;
-  cd.position = {0, 0, 10};
-  cd.lookAt = {0, 0, 0};
-  Camera cam = Camera::make(cd, 100, 100);
-  std::vector<Bounds3> bounds(2);
-  bounds[0].extend({-1, -1, -1});
-  bounds[0].extend({1, 1, 1});
-  bounds[1].extend({4, -1, -1});  // centre (5, 0, 0), off to the right
-  bounds[1].extend({6, 1, 1});
-  std::vector<ObjectHeuristic> h = evaluateObjects(s, bounds, cam, {400, 100}, {0, 1}, 50.0);
-  ASSERT_EQ(h.size(), 2u);
-  EXPECT_DOUBLE_EQ(h[0].A, 400);
-  EXPECT_NEAR(h[0].P, 1.0, 1e-6);
-  EXPECT_NEAR(h[0].D, 10.0, 1e-5);
-  EXPECT_NEAR(h[0].V, 40.0, 1e-3);
-  EXPECT_EQ(h[0].Q, 2);                      // lights only
-  EXPECT_NEAR(h[0].C, 400 * 2 * 1.0, 1e-9);  // E = 1
-  EXPECT_NEAR(h[0].R, 40.0, 1e-3);           // not selected last frame, K = 1
-  EXPECT_EQ(h[1].Q, 2 + (2 + 1) + (2 + 4));  // reflective and refractive
-  EXPECT_NEAR(h[1].C, 100 * 11 * 3.0, 1e-9);
-  double ndcX = 5.0 / 10.0 / std::tan(radians(45.0f / 2));  // x / (z tan(fov/2)), aspect 1
-  double P = centreWeight(ndcX, 0);
-  EXPECT_NEAR(h[1].P, P, 1e-5);
-  double D = std::sqrt(25.0 + 100.0);
-  EXPECT_NEAR(h[1].R, (50.0 + 100 * P / D) * 2.0, 1e-3);
-  // Invisible objects are rejected.
-  EXPECT_TRUE(evaluateObjects(s, bounds, cam, {0, 0}, {0, 0}, 1.0).empty());
-}
-
 namespace {
 
 // A plain object and a glass mirror, two lights, seen from +Z.
@@ -108,12 +68,38 @@ struct TwoObjects {
     cam = Camera::make(cd, 100, 100);
     bounds[0].extend({-1, -1, -1});
     bounds[0].extend({1, 1, 1});
-    bounds[1].extend({4, -1, -1});
+    bounds[1].extend({4, -1, -1});  // centre (5, 0, 0), off to the right
     bounds[1].extend({6, 1, 1});
   }
 };
 
 }  // namespace
+
+// Hand-computed eq. 1-3 for two objects: a plain one at the view centre and a glass mirror.
+TEST(Heuristic, EquationsByHand) {
+  TwoObjects t;
+  const Scene& s = t.s;
+  const Camera& cam = t.cam;
+  const std::vector<Bounds3>& bounds = t.bounds;
+  std::vector<ObjectHeuristic> h = evaluateObjects(s, bounds, cam, {400, 100}, {0, 1}, 50.0);
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_DOUBLE_EQ(h[0].A, 400);
+  EXPECT_NEAR(h[0].P, 1.0, 1e-6);
+  EXPECT_NEAR(h[0].D, 10.0, 1e-5);
+  EXPECT_NEAR(h[0].V, 40.0, 1e-3);
+  EXPECT_EQ(h[0].Q, 2);                      // lights only
+  EXPECT_NEAR(h[0].C, 400 * 2 * 1.0, 1e-9);  // E = 1
+  EXPECT_NEAR(h[0].R, 40.0, 1e-3);           // not selected last frame, K = 1
+  EXPECT_EQ(h[1].Q, 2 + (2 + 1) + (2 + 4));  // reflective and refractive
+  EXPECT_NEAR(h[1].C, 100 * 11 * 3.0, 1e-9);
+  double ndcX = 5.0 / 10.0 / std::tan(radians(45.0f / 2));  // x / (z tan(fov/2)), aspect 1
+  double P = centreWeight(ndcX, 0);
+  EXPECT_NEAR(h[1].P, P, 1e-5);
+  double D = std::sqrt(25.0 + 100.0);
+  EXPECT_NEAR(h[1].R, (50.0 + 100 * P / D) * 2.0, 1e-3);
+  // Invisible objects are rejected.
+  EXPECT_TRUE(evaluateObjects(s, bounds, cam, {0, 0}, {0, 0}, 1.0).empty());
+}
 
 // Per-effect nodes: one per effect the material has, cost A q_e E, relevancy (S_e I + V) K.
 TEST(Heuristic, PerEffectNodesByHand) {
