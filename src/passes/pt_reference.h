@@ -1,8 +1,9 @@
-// pt_reference: the ground-truth renderer (issue 4, first part) — `spp` path-traced samples per
-// pixel (rt/path_tracer.h), jittered over the pixel and over the thin lens (a pinhole when the
-// camera's aperture is 0), averaged into hdr. Each pixel draws from its
-// own PCG stream keyed by the frame seed and pixel index, so the image does not depend on the
-// thread count. Output: hdr. Parameters: spp, max_depth.
+// pt_reference: the ground-truth renderer (rt/reference_render.h) — path-traced samples per
+// pixel (rt/path_tracer.h) from Owen-scrambled Sobol points over the pixel, the thin lens (or
+// polygonal aperture), the shutter interval and the path, accumulated progressively up to `spp`
+// or `time_limit`. Deterministic for the frame seed whatever the thread or process count.
+// Outputs: hdr (the mean) and variance (of the mean's luminance: the noise left).
+// Parameters: spp, time_limit, max_depth, progress.
 #pragma once
 #include "pipeline/pass.h"
 
@@ -12,9 +13,9 @@ class PTReferencePass : public Pass {
  public:
   std::string type() const override { return "pt_reference"; }
   std::string description() const override {
-    return "Reference path tracing (NEE to punctual lights, emission, sky, roulette)";
+    return "Progressive reference path tracing (NEE + MIS, thin lens, motion blur, Sobol)";
   }
-  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}, {"variance", 1}}; }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
 };

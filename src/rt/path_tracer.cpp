@@ -10,21 +10,6 @@
 
 namespace tandem {
 
-Pcg32::Pcg32(uint64_t seed, uint64_t stream) {
-  inc_ = (stream << 1u) | 1u;
-  next();
-  state_ += seed;
-  next();
-}
-
-uint32_t Pcg32::next() {
-  uint64_t old = state_;
-  state_ = old * 6364136223846793005ull + inc_;
-  uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
-  uint32_t rot = uint32_t(old >> 59u);
-  return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
-}
-
 namespace {
 
 // Unpolarised Fresnel reflectance of a dielectric; eta = n_incident / n_transmitted.
@@ -81,7 +66,7 @@ Vec3 blinnPhongBrdf(Vec3 n, Vec3 wo, Vec3 wi, Vec3 kd, Vec3 ks, float e) {
 
 }  // namespace
 
-EmitterTable::EmitterTable(const FrameScene& fs) {
+EmitterTable::EmitterTable(const FrameScene& fs) : frame_(&fs) {
   const Scene& scene = *fs.scene;
   objectFirst_.assign(fs.objects.size(), -1);
   for (size_t o = 0; o < fs.objects.size(); ++o) {
@@ -92,13 +77,10 @@ EmitterTable::EmitterTable(const FrameScene& fs) {
     const std::vector<Vec3>& p = fs.objects[o].positions;
     objectFirst_[o] = int(tris_.size());
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-      Tri tri{int(o),
-              int(t),
-              p[mesh.indices[3 * t]],
-              p[mesh.indices[3 * t + 1]],
-              p[mesh.indices[3 * t + 2]],
-              0.0f};
-      tri.area = 0.5f * length(cross(tri.b - tri.a, tri.c - tri.a));
+      const Vec3 a = p[mesh.indices[3 * t]], b = p[mesh.indices[3 * t + 1]],
+                 c = p[mesh.indices[3 * t + 2]];
+      // Rigid motion keeps the area, so the frame's triangle prices every shutter time.
+      Tri tri{int(o), int(t), 0.5f * length(cross(b - a, c - a))};
       tris_.push_back(tri);
       weight_.push_back(tri.area * lum);
       total_ += double(tri.area * lum);
@@ -107,15 +89,19 @@ EmitterTable::EmitterTable(const FrameScene& fs) {
   }
 }
 
-bool EmitterTable::sample(float u, float u1, float u2, int& object, int& prim, Vec3& point,
+bool EmitterTable::sample(float u, Vec2 uv, float time, int& object, int& prim, Vec3& point,
                           float& pdf) const {
   if (empty()) return false;
   size_t i = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), double(u) * total_) - cdf_.begin());
   i = std::min(i, tris_.size() - 1);
   const Tri& t = tris_[i];
   if (!(t.area > 0.0f)) return false;
-  float su = std::sqrt(u1);  // uniform on the triangle
-  point = t.a * (1.0f - su) + t.b * (su * (1.0f - u2)) + t.c * (su * u2);
+  const FrameObject& fo = frame_->objects[size_t(t.object)];
+  const Mesh& mesh = frame_->scene->meshes[frame_->scene->objects[size_t(t.object)].mesh];
+  const uint32_t* idx = &mesh.indices[3 * size_t(t.prim)];
+  float su = std::sqrt(uv.x);  // uniform on the triangle
+  point = positionAt(fo, idx[0], time) * (1.0f - su) + positionAt(fo, idx[1], time) * (su * (1.0f - uv.y)) +
+          positionAt(fo, idx[2], time) * (su * uv.y);
   object = t.object;
   prim = t.prim;
   pdf = float(weight_[i] / total_) / t.area;
@@ -132,12 +118,12 @@ float EmitterTable::pdfArea(int object, int prim) const {
 }
 
 Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float pd,
-                           Pcg32& rng) const {
+                           float time, SobolSampler& rng) const {
   int object, prim;
   Vec3 x;
   float pdfA;
-  float u = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-  if (!emitters_.sample(u, u1, u2, object, prim, x, pdfA)) return Vec3(0.0f);
+  const float u = rng.uniform();
+  if (!emitters_.sample(u, rng.get2D(), time, object, prim, x, pdfA)) return Vec3(0.0f);
   Vec3 toL = x - s.position;
   float dist = length(toL);
   if (!(dist > 0.0f)) return Vec3(0.0f);
@@ -149,9 +135,10 @@ Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, fl
   r.origin = offsetRayOrigin(s, wi);
   r.dir = wi;
   r.tfar = dist * 1.001f + 1e-4f;
+  r.time = time;
   Hit h = rt_.intersect(r);
   if (!h.valid() || h.object != object || h.prim != prim) return Vec3(0.0f);
-  SurfaceSample e = resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, wi);
+  SurfaceSample e = resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, wi, time);
   float cosL = std::abs(dot(e.geoNormal, wi));
   if (!(cosL > 1e-6f)) return Vec3(0.0f);
   float pdfLight = pdfA * h.t * h.t / cosL;
@@ -162,7 +149,8 @@ Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, fl
 
 // Next-event estimation to every punctual light (delta lights cannot be hit by chance), with
 // the same BRDF shadeBlinnPhong evaluates.
-Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks) const {
+Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks,
+                             float time) const {
   Vec3 sum(0.0f);
   const Vec3 n = s.normal;
   const float e = s.specularExponent;
@@ -176,13 +164,14 @@ Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks) 
     r.dir = ls.wi;
     r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
                                      : ls.distance * (1.0f - 1e-4f);
+    r.time = time;
     if (scene_.lights[i].castsShadows && rt_.occluded(r)) continue;
     sum += blinnPhongBrdf(n, wo, ls.wi, kd, ks, e) * ls.radiance * cosI;
   }
   return sum;
 }
 
-Vec3 PathTracer::radiance(Vec3 o, Vec3 d, Pcg32& rng) const {
+Vec3 PathTracer::radiance(Vec3 o, Vec3 d, float time, SobolSampler& rng) const {
   Vec3 L(0.0f), beta(1.0f);
   // The BSDF density of the last bounce (0 after the camera or a specular bounce: emission
   // found then has no light-sampling counterpart and counts in full).
@@ -191,13 +180,14 @@ Vec3 PathTracer::radiance(Vec3 o, Vec3 d, Pcg32& rng) const {
     Ray ray;
     ray.origin = o;
     ray.dir = d;
+    ray.time = time;
     // Camera rays cull the backs of single-sided surfaces, as the rasterizer does.
     Hit hit = rt_.intersect(ray, depth == 0);
     if (!hit.valid()) {
       L += beta * scene_.skyRadiance(d);
       break;
     }
-    SurfaceSample s = resolveSurface(*rt_.frame(), hit.object, hit.prim, o, d);
+    SurfaceSample s = resolveSurface(*rt_.frame(), hit.object, hit.prim, o, d, time);
     if (maxComponent(s.emission) > 0.0f) {
       float w = 1.0f;
       if (lastPdf > 0.0f) {
@@ -230,16 +220,18 @@ Vec3 PathTracer::radiance(Vec3 o, Vec3 d, Pcg32& rng) const {
       if (total > 1.0f) kd = kd / total, ks = ks / total;  // no energy created
       s.normal = facing;
       const Vec3 wo = -d;
-      L += beta * directLight(s, wo, kd, ks);
+      L += beta * directLight(s, wo, kd, ks, time);
       const float wd = average(kd), wsp = average(ks);
       if (wd + wsp <= 0.0f) break;
       const float pd = wd / (wd + wsp), e = s.specularExponent;
-      if (!emitters_.empty()) L += beta * areaLight(s, wo, kd, ks, pd, rng);
+      if (!emitters_.empty()) L += beta * areaLight(s, wo, kd, ks, pd, time, rng);
       Vec3 wi;
-      if (rng.uniform() < pd) {
-        wi = sampleCosine(facing, rng.uniform(), rng.uniform());
+      const float which = rng.uniform();
+      const Vec2 u = rng.get2D();
+      if (which < pd) {
+        wi = sampleCosine(facing, u.x, u.y);
       } else {
-        Vec3 h = sampleBlinnHalf(facing, e, rng.uniform(), rng.uniform());
+        Vec3 h = sampleBlinnHalf(facing, e, u.x, u.y);
         wi = reflectDir(d, h);
       }
       const float cosI = dot(facing, wi);

@@ -14,20 +14,10 @@
 #include <cstdint>
 
 #include "rt/ray_tracer.h"
+#include "rt/sampler.h"
 #include "shading/blinn_phong.h"
 
 namespace tandem {
-
-// PCG32 (O'Neill 2014): small, fast, and a separate stream per pixel and sample.
-class Pcg32 {
- public:
-  Pcg32(uint64_t seed, uint64_t stream);
-  uint32_t next();
-  float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }  // [0, 1)
-
- private:
-  uint64_t state_ = 0, inc_ = 1;
-};
 
 struct PathSettings {
   int maxDepth = 16;      // [1, 1024] bounces
@@ -40,8 +30,9 @@ class EmitterTable {
  public:
   explicit EmitterTable(const FrameScene& fs);
   bool empty() const { return total_ <= 0; }
-  // Picks a triangle and a point on it; `pdfArea` is the density per unit area of that point.
-  bool sample(float u, float u1, float u2, int& object, int& prim, Vec3& point,
+  // Picks a triangle and a point on it (where the triangle is at shutter fraction `time`);
+  // `pdfArea` is the density per unit area of that point.
+  bool sample(float u, Vec2 uv, float time, int& object, int& prim, Vec3& point,
               float& pdfArea) const;
   // The density per unit area with which sample() picks a point of (object, prim).
   float pdfArea(int object, int prim) const;
@@ -49,9 +40,9 @@ class EmitterTable {
  private:
   struct Tri {
     int object, prim;
-    Vec3 a, b, c;
     float area;
   };
+  const FrameScene* frame_;
   std::vector<Tri> tris_;
   std::vector<double> cdf_;
   std::vector<int> objectFirst_;  // first index into tris_ per object, -1 if not emissive
@@ -65,13 +56,15 @@ class PathTracer {
              PathSettings settings)
       : rt_(rt), scene_(scene), shading_(shading), settings_(settings), emitters_(*rt.frame()) {}
 
-  // Radiance arriving along the ray (origin, unit dir) back towards its origin.
-  Vec3 radiance(Vec3 origin, Vec3 dir, Pcg32& rng) const;
+  // Radiance arriving along the ray (origin, unit dir) back towards its origin, at shutter
+  // fraction `time` (motion blur; 0 without).
+  Vec3 radiance(Vec3 origin, Vec3 dir, float time, SobolSampler& rng) const;
 
  private:
-  Vec3 directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks) const;
+  Vec3 directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float time) const;
   // One area-light sample, MIS-weighted (power heuristic) against BSDF sampling.
-  Vec3 areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float pd, Pcg32& rng) const;
+  Vec3 areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float pd, float time,
+                 SobolSampler& rng) const;
 
   const RayTracer& rt_;
   const Scene& scene_;

@@ -123,10 +123,17 @@ bool RayTracer::update(const FrameScene& fs) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Shared buffers: Embree reads our arrays in place (it needs 16 bytes of padding after the
     // last vertex, which std::vector<Vec3> capacity does not guarantee, so copy vertices).
-    float* vb =
-        static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                    sizeof(Vec3), fs.objects[o].positions.size()));
-    std::memcpy(vb, fs.objects[o].positions.data(), fs.objects[o].positions.size() * sizeof(Vec3));
+    // Objects moving while the shutter is open get one vertex buffer per time step; Embree
+    // interpolates linearly between them at each ray's time.
+    const FrameObject& fo = fs.objects[o];
+    const bool moving = fo.stepPositions.size() >= 2;
+    if (moving) rtcSetGeometryTimeStepCount(g, unsigned(fo.stepPositions.size()));
+    for (size_t k = 0; k < (moving ? fo.stepPositions.size() : 1); ++k) {
+      const std::vector<Vec3>& p = moving ? fo.stepPositions[k] : fo.positions;
+      float* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, unsigned(k), RTC_FORMAT_FLOAT3, sizeof(Vec3), p.size()));
+      std::memcpy(vb, p.data(), p.size() * sizeof(Vec3));
+    }
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
                                0, 3 * sizeof(uint32_t), mesh.triangleCount());
     geometryInfo_.push_back(std::make_unique<GeometryInfo>(
@@ -186,7 +193,7 @@ void setRay(RTCRay& r, const Ray& in) {
   r.dir_z = in.dir.z;
   r.tnear = in.tnear;
   r.tfar = in.tfar;
-  r.time = 0;
+  r.time = in.time;
   r.mask = ~0u;
   r.id = 0;
   r.flags = 0;
@@ -263,7 +270,7 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackf
     rh.ray.dir_z[i] = r.dir.z;
     rh.ray.tnear[i] = r.tnear;
     rh.ray.tfar[i] = r.tfar;
-    rh.ray.time[i] = 0;
+    rh.ray.time[i] = r.time;
     rh.ray.mask[i] = ~0u;
     rh.ray.id[i] = unsigned(i);
     rh.ray.flags[i] = 0;

@@ -18,6 +18,7 @@ namespace tandem {
 struct Ray {
   Vec3 origin, dir;
   float tnear = 0.0f, tfar = 1e30f;
+  float time = 0.0f;  // shutter fraction in [0,1] (motion blur); 0 = the frame's time
 };
 
 struct Hit {

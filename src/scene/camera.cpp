@@ -64,21 +64,34 @@ void Camera::generateThinLensRay(float px, float py, float u1, float u2, Vec3& o
                                  Vec3& dir) const {
   generateRay(px, py, origin, dir);
   if (desc.apertureDiameter <= 0.0f || desc.projection != Projection::Perspective) return;
-  // Concentric square-to-disk map (Shirley & Chiu 1997): uniform over the aperture.
-  float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f, r = 0.0f, phi = 0.0f;
-  if (a != 0.0f || b != 0.0f) {
-    if (std::abs(a) > std::abs(b)) {
-      r = a;
-      phi = kPi / 4.0f * (b / a);
-    } else {
-      r = b;
-      phi = kPi / 2.0f - kPi / 4.0f * (a / b);
-    }
-  }
   const float radius = 0.5f * desc.apertureDiameter;
+  float lx = 0.0f, ly = 0.0f;  // lens point in units of the aperture radius
+  if (desc.apertureBlades >= 3) {
+    // Regular n-gon as a fan of n equal triangles: u1 picks one and is reused inside it.
+    const float n = float(desc.apertureBlades), x = u1 * n;
+    const float k = std::min(std::floor(x), n - 1.0f), su = std::sqrt(u2), v = x - k;
+    const float a0 = radians(desc.apertureRotationDeg) + 2.0f * kPi * k / n;
+    const float a1 = a0 + 2.0f * kPi / n;
+    // Uniform point in triangle (centre, corner a0, corner a1).
+    lx = su * ((1.0f - v) * std::cos(a0) + v * std::cos(a1));
+    ly = su * ((1.0f - v) * std::sin(a0) + v * std::sin(a1));
+  } else {
+    // Concentric square-to-disk map (Shirley & Chiu 1997): uniform over the aperture.
+    float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f, r = 0.0f, phi = 0.0f;
+    if (a != 0.0f || b != 0.0f) {
+      if (std::abs(a) > std::abs(b)) {
+        r = a;
+        phi = kPi / 4.0f * (b / a);
+      } else {
+        r = b;
+        phi = kPi / 2.0f - kPi / 4.0f * (a / b);
+      }
+    }
+    lx = r * std::cos(phi);
+    ly = r * std::sin(phi);
+  }
   Vec3 focus = origin + dir * (desc.focusDistance / dot(dir, forward));
-  origin =
-      desc.position + right * (radius * r * std::cos(phi)) + upVec * (radius * r * std::sin(phi));
+  origin = desc.position + right * (radius * lx) + upVec * (radius * ly);
   dir = normalize(focus - origin);
 }
 

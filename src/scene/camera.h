@@ -21,6 +21,8 @@ struct CameraDesc {
   float focalLength = 0.05f;      // metres
   float focusDistance = 5.0f;     // metres
   float sensorWidth = 0.036f;     // metres
+  int apertureBlades = 0;         // 0 = circular aperture; n >= 3: regular n-gon (bokeh shape)
+  float apertureRotationDeg = 0;  // rotation of the polygon about the view axis
 };
 
 // A camera evaluated for one frame at a given resolution.
@@ -42,6 +44,8 @@ struct Camera {
   // (focusDistance along the view axis) that the pinhole ray of (px, py) meets. A point on the
   // focus plane stays sharp; one at depth z spreads over a disk of diameter
   // aperture |z - focus| / focus at that depth. Pinhole (and orthographic) when aperture is 0.
+  // With apertureBlades = n >= 3 the lens point is uniform over the regular n-gon inscribed in
+  // the aperture circle instead.
   void generateThinLensRay(float px, float py, float u1, float u2, Vec3& origin, Vec3& dir) const;
   // Reversed-Z depth of a world point: 1 at the near plane, -> 0 far away.
   float depthOf(Vec3 worldPos) const;

@@ -1,5 +1,6 @@
 #include "scene/frame_scene.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/parallel.h"
@@ -12,8 +13,42 @@ bool sameMatrix(const Mat4& a, const Mat4& b) {
 }
 }  // namespace
 
-void FrameScene::update(const Scene& s, float t, float tPrev) {
-  bool first = scene != &s || objects.size() != s.objects.size();
+namespace {
+
+void transformMesh(const Mesh& m, const Mat4& w, std::vector<Vec3>& positions,
+                   std::vector<Vec3>& normals) {
+  const Mat4 nm = w.normalMatrix();
+  positions.resize(m.positions.size());
+  normals.resize(m.normals.size());
+  parallelRange(m.positions.size(), [&](size_t b, size_t e) {
+    for (size_t v = b; v < e; ++v) {
+      positions[v] = w.transformPoint(m.positions[v]);
+      if (v < m.normals.size()) normals[v] = normalize(nm.transformVector(m.normals[v]));
+    }
+  });
+}
+
+// Linear interpolation between the two time steps around shutter fraction tau.
+Vec3 lerpSteps(const std::vector<std::vector<Vec3>>& steps, size_t v, float tau) {
+  const float x = std::clamp(tau, 0.0f, 1.0f) * float(steps.size() - 1);
+  const size_t i = std::min(size_t(x), steps.size() - 2);
+  return lerp(steps[i][v], steps[i + 1][v], x - float(i));
+}
+
+}  // namespace
+
+Vec3 positionAt(const FrameObject& o, size_t v, float tau) {
+  return o.stepPositions.size() < 2 ? o.positions[v] : lerpSteps(o.stepPositions, v, tau);
+}
+
+Vec3 normalAt(const FrameObject& o, size_t v, float tau) {
+  return o.stepNormals.size() < 2 ? o.normals[v] : normalize(lerpSteps(o.stepNormals, v, tau));
+}
+
+void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
+  const float close = t + std::max(shutter, 0.0f);
+  bool first = scene != &s || objects.size() != s.objects.size() || close - t != shutterClose - time;
+  shutterClose = close;
   scene = &s;
   time = t;
   prevTime = tPrev;
@@ -26,7 +61,8 @@ void FrameScene::update(const Scene& s, float t, float tPrev) {
     f.prevWorld = o.worldMatrix(tPrev);
     f.worldToPrev = f.prevWorld * w.inverse();
     f.moved = !sameMatrix(f.prevWorld, w);
-    if (!first && sameMatrix(w, f.world)) continue;
+    const bool blurred = close > t && !sameMatrix(o.worldMatrix(close), w);
+    if (!first && sameMatrix(w, f.world) && !blurred && f.stepPositions.empty()) continue;
     changed = true;
     f.world = w;
     f.normalMatrix = w.normalMatrix();
@@ -42,6 +78,16 @@ void FrameScene::update(const Scene& s, float t, float tPrev) {
         f.tangents[v] = Vec4(normalize(w.transformVector(tg.xyz())), tg.w);
       }
     });
+    f.stepPositions.clear();
+    f.stepNormals.clear();
+    if (blurred) {
+      const int n = std::max(motionSteps, 2);
+      f.stepPositions.resize(size_t(n));
+      f.stepNormals.resize(size_t(n));
+      for (int k = 0; k < n; ++k)
+        transformMesh(m, o.worldMatrix(t + (close - t) * float(k) / float(n - 1)),
+                      f.stepPositions[size_t(k)], f.stepNormals[size_t(k)]);
+    }
   }
   if (changed) ++geometryVersion;
 }

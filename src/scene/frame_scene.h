@@ -15,16 +15,28 @@ struct FrameObject {
   std::vector<Vec3> positions;  // world space
   std::vector<Vec3> normals;    // world space, unit
   std::vector<Vec4> tangents;   // world space xyz, w = bitangent sign
+  // Motion blur: world positions and normals at FrameScene::motionSteps evenly spaced times over
+  // the shutter [time, shutterClose] (step 0 = positions); empty when the object stands still
+  // while the shutter is open. Between steps vertices move linearly, as Embree interpolates them.
+  std::vector<std::vector<Vec3>> stepPositions, stepNormals;
 };
 
 struct FrameScene {
   const Scene* scene = nullptr;
   float time = 0, prevTime = 0;
   std::vector<FrameObject> objects;
+  float shutterClose = 0;        // == time: no motion blur
+  int motionSteps = 4;           // time steps per moving object while the shutter is open
   uint64_t geometryVersion = 0;  // bumps whenever world-space geometry changed
 
   // Re-evaluates transforms; recomputes world geometry only for objects whose matrix changed.
-  void update(const Scene& s, float t, float tPrev);
+  // A shutter > 0 (seconds) keeps the shutter's time steps of objects that move in it.
+  void update(const Scene& s, float t, float tPrev, float shutter = 0.0f);
+  bool motionBlur() const { return shutterClose > time; }
 };
+
+// Vertex v of object o at shutter fraction tau in [0,1] (linear between time steps).
+Vec3 positionAt(const FrameObject& o, size_t v, float tau);
+Vec3 normalAt(const FrameObject& o, size_t v, float tau);
 
 }  // namespace tandem

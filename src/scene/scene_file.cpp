@@ -229,6 +229,10 @@ void readCamera(FileCtx& c, const Json& j) {
   d.focalLength = f.number("focalLength", d.focalLength, 1e-6f, 1e3f);
   d.focusDistance = f.number("focusDistance", d.focusDistance, 1e-6f, 1e9f);
   d.sensorWidth = f.number("sensorWidth", d.sensorWidth, 1e-6f, 1e3f);
+  d.apertureBlades = f.integer("apertureBlades", d.apertureBlades, 0, 64);
+  if (d.apertureBlades == 1 || d.apertureBlades == 2)
+    f.fail("apertureBlades", "must be 0 (circular) or at least 3");
+  d.apertureRotationDeg = f.number("apertureRotation", d.apertureRotationDeg, -360.0f, 360.0f);
   f.finish();
   c.scene.hasCamera = true;
 }

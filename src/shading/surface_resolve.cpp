@@ -35,14 +35,18 @@ float surfaceAlpha(const FrameScene& fs, int object, int prim, float u, float v)
   return alpha * scene.textures[mat.diffuseTexture].sample(mat.transformUv(uv)).w;
 }
 
-SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir) {
+SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
+                             float time) {
   const Scene& scene = *fs.scene;
   const Object& obj = scene.objects[object];
   const FrameObject& fo = fs.objects[object];
   const Mesh& mesh = scene.meshes[obj.mesh];
   const Material& mat = scene.materials[obj.material];
   const uint32_t* idx = &mesh.indices[3 * size_t(prim)];
-  const Vec3 a = fo.positions[idx[0]], b = fo.positions[idx[1]], c = fo.positions[idx[2]];
+  const bool moving = !fo.stepPositions.empty();  // motion blur: the triangle at the ray's time
+  const Vec3 a = moving ? positionAt(fo, idx[0], time) : fo.positions[idx[0]];
+  const Vec3 b = moving ? positionAt(fo, idx[1], time) : fo.positions[idx[1]];
+  const Vec3 c = moving ? positionAt(fo, idx[2], time) : fo.positions[idx[2]];
   float t, u, v;
   intersectTriangle(origin, dir, a, b, c, t, u, v);
   // Pixels on an edge can land a hair outside [0,1]; clamp so attributes stay convex.
@@ -56,7 +60,8 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
   s.t = t;
   s.position = a * w + b * u + c * v;
   s.geoNormal = normalize(cross(b - a, c - a));
-  Vec3 n = normalize(fo.normals[idx[0]] * w + fo.normals[idx[1]] * u + fo.normals[idx[2]] * v);
+  auto normal = [&](uint32_t i) { return moving ? normalAt(fo, i, time) : fo.normals[i]; };
+  Vec3 n = normalize(normal(idx[0]) * w + normal(idx[1]) * u + normal(idx[2]) * v);
   if (mat.doubleSided && dot(s.geoNormal, dir) > 0) {
     s.geoNormal = -s.geoNormal;
     n = -n;

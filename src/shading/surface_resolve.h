@@ -11,7 +11,8 @@ namespace tandem {
 // Returns false only when the ray is parallel to the triangle's plane.
 bool intersectTriangle(Vec3 o, Vec3 d, Vec3 a, Vec3 b, Vec3 c, float& t, float& u, float& v);
 
-SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir);
+SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
+                             float time = 0.0f);
 
 // Alpha of the material's diffuse texture at the hit (alpha-mask tests).
 float surfaceAlpha(const FrameScene& fs, int object, int prim, float u, float v);

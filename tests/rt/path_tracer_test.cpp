@@ -127,7 +127,6 @@ TEST(PathTracer, ThinLensFocusAndCircleOfConfusion) {
   cd.apertureDiameter = 0.2f;
   cd.focusDistance = 4.0f;
   Camera cam = Camera::make(cd, 64, 64);
-  Pcg32 rng(1, 2);
   const float zFar = 10.0f;
   float minX = 1e9f, maxX = -1e9f, minY = 1e9f, maxY = -1e9f, focusSpread = 0.0f;
   Vec3 o0, d0;
@@ -135,7 +134,8 @@ TEST(PathTracer, ThinLensFocusAndCircleOfConfusion) {
   const Vec3 focusPoint = o0 + d0 * (4.0f / -d0.z);
   for (int i = 0; i < 4000; ++i) {
     Vec3 o, d;
-    cam.generateThinLensRay(40.5f, 20.5f, rng.uniform(), rng.uniform(), o, d);
+    const Vec2 u = SobolSampler(1, 2, uint32_t(i)).get2D();
+    cam.generateThinLensRay(40.5f, 20.5f, u.x, u.y, o, d);
     ASSERT_NEAR(o.z, 0.0f, 1e-6f);
     ASSERT_LE(std::hypot(o.x, o.y), 0.1f + 1e-5f);  // on the aperture disk
     Vec3 atFocus = o + d * ((-4.0f - o.z) / d.z);
