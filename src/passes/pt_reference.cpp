@@ -7,7 +7,13 @@ namespace tandem {
 
 std::vector<ParamDesc> PTReferencePass::params() const {
   return {{"spp", ParamType::Int, 1024, 1, 1 << 20, "target samples per pixel", {}},
-          {"time_limit", ParamType::Float, 0, 0, 1e7, "seconds; > 0 stops at the last batch that fits", {}},
+          {"time_limit",
+           ParamType::Float,
+           0,
+           0,
+           1e7,
+           "seconds; > 0 stops at the last batch that fits",
+           {}},
           {"max_depth", ParamType::Int, 16, 1, 1024, "maximum path length in bounces", {}},
           {"progress", ParamType::Bool, 1, 0, 1, "progress bar on a terminal's stderr", {}}};
 }

@@ -37,7 +37,7 @@ struct FrameContext {
   const Scene* scene = nullptr;
   FrameScene frame;
   Camera camera, prevCamera;
-  Camera shutterCamera;  // the camera when the shutter closes (== camera without motion blur)
+  Camera shutterCamera;      // the camera when the shutter closes (== camera without motion blur)
   bool cameraMoved = false;  // this frame's unjittered view-projection differs from last frame's
   int width = 0, height = 0;
   int frameIndex = 0;
@@ -50,8 +50,8 @@ struct FrameContext {
   double passRays = 0;          // a pass adds the rays it traced; the pipeline records it
   std::vector<PassTiming> passParts;  // optional sub-timings a pass reports ("pass/part")
   RtStats rtStats;                    // the latest rt_secondary measurements
-  int samplesPerPixel = 0;  // progressive passes: samples reached in the last frame
-  SampleCluster* cluster = nullptr;  // distributed (MPI) reference rendering; null: one process
+  int samplesPerPixel = 0;            // progressive passes: samples reached in the last frame
+  SampleCluster* cluster = nullptr;   // distributed (MPI) reference rendering; null: one process
 
   // The ray tracer, (re)built for the current frame's geometry on first use in a frame.
   RayTracer& rayTracer();

@@ -100,7 +100,8 @@ bool EmitterTable::sample(float u, Vec2 uv, float time, int& object, int& prim, 
   const Mesh& mesh = frame_->scene->meshes[frame_->scene->objects[size_t(t.object)].mesh];
   const uint32_t* idx = &mesh.indices[3 * size_t(t.prim)];
   float su = std::sqrt(uv.x);  // uniform on the triangle
-  point = positionAt(fo, idx[0], time) * (1.0f - su) + positionAt(fo, idx[1], time) * (su * (1.0f - uv.y)) +
+  point = positionAt(fo, idx[0], time) * (1.0f - su) +
+          positionAt(fo, idx[1], time) * (su * (1.0f - uv.y)) +
           positionAt(fo, idx[2], time) * (su * uv.y);
   object = t.object;
   prim = t.prim;
@@ -117,8 +118,8 @@ float EmitterTable::pdfArea(int object, int prim) const {
   return float(weight_[i] / total_) / tris_[i].area;
 }
 
-Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float pd,
-                           float time, SobolSampler& rng) const {
+Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float pd, float time,
+                           SobolSampler& rng) const {
   int object, prim;
   Vec3 x;
   float pdfA;
@@ -139,7 +140,8 @@ Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, fl
   Hit h = rt_.intersect(r);
   if (!h.valid() || h.object != object || h.prim != prim) return Vec3(0.0f);
   SurfaceSample e = resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, wi, time);
-  float cosL = std::abs(dot(e.geoNormal, wi));
+  // Emitters light their front side only (double-sided ones face every ray, see resolveSurface).
+  float cosL = -dot(e.geoNormal, wi);
   if (!(cosL > 1e-6f)) return Vec3(0.0f);
   float pdfLight = pdfA * h.t * h.t / cosL;
   float pdfBsdf = bsdfPdf(s.normal, wo, wi, pd, s.specularExponent);
@@ -149,8 +151,7 @@ Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, fl
 
 // Next-event estimation to every punctual light (delta lights cannot be hit by chance), with
 // the same BRDF shadeBlinnPhong evaluates.
-Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks,
-                             float time) const {
+Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, float time) const {
   Vec3 sum(0.0f);
   const Vec3 n = s.normal;
   const float e = s.specularExponent;
@@ -188,10 +189,12 @@ Vec3 PathTracer::radiance(Vec3 o, Vec3 d, float time, SobolSampler& rng) const {
       break;
     }
     SurfaceSample s = resolveSurface(*rt_.frame(), hit.object, hit.prim, o, d, time);
-    if (maxComponent(s.emission) > 0.0f) {
+    // Emission leaves the front side only: a light's back (e.g. the Cornell lamp seen from the
+    // 2 cm gap above it) is dark, as in pbrt and Mitsuba.
+    if (maxComponent(s.emission) > 0.0f && dot(s.geoNormal, d) < 0.0f) {
       float w = 1.0f;
       if (lastPdf > 0.0f) {
-        float cosL = std::abs(dot(s.geoNormal, d));
+        float cosL = -dot(s.geoNormal, d);
         float pdfLight =
             cosL > 1e-6f ? emitters_.pdfArea(hit.object, hit.prim) * hit.t * hit.t / cosL : 0.0f;
         w = powerHeuristic(lastPdf, pdfLight);

@@ -61,8 +61,8 @@ void drawProgress(int done, int target, double seconds, double relErr, bool fina
   const int width = 30, filled = target > 0 ? int(double(width) * done / target) : width;
   const double eta = done > 0 ? seconds * double(target - done) / double(done) : 0.0;
   std::fprintf(stderr, "\r[%-*.*s] %5d/%d spp  %6.1f s  ETA %6.1f s  noise %.2f %%  ", width,
-               std::min(filled, width), "##############################", done, target,
-               seconds, eta, 100.0 * relErr);
+               std::min(filled, width), "##############################", done, target, seconds,
+               eta, 100.0 * relErr);
   if (final) std::fprintf(stderr, "\n");
   std::fflush(stderr);
 }
@@ -73,8 +73,7 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
                                 const Camera& close, const ReferenceSettings& settings,
                                 SampleCluster& cluster, SampleSums& sums) {
   const int width = open.width, height = open.height;
-  if (sums.width != width || sums.height != height || sums.data.empty())
-    sums.reset(width, height);
+  if (sums.width != width || sums.height != height || sums.data.empty()) sums.reset(width, height);
   const ShadingContext shading = ShadingContext::from(scene);
   PathTracer pt(rt, scene, shading, settings.path);
   const bool cameraMoves = std::memcmp(&open.desc.position, &close.desc.position, sizeof(Vec3)) ||

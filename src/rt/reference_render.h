@@ -43,10 +43,10 @@ struct ReferenceSettings {
 };
 
 struct ReferenceResult {
-  int spp = 0;              // samples per pixel reached
-  double seconds = 0;       // wall time of the sampling
-  uint64_t rays = 0;        // rays this process traced
-  double relativeError = 0; // RMS standard error of the pixel means / mean luminance (rank 0)
+  int spp = 0;               // samples per pixel reached
+  double seconds = 0;        // wall time of the sampling
+  uint64_t rays = 0;         // rays this process traced
+  double relativeError = 0;  // RMS standard error of the pixel means / mean luminance (rank 0)
 };
 
 // Running per-pixel sums: RGB and squared luminance, in double.

@@ -45,7 +45,7 @@ class SobolSampler {
  public:
   // pixelKey identifies the pixel (or any independent stream); index is the sample number.
   SobolSampler(uint64_t seed, uint64_t pixelKey, uint32_t index);
-  Vec2 get2D();                          // the next dimension pair, in [0,1)^2
+  Vec2 get2D();     // the next dimension pair, in [0,1)^2
   float uniform();  // a fresh pair's first coordinate (still stratified)
 
  private:

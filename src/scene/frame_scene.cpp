@@ -47,7 +47,8 @@ Vec3 normalAt(const FrameObject& o, size_t v, float tau) {
 
 void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
   const float close = t + std::max(shutter, 0.0f);
-  bool first = scene != &s || objects.size() != s.objects.size() || close - t != shutterClose - time;
+  bool first =
+      scene != &s || objects.size() != s.objects.size() || close - t != shutterClose - time;
   shutterClose = close;
   scene = &s;
   time = t;
