@@ -74,18 +74,12 @@ std::unique_ptr<tbb::global_control> limitThreads(const RenderOptions& o) {
                                                o.threads);
 }
 
-void addRenderOptions(CLI::App* app, RenderOptions& o) {
+void addSceneOptions(CLI::App* app, RenderOptions& o) {
   app->add_option("--scene", o.scene,
                   "Scene: .gltf/.glb/.obj/.json file or built-in (cornell, spheres, atrium)");
-  app->add_option("--pipeline", o.pipeline,
-                  "Pipeline: built-in name (deferred, deferred-rt-gbuffer, hybrid-heuristic, "
-                  "hybrid-all, hybrid-budget, rt-only, reference) or JSON file");
   app->add_option("--width", o.width, "Image width in pixels");
   app->add_option("--height", o.height, "Image height in pixels");
   app->add_option("--out", o.out, "Output image (.png/.exr) or folder");
-  app->add_option("--aov", o.aov,
-                  "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
-  app->add_option("--frames", o.frames, "Frames to render (scene time advances 1/30 s per frame)");
   app->add_option("--seed", o.seed, "Random seed");
   app->add_option("--threads", o.threads, "Worker threads (0 = all cores)");
   app->add_option("--camera-pos", o.cameraPos, "Camera position x,y,z");
@@ -99,6 +93,16 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
       "Add a directional light: dx,dy,dz[,intensity[,r,g,b]] (travel direction, W/m^2)");
   app->add_option("--emissive-lights", o.emissiveLights,
                   "Emissive meshes as punctual lights: auto (when the scene has none), on, off");
+}
+
+void addRenderOptions(CLI::App* app, RenderOptions& o) {
+  addSceneOptions(app, o);
+  app->add_option("--pipeline", o.pipeline,
+                  "Pipeline: built-in name (deferred, deferred-rt-gbuffer, hybrid-heuristic, "
+                  "hybrid-all, hybrid-budget, rt-only, reference) or JSON file");
+  app->add_option("--aov", o.aov,
+                  "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
+  app->add_option("--frames", o.frames, "Frames to render (scene time advances 1/30 s per frame)");
   app->add_option("--set", o.set,
                   "Set a pass parameter: pass.param=value (e.g. heuristic.budget_ms=40); "
                   "repeatable");
@@ -166,6 +170,10 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
   float dist = length(c.lookAt - c.position);
   c.nearPlane = std::min(c.nearPlane, dist * 0.05f);
   return c;
+}
+
+CameraDesc pathCameraAt(const Scene& s, const CameraDesc& base, float t) {
+  return s.cameraPath.empty() ? base : sampleCameraPath(s.cameraPath, base, t);
 }
 
 CameraDesc pathCamera(const Scene& s, const CameraDesc& base, int i, int n) {

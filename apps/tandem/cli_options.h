@@ -27,6 +27,9 @@ struct RenderOptions {
   std::vector<std::string> set;         // pass parameters: label.param=value
 };
 
+// Scene, size, output, seed, threads, camera overrides and lights (every rendering verb).
+void addSceneOptions(CLI::App* app, RenderOptions& o);
+// addSceneOptions plus pipeline, AOVs, frames and --set.
 void addRenderOptions(CLI::App* app, RenderOptions& o);
 // Validates option values; throws InputError naming the option.
 void validateRenderOptions(const RenderOptions& o);
@@ -39,6 +42,8 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o);
 // Camera for frame i of n along the scene's path (the path bench flies), or a gentle orbit of
 // `base` when the scene has none.
 CameraDesc pathCamera(const Scene& s, const CameraDesc& base, int i, int n);
+// The camera on the scene's path at path time t (seconds); `base` when the scene has no path.
+CameraDesc pathCameraAt(const Scene& s, const CameraDesc& base, float t);
 std::vector<std::string> splitList(const std::string& s);
 // Caps oneTBB's worker count for the lifetime of the returned object (null: all cores).
 std::unique_ptr<tbb::global_control> limitThreads(const RenderOptions& o);

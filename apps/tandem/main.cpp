@@ -1,4 +1,5 @@
-// tandem: the hybrid renderer's command line. Verbs: render, info, compare, bench, experiment.
+// tandem: the hybrid renderer's command line. Verbs: render, reference, info, compare, bench,
+// experiment.
 #include <cstdio>
 #include <map>
 
@@ -13,7 +14,8 @@ int main(int argc, char** argv) {
       {"info", tandem::addInfoVerb(app)},
       {"compare", tandem::addCompareVerb(app)},
       {"bench", tandem::addBenchVerb(app)},
-      {"experiment", tandem::addExperimentVerb(app)}};
+      {"experiment", tandem::addExperimentVerb(app)},
+      {"reference", tandem::addReferenceVerb(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

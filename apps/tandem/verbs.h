@@ -11,5 +11,6 @@ VerbRunner addInfoVerb(CLI::App& app);
 VerbRunner addCompareVerb(CLI::App& app);
 VerbRunner addBenchVerb(CLI::App& app);
 VerbRunner addExperimentVerb(CLI::App& app);
+VerbRunner addReferenceVerb(CLI::App& app);
 
 }  // namespace tandem

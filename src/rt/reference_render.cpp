@@ -36,16 +36,28 @@ void SampleSums::resolve(Buffer& hdr, Buffer* variance) const {
 
 double SampleSums::relativeError() const {
   if (samples < 2 || data.empty()) return 0.0;
-  const double n = samples;
-  double sumVar = 0, sumLum = 0;
-  const size_t pixels = data.size() / 4;
-  for (size_t i = 0; i < pixels; ++i) {
-    const double* p = &data[i * 4];
-    const double m = luminance(Vec3(float(p[0] / n), float(p[1] / n), float(p[2] / n)));
-    sumVar += std::max(p[3] / n - m * m, 0.0) / (n - 1.0);
-    sumLum += m;
-  }
-  return sumLum > 0 ? std::sqrt(sumVar / double(pixels)) / (sumLum / double(pixels)) : 0.0;
+  Buffer hdr(width, height, 3), variance(width, height, 1);
+  resolve(hdr, &variance);
+  return relativeNoise(hdr, variance);
+}
+
+double relativeNoise(const Buffer& hdr, const Buffer& variance) {
+  // The median pixel's standard error relative to its value (values under 1/1000 of the image
+  // mean count as that floor, so black pixels do not read as infinitely noisy). The median
+  // says how noisy the image looks; an RMS would follow the few firefly pixels.
+  double mean = 0;
+  for (int y = 0; y < hdr.height; ++y)
+    for (int x = 0; x < hdr.width; ++x) mean += luminance(hdr.rgb(x, y));
+  mean /= double(std::max<size_t>(hdr.pixelCount(), 1));
+  if (!(mean > 0)) return 0.0;
+  std::vector<double> rel;
+  rel.reserve(hdr.pixelCount());
+  for (int y = 0; y < hdr.height; ++y)
+    for (int x = 0; x < hdr.width; ++x)
+      rel.push_back(std::sqrt(double(variance.at(x, y)[0])) /
+                    std::max(double(luminance(hdr.rgb(x, y))), 1e-3 * mean));
+  std::nth_element(rel.begin(), rel.begin() + long(rel.size() / 2), rel.end());
+  return rel[rel.size() / 2];
 }
 
 Camera cameraAtShutter(const Camera& open, const Camera& close, float tau) {
@@ -130,8 +142,10 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
   if (progress)
     drawProgress(sums.samples, settings.spp, result.seconds, sums.relativeError(), true);
   cluster.reduceSum(sums.data);
+  std::vector<double> rays{double(rt.raysTraced() - raysBefore)};
+  cluster.reduceSum(rays);  // every process's rays, on rank 0
   result.spp = sums.samples;
-  result.rays = rt.raysTraced() - raysBefore;
+  result.rays = uint64_t(rays[0]);
   if (cluster.rank() == 0) result.relativeError = sums.relativeError();
   return result;
 }

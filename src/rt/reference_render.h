@@ -61,6 +61,9 @@ struct SampleSums {
   double relativeError() const;
 };
 
+// The median over pixels of the standard error of the pixel mean relative to its luminance.
+double relativeNoise(const Buffer& hdr, const Buffer& variance);
+
 // Renders up to settings.spp samples per pixel of the rows this process owns. The camera moves
 // from `open` to `close` while the shutter is open (pass the same camera for none); objects
 // move as the RayTracer's FrameScene says.
