@@ -19,7 +19,7 @@ expect_error() {
 }
 
 "$T" --help >/dev/null; check "help" "[ $? -eq 0 ]"
-for v in render info compare bench experiment; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
+for v in render reference info compare bench experiment; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
 
 "$T" render --width 160 --height 90 --out "$D/demo" --aov depth,normal,object_id,motion >/dev/null
 check "render writes png+exr+aovs" "[ -s $D/demo/cornell_deferred.png ] && [ -s $D/demo/cornell_deferred.exr ] && [ -s $D/demo/cornell_deferred_object_id.png ]"
@@ -59,7 +59,27 @@ check "experiment writes images" \
 check "experiment: hybrid-all agrees with rt-only" \
   "awk -F, 'NR>1 && \$14 < 0.97 {bad=1} END {exit bad}' $D/exp/table5.csv"
 
+# Ground truth: rendered once, then served from the cache; split over 2 MPI processes it is the
+# same image, byte for byte.
+"$T" reference --scene cornell --width 64 --height 36 --spp 16 --cache "$D/cache" --out "$D/ref/" --quiet >/dev/null
+check "reference writes png, exr and variance" "[ -s $D/ref/cornell_reference.png ] && [ -s $D/ref/cornell_reference.exr ] && [ -s $D/ref/cornell_reference.variance.exr ]"
+check "reference fills the cache" "[ \$(ls $D/cache/*.json | wc -l) -eq 1 ]"
+out=$("$T" reference --scene cornell --width 64 --height 36 --spp 16 --cache "$D/cache" --out "$D/ref2/" --quiet)
+check "second reference comes from the cache" "grep -q 'from cache' <<<\"\$out\" && cmp -s $D/ref/cornell_reference.exr $D/ref2/cornell_reference.exr"
+out=$("$T" reference --scene cornell --width 64 --height 36 --spp 16 --seed 5 --cache "$D/cache" --out "$D/ref3/" --quiet)
+check "another seed is another cache entry" "! grep -q 'from cache' <<<\"\$out\""
+if command -v mpirun >/dev/null; then
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -n 2 \
+    "$T" reference --scene cornell --width 64 --height 36 --spp 16 --no-cache --out "$D/mpi/" --quiet >"$D/mpi.log" 2>&1
+  check "mpirun -n 2 writes the single-process image" "grep -q '2 MPI processes' $D/mpi.log && cmp -s $D/ref/cornell_reference.exr $D/mpi/cornell_reference.exr"
+else
+  echo "skip: mpirun not installed (scripts/install-deps.sh installs it)"
+fi
+
 mkdir -p "$D/err"
+expect_error "reference bad spp" "--spp" "$T" reference --spp 0 --out "$D/err/r/"
+expect_error "reference bad blades" "--blades" "$T" reference --blades 2 --out "$D/err/r/"
+expect_error "reference negative shutter" "--shutter" "$T" reference --shutter -1 --out "$D/err/r/"
 expect_error "--set unknown parameter" "unknown parameter" "$T" render --pipeline hybrid-heuristic --set heuristic.nope=1 --out "$D/err/x.png"
 expect_error "--set out of range" "out of range" "$T" render --pipeline hybrid-heuristic --set heuristic.budget_ms=-3 --out "$D/err/x.png"
 expect_error "--set unknown pass" "no pass labelled" "$T" render --set nopass.x=1 --out "$D/err/x.png"
