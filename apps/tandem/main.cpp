@@ -10,12 +10,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Tandem: a hybrid rasterization + ray tracing renderer"};
   app.require_subcommand(1);
   std::map<std::string, tandem::VerbRunner> verbs = {
-      {"render", tandem::addRenderVerb(app)},
-      {"info", tandem::addInfoVerb(app)},
-      {"compare", tandem::addCompareVerb(app)},
-      {"bench", tandem::addBenchVerb(app)},
-      {"experiment", tandem::addExperimentVerb(app)},
-      {"reference", tandem::addReferenceVerb(app)}};
+      {"render", tandem::addRenderVerb(app)},         {"info", tandem::addInfoVerb(app)},
+      {"compare", tandem::addCompareVerb(app)},       {"bench", tandem::addBenchVerb(app)},
+      {"experiment", tandem::addExperimentVerb(app)}, {"reference", tandem::addReferenceVerb(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

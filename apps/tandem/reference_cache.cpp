@@ -67,7 +67,8 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   p.setParam("pt_reference.time_limit=" + std::to_string(s.timeLimitS), "reference");
   p.setParam("pt_reference.max_depth=" + std::to_string(s.path.maxDepth), "reference");
   p.setParam(std::string("pt_reference.progress=") + (s.progress ? "true" : "false"), "reference");
-  RenderSettings rs{.width = job.width, .height = job.height, .seed = s.seed, .shutter = job.shutter};
+  RenderSettings rs{
+      .width = job.width, .height = job.height, .seed = s.seed, .shutter = job.shutter};
   Renderer r(*job.scene, std::move(p), rs);
   r.context().cluster = cluster;
   const auto start = Clock::now();
@@ -83,12 +84,18 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
     fs::create_directories(cacheDir);
     writeExr(base.string() + ".exr", img.hdr);
     writeExr(base.string() + ".variance.exr", img.variance);
-    nlohmann::json j = {{"scene", job.scene->name},      {"width", job.width},
-                        {"height", job.height},         {"spp", img.spp},
-                        {"targetSpp", s.spp},           {"timeLimit", s.timeLimitS},
-                        {"maxDepth", s.path.maxDepth},  {"seed", s.seed},
-                        {"time", job.time},             {"shutter", job.shutter},
-                        {"seconds", img.seconds},       {"rays", img.rays},
+    nlohmann::json j = {{"scene", job.scene->name},
+                        {"width", job.width},
+                        {"height", job.height},
+                        {"spp", img.spp},
+                        {"targetSpp", s.spp},
+                        {"timeLimit", s.timeLimitS},
+                        {"maxDepth", s.path.maxDepth},
+                        {"seed", s.seed},
+                        {"time", job.time},
+                        {"shutter", job.shutter},
+                        {"seconds", img.seconds},
+                        {"rays", img.rays},
                         {"relativeError", img.relativeError}};
     writeTextFile(base.string() + ".json", j.dump(2) + "\n");
   }

@@ -30,7 +30,8 @@ struct ReferenceVerb {
 
   void validate() {
     validateRenderOptions(opts);
-    if (spp < 1 || spp > (1 << 20)) throw InputError("command line", "--spp", "must be in [1, 1048576]");
+    if (spp < 1 || spp > (1 << 20))
+      throw InputError("command line", "--spp", "must be in [1, 1048576]");
     if (maxDepth < 1 || maxDepth > 1024)
       throw InputError("command line", "--max-depth", "must be in [1, 1024]");
     if (!(timeLimit >= 0)) throw InputError("command line", "--time-limit", "must be >= 0 seconds");
@@ -41,7 +42,8 @@ struct ReferenceVerb {
       throw InputError("command line", "--blades", "must be 0 (circular) or 3-64");
     if (aperture != -1 && !(aperture >= 0))
       throw InputError("command line", "--aperture", "must be >= 0 metres");
-    if (focus != -1 && !(focus > 0)) throw InputError("command line", "--focus", "must be > 0 metres");
+    if (focus != -1 && !(focus > 0))
+      throw InputError("command line", "--focus", "must be > 0 metres");
   }
 
   int run() {

@@ -21,7 +21,11 @@ void hashScene(Hasher& h, const Scene& s) {
     h.pod(m.metallicRoughnessTexture).pod(m.baseColor).pod(m.metallic).pod(m.roughness);
   }
   for (const Texture& t : s.textures)
-    h.pod(t.texels.width).pod(t.texels.height).vec(t.texels.data).pod(int(t.wrapS)).pod(int(t.wrapT));
+    h.pod(t.texels.width)
+        .pod(t.texels.height)
+        .vec(t.texels.data)
+        .pod(int(t.wrapS))
+        .pod(int(t.wrapT));
   for (const Object& o : s.objects) {
     h.pod(o.mesh).pod(o.material).pod(o.parent).pod(o.local.position).pod(o.local.rotationDeg);
     h.pod(o.local.scale);

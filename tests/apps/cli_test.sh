@@ -25,8 +25,8 @@ for v in render reference info compare bench experiment; do "$T" $v --help >/dev
 check "render writes png+exr+aovs" "[ -s $D/demo/cornell_deferred.png ] && [ -s $D/demo/cornell_deferred.exr ] && [ -s $D/demo/cornell_deferred_object_id.png ]"
 "$T" render cornell --width 160 --height 90 --pipeline deferred-rt-gbuffer --out "$D/rt.png" >/dev/null
 check "rt pipeline renders" "[ -s $D/rt.png ]"
-out=$("$T" compare "$D/demo/cornell_deferred.png" "$D/rt.png" --heatmap "$D/heat.png")
-check "compare raster vs rt output" "grep -q ssim <<<\"\$out\" && [ -s $D/heat.png ]"
+out=$("$T" compare "$D/demo/cornell_deferred.png" "$D/rt.png" --heatmap "$D/heat.png" --flip-map "$D/flip.png")
+check "compare raster vs rt output" "grep -q ssim <<<\"\$out\" && grep -q '^flip ' <<<\"\$out\" && [ -s $D/heat.png ] && [ -s $D/flip.png ]"
 ssim=$(awk '/^ssim/ {print $2}' <<<"$out")
 check "raster and rt images agree (SSIM >= 0.98, got $ssim)" "awk -v s=$ssim 'BEGIN{exit !(s >= 0.98)}'"
 out=$("$T" info "$SHARED_SCENES/CornellBox/CornellBox-Original.obj")
