@@ -7,7 +7,7 @@ pkgs=(
   libembree-dev libtbb-dev libtinygltf-dev libtinyobjloader-dev libstb-dev
   libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libopenmpi-dev openmpi-bin
+  libopenmpi-dev openmpi-bin gnuplot-nox
 )
 if [ "${TANDEM_FUZZ_DEPS:-0}" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
 missing=()

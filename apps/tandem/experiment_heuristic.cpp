@@ -11,8 +11,9 @@
 #include "cli_options.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/json_fields.h"
 #include "eval/metrics.h"
-#include "machine_info.h"
+#include "experiment_report.h"
 #include "passes/heuristic.h"
 #include "pipeline/renderer.h"
 
@@ -27,6 +28,38 @@ std::vector<std::string> defaultHeuristicScenes() {
   const std::string dir = std::string(TANDEM_SOURCE_DIR) + "/scenes/";
   return {"spheres", dir + "atrium_spheres.json", dir + "atrium_bunny.json",
           dir + "cornell_spheres.json"};
+}
+
+HeuristicExperimentOptions heuristicOptionsFromJson(const nlohmann::json& j,
+                                                    const std::string& file) {
+  HeuristicExperimentOptions o;
+  JsonFields f(j, file, "");
+  f.string("runner", "heuristic");
+  f.string("title", "");
+  f.string("description", "");
+  if (f.has("scenes")) {
+    const Json& a = f.raw("scenes");
+    if (!a.is_array()) f.fail("scenes", "expected an array of scene names or files");
+    const fs::path base = fs::path(file).parent_path();
+    for (size_t i = 0; i < a.size(); ++i) {
+      if (!a[i].is_string()) f.fail("scenes[" + std::to_string(i) + "]", "expected a string");
+      std::string sc = a[i].get<std::string>();
+      // Files are named relative to the experiment file; built-in names have no dot.
+      if (sc.find('.') != std::string::npos && fs::path(sc).is_relative())
+        sc = (base / sc).string();
+      o.scenes.push_back(sc);
+    }
+  }
+  o.width = f.integer("width", o.width, 8, 16384);
+  o.height = f.integer("height", o.height, 8, 16384);
+  o.warmup = f.integer("warmup", o.warmup, 0, 1000);
+  o.staticFrames = f.integer("staticFrames", o.staticFrames, 1, 10000);
+  o.pathFrames = f.integer("pathFrames", o.pathFrames, 1, 100000);
+  o.budget = f.number("budget", float(o.budget), 0.0f, 1e30f);
+  o.budgetMs = f.number("budgetMs", float(o.budgetMs), 1e-3f, 1e9f);
+  o.tolerance = f.number("tolerance", float(o.tolerance), 0.0f, 10.0f);
+  f.finish();
+  return o;
 }
 
 namespace {
@@ -84,13 +117,6 @@ StaticResult runStatic(Run& run, const CameraDesc& cam, const HeuristicExperimen
   return r;
 }
 
-std::string fmt(double v, int decimals = 2) {
-  if (std::isinf(v)) return "inf";
-  char b[64];
-  std::snprintf(b, sizeof b, "%.*f", decimals, v);
-  return b;
-}
-
 double mean(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += x;
@@ -107,10 +133,6 @@ struct SceneResult {
   int withinBand = 0, binding = 0, bindingWithin = 0;
   std::vector<double> budgetRtMs;
 };
-
-std::string sceneLabel(const std::string& spec) {
-  return fs::path(spec).stem().string();
-}
 
 }  // namespace
 
@@ -134,7 +156,6 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
     scenes.push_back(loadSceneFor(ro));
   }
   if (!o.out.empty() && !fs::exists(o.out)) fs::create_directories(o.out);
-  const MachineInfo machine = machineInfo();
   const fs::path dir(o.out);
   const std::string T = "heuristic.budget=" + fmt(o.budget, 0);
   const std::string budgetMs = "heuristic.budget_ms=" + fmt(o.budgetMs, 3);
@@ -244,16 +265,16 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   writeTextFile((dir / "budget_frames.csv").string(), bf.str());
 
   // The Markdown report: the paper's table layout (rows = measures, columns = scenes).
+  ExperimentReport report(dir, "Heuristic hybrid rendering (seed 002): experiment results");
   std::ostringstream md;
-  md << "# Heuristic hybrid rendering (seed 002): experiment results\n\n"
-     << "Machine: " << machine.oneLine()
-     << (o.threads ? "; limited to " + std::to_string(o.threads) + " threads" : std::string())
-     << ".\n\n"
-     << o.width << "x" << o.height << "; static shots: median of " << o.staticFrames
-     << " frames after " << o.warmup << " warm-up; path: " << o.pathFrames
-     << " frames. hybrid-heuristic uses T = " << fmt(o.budget, 0)
-     << " cost units; hybrid-budget uses " << fmt(o.budgetMs, 1)
-     << " ms with per-effect selection and recursion-aware costs.\n\n";
+  const std::string settings =
+      std::to_string(o.width) + "x" + std::to_string(o.height) +
+      (o.threads ? ", limited to " + std::to_string(o.threads) + " threads" : std::string()) +
+      "; static shots: median of " + std::to_string(o.staticFrames) + " frames after " +
+      std::to_string(o.warmup) + " warm-up; path: " + std::to_string(o.pathFrames) +
+      " frames. hybrid-heuristic uses T = " + fmt(o.budget, 0) +
+      " cost units; hybrid-budget uses " + fmt(o.budgetMs, 1) +
+      " ms with per-effect selection and recursion-aware costs.";
   auto header = [&](const char* first) {
     md << "| " << first << " |";
     for (const SceneResult& r : results) md << " " << r.name << " |";
@@ -318,9 +339,24 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   row("RT stage median (ms)",
       [](const SceneResult& r) { return fmt(summarize(r.budgetRtMs).median); });
   md << "\nImages: `<scene>_<pipeline>.png` (static shot), `<scene>_heuristic_mask.png` "
-        "(red = shadows, green = reflections, blue = refractions ray traced).\n";
-  writeTextFile((dir / "results.md").string(), md.str());
-  std::printf("wrote %s\n", (dir / "results.md").string().c_str());
+        "(red = shadows, green = reflections, blue = refractions ray traced).\n\n";
+  report.markdown(md.str());
+  // The budget tracking, frame by frame: the RT stage's time against the budget.
+  std::vector<PlotSeries> tracking;
+  for (const SceneResult& r : results) {
+    PlotSeries ps{r.name, {}, r.budgetRtMs};
+    for (size_t f = 0; f < r.budgetRtMs.size(); ++f) ps.x.push_back(double(f));
+    tracking.push_back(ps);
+  }
+  tracking.push_back(
+      {"budget", {0.0, double(std::max(o.pathFrames - 1, 1))}, {o.budgetMs, o.budgetMs}});
+  report.plot("budget_tracking", "hybrid-budget: RT stage time along the camera path", "path frame",
+              "rt_secondary (ms)", tracking);
+  for (const SceneResult& r : results)
+    for (const char* what : {"hybrid-heuristic", "hybrid-all", "hybrid-budget", "rt-only",
+                             "heuristic_mask", "budget_mask"})
+      report.image(r.name + "_" + what + ".png", r.name + ": " + what);
+  report.write(settings);
   return 0;
 }
 

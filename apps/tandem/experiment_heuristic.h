@@ -8,6 +8,7 @@
 //    and the share of frames within ±15 %.
 // Writes results.md, table5.csv, table6.csv, budget_frames.csv and PNGs into the output folder.
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,11 @@ struct HeuristicExperimentOptions {
 
 // The paper's four test scenes, in kind (paths relative to the source tree's scenes/).
 std::vector<std::string> defaultHeuristicScenes();
+
+// Reads the runner's settings from an experiment file (`"runner": "heuristic"`); scene files
+// are relative to it. Throws InputError naming the field.
+HeuristicExperimentOptions heuristicOptionsFromJson(const nlohmann::json& j,
+                                                    const std::string& file);
 
 // Runs the experiment; throws InputError on bad options or scenes. Returns 0.
 int runHeuristicExperiment(const HeuristicExperimentOptions& o);

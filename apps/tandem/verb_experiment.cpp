@@ -1,41 +1,120 @@
-// tandem experiment: regenerates a paper's experiments in one command (tables, CSV, PNGs).
-// Sub-commands: heuristic (seed 002).
+// tandem experiment NAME: regenerates an experiment in one command. An experiment is data: a
+// JSON file (experiments/NAME.json in the source tree, or any path) whose "runner" picks the
+// procedure — "sweep" (scenes x pipelines x a parameter sweep against cached references) or
+// "heuristic" (seed 002's Tables 5 and 6 and the ms-budget tracking). Command-line options
+// override the file's settings. Every run writes results.md, CSV, PNG plots and index.html.
+#include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include "cli_options.h"
+#include "core/error.h"
 #include "experiment_heuristic.h"
+#include "experiment_sweep.h"
 #include "verbs.h"
 
+#ifndef TANDEM_SOURCE_DIR
+#define TANDEM_SOURCE_DIR "."
+#endif
+
 namespace tandem {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ExperimentVerb {
+  std::string name;
+  bool list = false;
+  ExperimentOverrides o;
+  int staticFrames = -1, pathFrames = -1, threads = 0;  // -1: not given
+  double budget = -1, budgetMs = -1;
+
+  static fs::path experimentsDir() { return fs::path(TANDEM_SOURCE_DIR) / "experiments"; }
+
+  fs::path resolve() const {
+    if (fs::exists(name) && fs::is_regular_file(name)) return name;
+    const fs::path p = experimentsDir() / (name + ".json");
+    if (fs::exists(p)) return p;
+    std::string known;
+    if (fs::exists(experimentsDir()))
+      for (const auto& e : fs::directory_iterator(experimentsDir()))
+        if (e.path().extension() == ".json") known += " " + e.path().stem().string();
+    throw InputError(name, "",
+                     "not an experiment file and not a built-in experiment (have:" + known + ")");
+  }
+
+  int run() {
+    if (threads < 0 || threads > 4096)
+      throw InputError("command line", "--threads", "must be in [0, 4096]");
+    RenderOptions ro;
+    ro.threads = threads;
+    auto limit = limitThreads(ro);
+    if (list || name.empty()) {
+      for (const auto& e : fs::directory_iterator(experimentsDir())) {
+        if (e.path().extension() != ".json") continue;
+        std::ifstream in(e.path());
+        const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+        std::printf("%-22s %s\n", e.path().stem().string().c_str(),
+                    j.is_object() ? j.value("title", "").c_str() : "(unreadable)");
+      }
+      return name.empty() && !list ? 1 : 0;
+    }
+    const fs::path file = resolve();
+    std::ifstream in(file);
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object())
+      throw InputError(file.string(), "", "not a JSON object");
+    const std::string runner = j.value("runner", "sweep");
+    if (runner == "heuristic") {
+      HeuristicExperimentOptions ho = heuristicOptionsFromJson(j, file.string());
+      ho.out = o.out.empty() ? "out/experiment-" + file.stem().string() : o.out;
+      if (!o.scenes.empty()) ho.scenes = o.scenes;
+      if (o.width) ho.width = o.width;
+      if (o.height) ho.height = o.height;
+      if (o.warmup >= 0) ho.warmup = o.warmup;
+      if (staticFrames != -1) ho.staticFrames = staticFrames;  // range-checked by the runner
+      if (pathFrames != -1) ho.pathFrames = pathFrames;
+      if (budget >= 0) ho.budget = budget;
+      if (budgetMs >= 0) ho.budgetMs = budgetMs;
+      ho.threads = threads;
+      return runHeuristicExperiment(ho);
+    }
+    if (runner != "sweep")
+      throw InputError(file.string(), "runner", "'" + runner + "' is not sweep or heuristic");
+    if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
+      throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
+                       "apply to the heuristic runner only");
+    return runSweepExperiment(j, file.string(), o);
+  }
+};
+
+}  // namespace
 
 VerbRunner addExperimentVerb(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("experiment", "Reproduce a paper's experiments");
-  sub->require_subcommand(1);
-  auto h = std::make_shared<HeuristicExperimentOptions>();
-  CLI::App* heur = sub->add_subcommand(
-      "heuristic", "Seed 002: Table 5 (static shots), Table 6 (camera path), ms-budget tracking");
-  heur->add_option("--out", h->out, "Output folder (results.md, CSV, PNGs)");
-  heur->add_option("--scenes", h->scenes,
-                   "Scenes (built-in names or files); default: spheres, atrium_spheres, "
-                   "atrium_bunny, cornell_spheres")
-      ->delimiter(',');
-  heur->add_option("--width", h->width, "Image width");
-  heur->add_option("--height", h->height, "Image height");
-  heur->add_option("--warmup", h->warmup, "Untimed frames before each measurement");
-  heur->add_option("--static-frames", h->staticFrames, "Timed frames of each static shot");
-  heur->add_option("--path-frames", h->pathFrames, "Frames along the camera path (Table 6)");
-  heur->add_option("--budget", h->budget, "T in cost units for hybrid-heuristic");
-  heur->add_option("--budget-ms", h->budgetMs, "RT budget in ms for hybrid-budget");
-  heur->add_option("--threads", h->threads, "Worker threads (0 = all cores)");
-  return [h, heur]() {
-    if (!heur->parsed()) return 1;
-    RenderOptions ro;
-    ro.threads = h->threads;
-    if (h->threads < 0 || h->threads > 4096)
-      throw InputError("command line", "--threads", "must be in [0, 4096]");
-    auto limit = limitThreads(ro);
-    return runHeuristicExperiment(*h);
-  };
+  auto v = std::make_shared<ExperimentVerb>();
+  const char* env = std::getenv("TANDEM_REFERENCE_CACHE");
+  v->o.cache = env && *env ? env : "out/reference-cache";
+  CLI::App* sub = app.add_subcommand(
+      "experiment", "Run an experiment (experiments/NAME.json or a file): tables, plots, index");
+  sub->add_option("name", v->name, "Experiment name (see --list) or JSON file");
+  sub->add_flag("--list", v->list, "List the built-in experiments");
+  sub->add_option("--out", v->o.out, "Output folder (default out/experiment-NAME)");
+  sub->add_option("--scenes", v->o.scenes, "Override the scenes (names or files)")->delimiter(',');
+  sub->add_option("--width", v->o.width, "Override the image width");
+  sub->add_option("--height", v->o.height, "Override the image height");
+  sub->add_option("--warmup", v->o.warmup, "Override the untimed frames before measuring");
+  sub->add_option("--frames", v->o.frames, "sweep: timed frames per render (median)");
+  sub->add_option("--spp", v->o.spp, "sweep: reference samples per pixel");
+  sub->add_option("--cache", v->o.cache,
+                  "Reference cache folder (default $TANDEM_REFERENCE_CACHE or "
+                  "out/reference-cache)");
+  sub->add_flag("--no-cache", v->o.noCache, "Render references even when cached");
+  sub->add_option("--static-frames", v->staticFrames, "heuristic: timed frames of each shot");
+  sub->add_option("--path-frames", v->pathFrames, "heuristic: frames along the camera path");
+  sub->add_option("--budget", v->budget, "heuristic: T in cost units for hybrid-heuristic");
+  sub->add_option("--budget-ms", v->budgetMs, "heuristic: RT budget in ms for hybrid-budget");
+  sub->add_option("--threads", v->threads, "Worker threads (0 = all cores)");
+  return [v] { return v->run(); };
 }
 
 }  // namespace tandem

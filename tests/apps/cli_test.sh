@@ -58,6 +58,17 @@ check "experiment writes images" \
   "[ -s $D/exp/spheres_hybrid-heuristic.png ] && [ -s $D/exp/cornell_spheres_rt-only.png ] && [ -s $D/exp/spheres_heuristic_mask.png ]"
 check "experiment: hybrid-all agrees with rt-only" \
   "awk -F, 'NR>1 && \$14 < 0.97 {bad=1} END {exit bad}' $D/exp/table5.csv"
+check "heuristic experiment has an index page" "grep -q budget_tracking $D/exp/results.md && [ -s $D/exp/index.html ]"
+
+# A data-driven sweep: one row per pipeline x value, plots, index, metrics against the reference.
+"$T" experiment reference-convergence --scenes cornell --width 32 --height 18 --spp 32 \
+  --cache "$D/cache-rc" --out "$D/rc" >/dev/null
+check "sweep writes a row per swept value" "[ \$(wc -l < $D/rc/results.csv) -eq 5 ] && grep -q '^cornell,reference,4,' $D/rc/results.csv"
+check "sweep writes index, images and flip maps" "[ -s $D/rc/index.html ] && [ -s $D/rc/cornell_reference_16.png ] && [ -s $D/rc/cornell_reference_16_flip.png ]"
+if command -v gnuplot >/dev/null; then
+  check "sweep draws plots" "[ -s $D/rc/cornell_rmse.png ] && [ -s $D/rc/cornell_ssim.png ]"
+fi
+check "more samples, less error" "awk -F, 'NR==2 {a=\$5} NR==5 {b=\$5} END {exit !(b < a)}' $D/rc/results.csv"
 
 # Ground truth: rendered once, then served from the cache; split over 2 MPI processes it is the
 # same image, byte for byte.
@@ -85,6 +96,11 @@ expect_error "--set out of range" "out of range" "$T" render --pipeline hybrid-h
 expect_error "--set unknown pass" "no pass labelled" "$T" render --set nopass.x=1 --out "$D/err/x.png"
 expect_error "--set malformed" "pass.param=value" "$T" render --set budget --out "$D/err/x.png"
 expect_error "experiment bad scene" "not found" "$T" experiment heuristic --scenes /nonexistent.json --out "$D/err/exp"
+echo '{"runner": "sweep", "scenes": ["cornell"], "pipelines": ["deferred"], "widht": 3}' > "$D/badexp.json"
+expect_error "experiment unknown field" "widht: unknown field" "$T" experiment "$D/badexp.json" --out "$D/err/exp"
+echo '{"runner": "sweep", "scenes": ["cornell"], "pipelines": ["deferred"], "sweep": {"param": "nope.x", "values": [1]}}' > "$D/badexp2.json"
+expect_error "experiment sweep of a missing pass" "no pipeline has" "$T" experiment "$D/badexp2.json" --out "$D/err/exp"
+expect_error "unknown experiment" "not an experiment file" "$T" experiment nosuch --out "$D/err/exp"
 expect_error "experiment bad frames" "--path-frames" "$T" experiment heuristic --path-frames 0 --out "$D/err/exp"
 expect_error "missing scene file" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/x.png"
 expect_error "unknown builtin" "not a file and not a built-in" "$T" render --scene nosuchscene --out "$D/err/x.png"
