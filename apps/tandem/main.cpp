@@ -1,5 +1,5 @@
 // tandem: the hybrid renderer's command line. Verbs: render, reference, info, compare, bench,
-// experiment.
+// experiment, export.
 #include <cstdio>
 #include <map>
 
@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   std::map<std::string, tandem::VerbRunner> verbs = {
       {"render", tandem::addRenderVerb(app)},         {"info", tandem::addInfoVerb(app)},
       {"compare", tandem::addCompareVerb(app)},       {"bench", tandem::addBenchVerb(app)},
-      {"experiment", tandem::addExperimentVerb(app)}, {"reference", tandem::addReferenceVerb(app)}};
+      {"experiment", tandem::addExperimentVerb(app)}, {"reference", tandem::addReferenceVerb(app)},
+      {"export", tandem::addExportVerb(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -21,7 +21,8 @@ struct ReferenceJob {
 struct ReferenceImage {
   Buffer hdr, variance;
   int spp = 0;
-  double seconds = 0, relativeError = 0;
+  double seconds = 0, relativeError = 0;  // seconds: the whole render (scene, BVH, sampling)
+  double samplingSeconds = 0;             // path tracing alone
   uint64_t rays = 0;
   bool fromCache = false;
   std::string key;

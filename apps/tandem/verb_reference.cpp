@@ -80,9 +80,11 @@ struct ReferenceVerb {
     std::printf("reference %s %dx%d: %d spp%s, key %s\n", scene.name.c_str(), opts.width,
                 opts.height, img.spp, img.fromCache ? " (from cache)" : "", img.key.c_str());
     if (!img.fromCache)
-      std::printf("  %.2f s, %.2f Mrays/s%s, noise %.2f %% (median relative standard error)\n",
-                  img.seconds, double(img.rays) / img.seconds * 1e-6,
-                  cluster ? " (all processes)" : "", 100.0 * img.relativeError);
+      std::printf(
+          "  %.2f s (sampling %.2f s), %.2f Mrays/s%s, noise %.2f %% (median relative "
+          "standard error)\n",
+          img.seconds, img.samplingSeconds, double(img.rays) / img.samplingSeconds * 1e-6,
+          cluster ? " (all processes)" : "", 100.0 * img.relativeError);
     if (cluster) std::printf("  %d MPI processes\n", cluster->ranks());
     const fs::path base = dir / stem;
     const std::string png = isFile && hasExtension(out, ".png") ? out : base.string() + ".png";

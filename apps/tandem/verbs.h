@@ -12,5 +12,6 @@ VerbRunner addCompareVerb(CLI::App& app);
 VerbRunner addBenchVerb(CLI::App& app);
 VerbRunner addExperimentVerb(CLI::App& app);
 VerbRunner addReferenceVerb(CLI::App& app);
+VerbRunner addExportVerb(CLI::App& app);
 
 }  // namespace tandem

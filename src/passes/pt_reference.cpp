@@ -19,7 +19,9 @@ std::vector<ParamDesc> PTReferencePass::params() const {
 }
 
 void PTReferencePass::execute(FrameContext& ctx) {
-  RayTracer& rt = ctx.rayTracer();
+  const auto t0 = Clock::now();
+  RayTracer& rt = ctx.rayTracer();  // (re)builds the BVH: reported apart from the sampling
+  ctx.passParts.push_back({"bvh", msSince(t0), 0});
   ReferenceSettings settings;
   settings.spp = int(param("spp"));
   settings.timeLimitS = param("time_limit");
@@ -36,6 +38,7 @@ void PTReferencePass::execute(FrameContext& ctx) {
   sums.resolve(hdr, &variance);
   ctx.samplesPerPixel = r.spp;
   ctx.passRays += double(r.rays);
+  ctx.passParts.push_back({"sampling", r.seconds * 1e3, double(r.rays)});
 }
 
 }  // namespace tandem

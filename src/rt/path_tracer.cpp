@@ -12,6 +12,12 @@ namespace tandem {
 
 namespace {
 
+// The surface at a hit, from Embree's own distance and barycentrics.
+SurfaceSample resolveHit(const FrameScene& fs, const Hit& h, Vec3 dir, float time) {
+  const float tuv[3] = {h.t, h.u, h.v};
+  return resolveSurface(fs, h.object, h.prim, Vec3(0.0f), dir, time, tuv);
+}
+
 // Unpolarised Fresnel reflectance of a dielectric; eta = n_incident / n_transmitted.
 float fresnelDielectric(float cosi, float eta) {
   float sin2t = eta * eta * (1.0f - cosi * cosi);
@@ -53,12 +59,14 @@ float powerHeuristic(float a, float b) {
 float bsdfPdf(Vec3 n, Vec3 wo, Vec3 wi, float pd, float e) {
   float cosI = dot(n, wi);
   if (cosI <= 0.0f) return 0.0f;
+  if (pd >= 1.0f) return cosI / kPi;  // Lambert only: no lobe to evaluate
   Vec3 h = normalize(wo + wi);
   float lobe = (e + 1.0f) / (2.0f * kPi) * std::pow(std::max(dot(n, h), 0.0f), e);
   return pd * cosI / kPi + (1.0f - pd) * lobe / std::max(4.0f * dot(wo, h), 1e-6f);
 }
 
 Vec3 blinnPhongBrdf(Vec3 n, Vec3 wo, Vec3 wi, Vec3 kd, Vec3 ks, float e) {
+  if (maxComponent(ks) <= 0.0f) return kd * (1.0f / kPi);
   Vec3 h = normalize(wo + wi);
   return kd * (1.0f / kPi) +
          ks * ((e + 8.0f) / (8.0f * kPi) * std::pow(std::max(dot(n, h), 0.0f), e));
@@ -139,7 +147,7 @@ Vec3 PathTracer::areaLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, fl
   r.time = time;
   Hit h = rt_.intersect(r);
   if (!h.valid() || h.object != object || h.prim != prim) return Vec3(0.0f);
-  SurfaceSample e = resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, wi, time);
+  SurfaceSample e = resolveHit(*rt_.frame(), h, wi, time);
   // Emitters light their front side only (double-sided ones face every ray, see resolveSurface).
   float cosL = -dot(e.geoNormal, wi);
   if (!(cosL > 1e-6f)) return Vec3(0.0f);
@@ -188,7 +196,7 @@ Vec3 PathTracer::radiance(Vec3 o, Vec3 d, float time, SobolSampler& rng) const {
       L += beta * scene_.skyRadiance(d);
       break;
     }
-    SurfaceSample s = resolveSurface(*rt_.frame(), hit.object, hit.prim, o, d, time);
+    SurfaceSample s = resolveHit(*rt_.frame(), hit, d, time);
     // Emission leaves the front side only: a light's back (e.g. the Cornell lamp seen from the
     // 2 cm gap above it) is dark, as in pbrt and Mitsuba.
     if (maxComponent(s.emission) > 0.0f && dot(s.geoNormal, d) < 0.0f) {

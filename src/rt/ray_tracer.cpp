@@ -25,7 +25,6 @@ namespace {
 struct QueryContext {
   RTCIntersectContext ctx;
   const FrameScene* frame;
-  bool cullBackfaces;
   Vec3* transmittance;  // non-null: a shadow ray accumulating Listing 8b's attenuation
   // Surfaces already counted by this shadow ray: a ray through a shared edge reports both
   // triangles at the same distance, which must attenuate once.
@@ -40,8 +39,25 @@ void errorCallback(void*, RTCError code, const char* str) {
   std::fprintf(stderr, "embree error %d: %s\n", int(code), str ? str : "");
 }
 
-// Rejects hits on transparent texels of alpha-masked materials and, for camera queries, hits on
-// the back of single-sided surfaces.
+// Camera queries that mimic the rasterizer reject hits on the back of single-sided surfaces. A
+// context filter (set only on those queries) rather than a geometry filter, so every other ray
+// runs without a callback.
+void cullBackfaceHit(const RTCFilterFunctionNArguments* args) {
+  const auto* info = static_cast<const GeometryInfo*>(args->geometryUserPtr);
+  if (!info->singleSided) return;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    Vec3 ng{RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+            RTCHitN_Ng_z(args->hit, args->N, i)};
+    Vec3 d{RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+           RTCRayN_dir_z(args->ray, args->N, i)};
+    // Embree's Ng points out of the counter-clockwise (front) face, against a front-facing ray.
+    if (dot(ng, d) >= 0) args->valid[i] = 0;
+  }
+}
+
+// Rejects hits on transparent texels of alpha-masked materials and accumulates Listing 8b's
+// shadow attenuation.
 void filterHit(const RTCFilterFunctionNArguments* args) {
   const auto* info = static_cast<const GeometryInfo*>(args->geometryUserPtr);
   const auto* qc = reinterpret_cast<const QueryContext*>(args->context);
@@ -51,17 +67,6 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
     if (args->valid[i] != -1) continue;
     RTCHitN* hit = args->hit;
     RTCRayN* ray = args->ray;
-    if (info->singleSided && qc->cullBackfaces) {
-      Vec3 ng{RTCHitN_Ng_x(hit, args->N, i), RTCHitN_Ng_y(hit, args->N, i),
-              RTCHitN_Ng_z(hit, args->N, i)};
-      Vec3 d{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
-             RTCRayN_dir_z(ray, args->N, i)};
-      // Embree's Ng points out of the counter-clockwise (front) face, against a front-facing ray.
-      if (dot(ng, d) >= 0) {
-        args->valid[i] = 0;
-        continue;
-      }
-    }
     if (info->alphaMask) {
       float u = RTCHitN_u(hit, args->N, i), v = RTCHitN_v(hit, args->N, i);
       unsigned prim = RTCHitN_primID(hit, args->N, i);
@@ -116,6 +121,7 @@ bool RayTracer::update(const FrameScene& fs) {
   geometryInfo_.clear();
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);  // back-face culling
   const Scene& scene = *fs.scene;
   for (size_t o = 0; o < fs.objects.size(); ++o) {
     const Mesh& mesh = scene.meshes[scene.objects[o].mesh];
@@ -140,7 +146,7 @@ bool RayTracer::update(const FrameScene& fs) {
         GeometryInfo{&fs, int(o), !mat.doubleSided, mat.alphaMode == AlphaMode::Mask}));
     GeometryInfo* info = geometryInfo_.back().get();
     rtcSetGeometryUserData(g, info);
-    if (info->singleSided || info->alphaMask) rtcSetGeometryIntersectFilterFunction(g, filterHit);
+    if (info->alphaMask) rtcSetGeometryIntersectFilterFunction(g, filterHit);
     // Occlusion queries filter only where a hit may not end the shadow ray: transparent,
     // alpha-masked or non-shadow-casting materials; an opaque caster's first hit is final and
     // needs no callback.
@@ -204,7 +210,7 @@ Hit RayTracer::intersect(const Ray& in, bool cullBackfaces) const {
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
-  qc.cullBackfaces = cullBackfaces;
+  if (cullBackfaces) qc.ctx.filter = cullBackfaceHit;
   qc.transmittance = nullptr;
   RTCRayHit rh;
   setRay(rh.ray, in);
@@ -227,7 +233,6 @@ bool RayTracer::occluded(const Ray& in) const {
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
-  qc.cullBackfaces = false;
   qc.transmittance = nullptr;
   RTCRay r;
   setRay(r, in);
@@ -241,7 +246,6 @@ Vec3 RayTracer::transmittance(const Ray& in) const {
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
-  qc.cullBackfaces = false;
   qc.transmittance = &t;
   RTCRay r;
   setRay(r, in);
@@ -255,7 +259,7 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackf
   rtcInitIntersectContext(&qc.ctx);
   qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   qc.frame = frame_;
-  qc.cullBackfaces = cullBackfaces;
+  if (cullBackfaces) qc.ctx.filter = cullBackfaceHit;
   qc.transmittance = nullptr;
   alignas(32) int valid[8];
   alignas(32) RTCRayHit8 rh;

@@ -37,6 +37,11 @@ float surfaceAlpha(const FrameScene& fs, int object, int prim, float u, float v)
 
 SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
                              float time) {
+  return resolveSurface(fs, object, prim, origin, dir, time, nullptr);
+}
+
+SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
+                             float time, const float* knownTuv) {
   const Scene& scene = *fs.scene;
   const Object& obj = scene.objects[object];
   const FrameObject& fo = fs.objects[object];
@@ -48,7 +53,10 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
   const Vec3 b = moving ? positionAt(fo, idx[1], time) : fo.positions[idx[1]];
   const Vec3 c = moving ? positionAt(fo, idx[2], time) : fo.positions[idx[2]];
   float t, u, v;
-  intersectTriangle(origin, dir, a, b, c, t, u, v);
+  if (knownTuv)  // the ray tracer's own hit: its barycentrics, no second intersection
+    t = knownTuv[0], u = knownTuv[1], v = knownTuv[2];
+  else
+    intersectTriangle(origin, dir, a, b, c, t, u, v);
   // Pixels on an edge can land a hair outside [0,1]; clamp so attributes stay convex.
   u = std::clamp(u, 0.0f, 1.0f);
   v = std::clamp(v, 0.0f, 1.0f - u);

@@ -13,6 +13,10 @@ bool intersectTriangle(Vec3 o, Vec3 d, Vec3 a, Vec3 b, Vec3 c, float& t, float& 
 
 SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
                              float time = 0.0f);
+// The same, given the ray tracer's distance and barycentrics `knownTuv` = {t, u, v} (u: vertex 1,
+// v: vertex 2) instead of intersecting the triangle again; null: intersect from origin and dir.
+SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
+                             float time, const float* knownTuv);
 
 // Alpha of the material's diffuse texture at the hit (alpha-mask tests).
 float surfaceAlpha(const FrameScene& fs, int object, int prim, float u, float v);
