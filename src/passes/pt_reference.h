@@ -3,9 +3,13 @@
 // polygonal aperture), the shutter interval and the path, accumulated progressively up to `spp`
 // or `time_limit`. Deterministic for the frame seed whatever the thread or process count.
 // Outputs: hdr (the mean) and variance (of the mean's luminance: the noise left).
-// Parameters: spp, time_limit, max_depth, progress.
+// Parameters: spp, time_limit, max_depth, progress, accumulate, frame_spp. With `accumulate`
+// (the viewer's progressive mode) each frame adds `frame_spp` samples to the last frame's while
+// the camera, scene, size and settings stay the same, up to `spp`, and starts over when any
+// changes.
 #pragma once
 #include "pipeline/pass.h"
+#include "rt/reference_render.h"
 
 namespace tandem {
 
@@ -18,6 +22,10 @@ class PTReferencePass : public Pass {
   std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}, {"variance", 1}}; }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ private:
+  SampleSums sums_;      // carried across frames in accumulate mode
+  uint64_t stateKey_ = 0;  // what the sums were rendered for
 };
 
 }  // namespace tandem

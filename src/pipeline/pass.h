@@ -48,6 +48,9 @@ class Pass {
   std::map<std::string, std::string> bindings;
   const std::string& bufferName(const std::string& slot) const;
   std::string label;  // instance name for timings (defaults to type)
+  // A disabled pass is bypassed: each output takes the first input with the same channel count
+  // (tonemap off shows the raw HDR), or zeros when there is none.
+  bool enabled = true;
 
  private:
   std::map<std::string, double> values_;

@@ -181,6 +181,7 @@ Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
       pf.fail("type", "unknown pass type '" + type + "' (known: " + known + ")");
     }
     pass->label = pf.string("label", type);
+    pass->enabled = pf.boolean("enabled", true);
     if (pf.has("params")) {
       const Json& params = pf.raw("params");
       if (!params.is_object()) pf.fail("params", "expected an object");
@@ -246,6 +247,21 @@ std::vector<std::string> Pipeline::producedBuffers() const {
   return names;
 }
 
+namespace {
+void bypass(const Pass& p, FrameContext& ctx) {
+  const std::vector<BufferSlot> ins = p.inputs();
+  for (const BufferSlot& o : p.outputs()) {
+    Buffer& out = ctx.output(p.bufferName(o.slot), o.channels);
+    auto same = std::find_if(ins.begin(), ins.end(),
+                             [&](const BufferSlot& i) { return i.channels == o.channels; });
+    if (same != ins.end() && ctx.buffers.count(p.bufferName(same->slot)))
+      out.data = ctx.input(p.bufferName(same->slot)).data;
+    else
+      out.fill(0.0f);
+  }
+}
+}  // namespace
+
 FrameTimings Pipeline::execute(FrameContext& ctx) {
   FrameTimings ft;
   auto frameStart = Clock::now();
@@ -254,7 +270,10 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     ctx.passRays = 0;
     ctx.passParts.clear();
     auto t0 = Clock::now();
-    p->execute(ctx);
+    if (p->enabled)
+      p->execute(ctx);
+    else
+      bypass(*p, ctx);
     const std::string label = p->label.empty() ? p->type() : p->label;
     ft.passes.push_back({label, msSince(t0), ctx.passRays});
     // Parts are reported after their pass and are not added to the frame total again.
@@ -274,8 +293,20 @@ Json Pipeline::toJson() const {
     Json pj;
     pj["type"] = p->type();
     if (p->label != p->type()) pj["label"] = p->label;
+    if (!p->enabled) pj["enabled"] = false;
+    // Typed as a user would write them, so fromJson(toJson()) gives the same pipeline.
     Json params = Json::object();
-    for (const ParamDesc& d : p->params()) params[d.name] = p->param(d.name);
+    for (const ParamDesc& d : p->params()) {
+      const double v = p->param(d.name);
+      if (d.type == ParamType::Bool)
+        params[d.name] = v != 0;
+      else if (d.type == ParamType::Enum)
+        params[d.name] = d.choices.at(size_t(v));
+      else if (d.type == ParamType::Int)
+        params[d.name] = int64_t(v);
+      else
+        params[d.name] = v;
+    }
     if (!params.empty()) pj["params"] = params;
     if (!p->bindings.empty()) {
       Json in = Json::object(), out = Json::object();

@@ -7,6 +7,7 @@
 #include "core/image_io.h"
 #include "core/json_fields.h"
 #include "scene/builtin_scenes.h"
+#include "scene/camera_json.h"
 #include "scene/loaders.h"
 #include "scene/primitives.h"
 
@@ -207,9 +208,10 @@ Light readLight(const FileCtx& c, const Json& j, size_t index) {
   return l;
 }
 
-void readCamera(FileCtx& c, const Json& j) {
-  JsonFields f(j, c.path, "camera");
-  CameraDesc& d = c.scene.camera;
+}  // namespace
+
+CameraDesc cameraFromJson(const Json& j, const std::string& file, CameraDesc d) {
+  JsonFields f(j, file, "camera");
   std::string proj = f.string("projection", "perspective");
   if (proj == "perspective")
     d.projection = Projection::Perspective;
@@ -234,6 +236,52 @@ void readCamera(FileCtx& c, const Json& j) {
     f.fail("apertureBlades", "must be 0 (circular) or at least 3");
   d.apertureRotationDeg = f.number("apertureRotation", d.apertureRotationDeg, -360.0f, 360.0f);
   f.finish();
+  return d;
+}
+
+Json cameraToJson(const CameraDesc& d) {
+  auto v = [](Vec3 x) { return Json::array({x.x, x.y, x.z}); };
+  Json j = {{"projection", d.projection == Projection::Perspective ? "perspective" : "orthographic"},
+            {"position", v(d.position)}, {"lookAt", v(d.lookAt)}, {"up", v(d.up)},
+            {"vfov", d.vfovDeg}, {"orthoHeight", d.orthoHeight}, {"near", d.nearPlane},
+            {"far", d.farPlane}, {"aperture", d.apertureDiameter}, {"focalLength", d.focalLength},
+            {"focusDistance", d.focusDistance}, {"sensorWidth", d.sensorWidth},
+            {"apertureBlades", d.apertureBlades}, {"apertureRotation", d.apertureRotationDeg}};
+  return j;
+}
+
+std::vector<CameraKey> cameraPathFromJson(const Json& p, const std::string& file,
+                                          const CameraDesc& base) {
+  if (!p.is_array()) throw InputError(file, "cameraPath", "expected an array of keys");
+  std::vector<CameraKey> keys;
+  float lastTime = -1e30f;
+  for (size_t i = 0; i < p.size(); ++i) {
+    JsonFields kf(p[i], file, "cameraPath[" + std::to_string(i) + "]");
+    CameraKey k;
+    k.time = kf.number("time", 0.0f);
+    if (k.time < lastTime) kf.fail("time", "keys must be sorted by time");
+    lastTime = k.time;
+    k.position = kf.vec3("position", base.position);
+    k.lookAt = kf.vec3("lookAt", base.lookAt);
+    kf.finish();
+    keys.push_back(k);
+  }
+  return keys;
+}
+
+Json cameraPathToJson(const std::vector<CameraKey>& keys) {
+  Json a = Json::array();
+  for (const CameraKey& k : keys)
+    a.push_back({{"time", k.time},
+                 {"position", Json::array({k.position.x, k.position.y, k.position.z})},
+                 {"lookAt", Json::array({k.lookAt.x, k.lookAt.y, k.lookAt.z})}});
+  return a;
+}
+
+namespace {
+
+void readCamera(FileCtx& c, const Json& j) {
+  c.scene.camera = cameraFromJson(j, c.path, c.scene.camera);
   c.scene.hasCamera = true;
 }
 
@@ -306,23 +354,7 @@ Scene loadSceneFile(const std::string& path) {
   s.environmentIor = f.number("environmentIor", s.environmentIor, 0.1f, 10.0f);
   if (f.has("skybox")) readSkybox(c, f.raw("skybox"));
   if (f.has("camera")) readCamera(c, f.raw("camera"));
-  if (f.has("cameraPath")) {
-    const Json& p = f.raw("cameraPath");
-    if (!p.is_array()) f.fail("cameraPath", "expected an array of keys");
-    s.cameraPath.clear();
-    float lastTime = -1e30f;
-    for (size_t i = 0; i < p.size(); ++i) {
-      JsonFields kf(p[i], path, "cameraPath[" + std::to_string(i) + "]");
-      CameraKey k;
-      k.time = kf.number("time", 0.0f);
-      if (k.time < lastTime) kf.fail("time", "keys must be sorted by time");
-      lastTime = k.time;
-      k.position = kf.vec3("position", s.camera.position);
-      k.lookAt = kf.vec3("lookAt", s.camera.lookAt);
-      kf.finish();
-      s.cameraPath.push_back(k);
-    }
-  }
+  if (f.has("cameraPath")) s.cameraPath = cameraPathFromJson(f.raw("cameraPath"), path, s.camera);
   f.finish();
   if (s.objects.empty()) throw InputError(path, "objects", "scene has no objects");
   validateScene(s, path);
