@@ -1,7 +1,7 @@
 #include "passes/pt_reference.h"
 
-#include "pipeline/frame_context.h"
 #include "core/hash.h"
+#include "pipeline/frame_context.h"
 #include "rt/reference_render.h"
 
 namespace tandem {
@@ -17,8 +17,13 @@ std::vector<ParamDesc> PTReferencePass::params() const {
            {}},
           {"max_depth", ParamType::Int, 16, 1, 1024, "maximum path length in bounces", {}},
           {"progress", ParamType::Bool, 1, 0, 1, "progress bar on a terminal's stderr", {}},
-          {"accumulate", ParamType::Bool, 0, 0, 1,
-           "keep converging over frames while nothing changes (viewer)", {}},
+          {"accumulate",
+           ParamType::Bool,
+           0,
+           0,
+           1,
+           "keep converging over frames while nothing changes (viewer)",
+           {}},
           {"frame_spp", ParamType::Int, 4, 1, 1024, "accumulate: samples added per frame", {}}};
 }
 
@@ -41,7 +46,9 @@ void PTReferencePass::execute(FrameContext& ctx) {
     settings.seed = ctx.seed * 0x9E3779B97F4A7C15ull;
     // Everything the samples depend on; any change starts the accumulation over.
     Hasher h;
-    h.pod(ctx.camera.viewProj).pod(ctx.shutterCamera.viewProj).pod(ctx.camera.desc.apertureDiameter);
+    h.pod(ctx.camera.viewProj)
+        .pod(ctx.shutterCamera.viewProj)
+        .pod(ctx.camera.desc.apertureDiameter);
     h.pod(ctx.camera.desc.focusDistance).pod(ctx.camera.desc.apertureBlades);
     // Scene time matters only through moved geometry (geometryVersion) and the shutter length.
     h.pod(ctx.frame.geometryVersion).pod(ctx.frame.shutterClose - ctx.frame.time);

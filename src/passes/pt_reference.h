@@ -24,7 +24,7 @@ class PTReferencePass : public Pass {
   void execute(FrameContext& ctx) override;
 
  private:
-  SampleSums sums_;      // carried across frames in accumulate mode
+  SampleSums sums_;        // carried across frames in accumulate mode
   uint64_t stateKey_ = 0;  // what the sums were rendered for
 };
 

@@ -18,7 +18,7 @@ Vec3 idColor(int id) {
           0.25f + 0.75f * (((h >> 16) & 0xff) / 255.0f)};
 }
 
-Buffer visualizeBuffer(const std::string& name, const Buffer& b) {
+Buffer visualizeBuffer(const std::string& name, const Buffer& b, float scale) {
   Buffer out(b.width, b.height, 3);
   const size_t n = b.pixelCount();
   auto set = [&](size_t i, Vec3 c) { out.setRgb(int(i % b.width), int(i / b.width), c); };
@@ -71,7 +71,13 @@ Buffer visualizeBuffer(const std::string& name, const Buffer& b) {
     }
     return out;
   }
-  if (name == "hdr" || name == "emission") {
+  if (name == "variance") {
+    // Standard error of each pixel mean, times `scale`, as grey: the noise left to converge.
+    for (size_t i = 0; i < n; ++i)
+      set(i, Vec3(std::min(std::sqrt(std::max(b.data[i * b.channels], 0.0f)) * scale, 1.0f)));
+    return out;
+  }
+  if (name == "hdr" || name == "emission" || name == "composite") {
     for (size_t i = 0; i < n; ++i)
       set(i, tonemapPixel(b.rgb(int(i % b.width), int(i / b.width)), 0.0f, ToneOperator::Aces));
     return out;

@@ -7,8 +7,9 @@
 
 namespace tandem {
 
-// Display-ready RGB in [0,1] (sRGB encoded) for a buffer named `name`.
-Buffer visualizeBuffer(const std::string& name, const Buffer& b);
+// Display-ready RGB in [0,1] (sRGB encoded) for a buffer named `name`. `scale` multiplies the
+// standard error shown for `variance`.
+Buffer visualizeBuffer(const std::string& name, const Buffer& b, float scale = 1.0f);
 // Deterministic distinct colour for an integer id (-1 -> black).
 Vec3 idColor(int id);
 // Writes a buffer to `path`: EXR gets raw values, PNG the visualisation (or `name == "output"`,

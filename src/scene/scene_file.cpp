@@ -241,12 +241,21 @@ CameraDesc cameraFromJson(const Json& j, const std::string& file, CameraDesc d) 
 
 Json cameraToJson(const CameraDesc& d) {
   auto v = [](Vec3 x) { return Json::array({x.x, x.y, x.z}); };
-  Json j = {{"projection", d.projection == Projection::Perspective ? "perspective" : "orthographic"},
-            {"position", v(d.position)}, {"lookAt", v(d.lookAt)}, {"up", v(d.up)},
-            {"vfov", d.vfovDeg}, {"orthoHeight", d.orthoHeight}, {"near", d.nearPlane},
-            {"far", d.farPlane}, {"aperture", d.apertureDiameter}, {"focalLength", d.focalLength},
-            {"focusDistance", d.focusDistance}, {"sensorWidth", d.sensorWidth},
-            {"apertureBlades", d.apertureBlades}, {"apertureRotation", d.apertureRotationDeg}};
+  Json j = {
+      {"projection", d.projection == Projection::Perspective ? "perspective" : "orthographic"},
+      {"position", v(d.position)},
+      {"lookAt", v(d.lookAt)},
+      {"up", v(d.up)},
+      {"vfov", d.vfovDeg},
+      {"orthoHeight", d.orthoHeight},
+      {"near", d.nearPlane},
+      {"far", d.farPlane},
+      {"aperture", d.apertureDiameter},
+      {"focalLength", d.focalLength},
+      {"focusDistance", d.focusDistance},
+      {"sensorWidth", d.sensorWidth},
+      {"apertureBlades", d.apertureBlades},
+      {"apertureRotation", d.apertureRotationDeg}};
   return j;
 }
 

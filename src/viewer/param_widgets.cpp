@@ -20,9 +20,15 @@ ParamWidget paramWidget(const ParamDesc& d) {
   w.defaultValue = d.defaultValue;
   w.choices = d.choices;
   switch (d.type) {
-    case ParamType::Bool: w.kind = WidgetKind::Checkbox; break;
-    case ParamType::Enum: w.kind = WidgetKind::Combo; break;
-    case ParamType::Int: w.kind = d.max - d.min <= 1000 ? WidgetKind::SliderInt : WidgetKind::DragInt; break;
+    case ParamType::Bool:
+      w.kind = WidgetKind::Checkbox;
+      break;
+    case ParamType::Enum:
+      w.kind = WidgetKind::Combo;
+      break;
+    case ParamType::Int:
+      w.kind = d.max - d.min <= 1000 ? WidgetKind::SliderInt : WidgetKind::DragInt;
+      break;
     case ParamType::Float:
       // Decades of range read best on a log scale; a bounded span on a plain slider; anything
       // wider as a drag field.
@@ -42,7 +48,8 @@ ParamWidget paramWidget(const ParamDesc& d) {
   } else if (d.type == ParamType::Bool) {
     w.tooltip += std::string(" (default ") + (d.defaultValue != 0 ? "on" : "off") + ")";
   } else {
-    w.tooltip += " [" + number(d.min) + ", " + number(d.max) + "], default " + number(d.defaultValue);
+    w.tooltip +=
+        " [" + number(d.min) + ", " + number(d.max) + "], default " + number(d.defaultValue);
   }
   return w;
 }

@@ -11,6 +11,7 @@
 #include "viewer/fly_camera.h"
 #include "viewer/frame_history.h"
 #include "viewer/param_widgets.h"
+#include "viewer/render_worker.h"
 
 using namespace tandem;
 
@@ -35,7 +36,9 @@ TEST(ViewerSupport, WidgetsForEveryParameterOfEveryPass) {
       EXPECT_GE(w.defaultValue, w.min);
       EXPECT_LE(w.defaultValue, w.max);
       switch (d.type) {
-        case ParamType::Bool: EXPECT_EQ(w.kind, WidgetKind::Checkbox); break;
+        case ParamType::Bool:
+          EXPECT_EQ(w.kind, WidgetKind::Checkbox);
+          break;
         case ParamType::Enum:
           EXPECT_EQ(w.kind, WidgetKind::Combo);
           EXPECT_EQ(w.choices, d.choices);
@@ -73,7 +76,8 @@ TEST(ViewerSupport, FlyCameraRoundTripAndMotion) {
   FlyCamera c = FlyCamera::fromDesc(d);
   CameraDesc back = c.toDesc(d);
   EXPECT_LT(length(back.position - d.position), 1e-5f);
-  EXPECT_LT(length(normalize(back.lookAt - back.position) - normalize(d.lookAt - d.position)), 1e-4f);
+  EXPECT_LT(length(normalize(back.lookAt - back.position) - normalize(d.lookAt - d.position)),
+            1e-4f);
   // Forward moves along the view direction by speed x dt; up moves along world +Y.
   c.speed = 2;
   const Vec3 f = c.forward(), p0 = c.position;
@@ -90,8 +94,7 @@ TEST(ViewerSupport, FlyCameraRoundTripAndMotion) {
 
 TEST(ViewerSupport, FrameHistoryAveragesTheWindow) {
   FrameHistory h(3);
-  for (int i = 1; i <= 5; ++i)
-    h.add({{{"a", double(i), 0}, {"b", 10.0, 1000.0 * i}}, 10.0 + i});
+  for (int i = 1; i <= 5; ++i) h.add({{{"a", double(i), 0}, {"b", 10.0, 1000.0 * i}}, 10.0 + i});
   EXPECT_EQ(h.size(), 3u);
   auto rows = h.rows();
   ASSERT_EQ(rows.size(), 2u);
@@ -174,4 +177,47 @@ TEST(ViewerSupport, ReferenceAccumulatesOverFramesAndResets) {
   moved.position.x += 0.1f;
   r.renderFrame(6, moved);
   EXPECT_EQ(r.context().samplesPerPixel, 4);
+}
+
+// The worker thread renders what the view asks; its output is the renderer's, parameter edits
+// and pipeline switches take effect on a later frame, and bad edits are reported, not fatal.
+TEST(ViewerSupport, RenderWorkerFramesEditsAndSwitches) {
+  Scene s = loadScene("cornell");
+  ViewState v;
+  v.camera = s.camera;
+  v.width = 48;
+  v.height = 27;
+  RenderWorker w(s, PipelineModel::load("deferred"), v);
+  w.waitForFrames(2);
+  FinishedFrame f;
+  ASSERT_TRUE(w.takeFrame(f));
+  ASSERT_EQ(f.width, 48);
+  ASSERT_EQ(f.rgba.size(), size_t(48 * 27 * 4));
+  Renderer ref(s, Pipeline::load("deferred"), RenderSettings{.width = 48, .height = 27});
+  ref.renderFrame(0, s.camera);
+  EXPECT_EQ(f.output.data, ref.output().data);
+  EXPECT_FALSE(f.timings.passes.empty());
+
+  // tonemap.exposure = +2 stops brightens the image.
+  const size_t tonemap = 2;
+  double before = 0, after = 0;
+  for (float x : f.output.data) before += x;
+  w.setParam(tonemap, "exposure", 2.0);
+  w.waitForFrames(w.framesFinished() + 3);
+  ASSERT_TRUE(w.takeFrame(f));
+  for (float x : f.output.data) after += x;
+  EXPECT_GT(after, before * 1.2);
+
+  w.setParam(tonemap, "exposure", 1e9);  // out of range: reported, frames go on
+  w.waitForFrames(w.framesFinished() + 3);
+  EXPECT_NE(w.error().find("exposure"), std::string::npos);
+
+  PipelineModel rt = PipelineModel::load("rt-only");
+  w.setPipeline(rt);
+  v.shownBuffer = "hdr";
+  w.setView(v);
+  w.waitForFrames(w.framesFinished() + 3);
+  ASSERT_TRUE(w.takeFrame(f));
+  EXPECT_EQ(f.shown, "hdr");
+  EXPECT_EQ(f.timings.passes[1].name, "rt_whitted");
 }
