@@ -8,6 +8,7 @@ pkgs=(
   libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin gnuplot-nox
+  libglfw3-dev libimgui-dev libgl-dev xvfb xauth libgl1-mesa-dri
 )
 if [ "${TANDEM_FUZZ_DEPS:-0}" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
 missing=()

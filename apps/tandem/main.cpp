@@ -1,5 +1,5 @@
 // tandem: the hybrid renderer's command line. Verbs: render, reference, info, compare, bench,
-// experiment, export.
+// experiment, export, view.
 #include <cstdio>
 #include <map>
 
@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
       {"render", tandem::addRenderVerb(app)},         {"info", tandem::addInfoVerb(app)},
       {"compare", tandem::addCompareVerb(app)},       {"bench", tandem::addBenchVerb(app)},
       {"experiment", tandem::addExperimentVerb(app)}, {"reference", tandem::addReferenceVerb(app)},
-      {"export", tandem::addExportVerb(app)}};
+      {"export", tandem::addExportVerb(app)},         {"view", tandem::addViewVerb(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

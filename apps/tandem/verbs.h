@@ -13,5 +13,6 @@ VerbRunner addBenchVerb(CLI::App& app);
 VerbRunner addExperimentVerb(CLI::App& app);
 VerbRunner addReferenceVerb(CLI::App& app);
 VerbRunner addExportVerb(CLI::App& app);
+VerbRunner addViewVerb(CLI::App& app);
 
 }  // namespace tandem

@@ -19,7 +19,7 @@ expect_error() {
 }
 
 "$T" --help >/dev/null; check "help" "[ $? -eq 0 ]"
-for v in render reference info compare bench experiment; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
+for v in render reference info compare bench experiment export view; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
 
 "$T" render --width 160 --height 90 --out "$D/demo" --aov depth,normal,object_id,motion >/dev/null
 check "render writes png+exr+aovs" "[ -s $D/demo/cornell_deferred.png ] && [ -s $D/demo/cornell_deferred.exr ] && [ -s $D/demo/cornell_deferred_object_id.png ]"
@@ -87,7 +87,26 @@ else
   echo "skip: mpirun not installed (scripts/install-deps.sh installs it)"
 fi
 
+# The viewer, under a virtual display: a few frames of cornell, a screenshot of the output and
+# a capture of the window itself, both matching `render` of the same view.
+if command -v xvfb-run >/dev/null && "$T" view --help >/dev/null 2>&1; then
+  xvfb-run -a -s "-screen 0 1024x768x24" "$T" view --scene cornell --width 320 --height 180 \
+    --frames 4 --screenshot "$D/view/shot.png" --window-capture "$D/view/window.png" --hide-ui --exit \
+    >"$D/view.log" 2>&1
+  check "view exits 0 with a screenshot and a window capture" "[ \$? -eq 0 ] && [ -s $D/view/shot.png ] && [ -s $D/view/window.png ]"
+  "$T" render cornell --width 320 --height 180 --out "$D/view/render.png" >/dev/null
+  for f in shot window; do
+    s=$("$T" compare "$D/view/render.png" "$D/view/$f.png" 2>/dev/null | awk '/^ssim/ {print $2}')
+    check "view $f matches render (SSIM >= 0.99, got $s)" "awk -v s=${s:-0} 'BEGIN{exit !(s >= 0.99)}'"
+  done
+  check "view reports fps and its own cost" "grep -q 'viewer cost (upload + UI)' $D/view.log"
+else
+  echo "skip: xvfb-run not installed (scripts/install-deps.sh installs it)"
+fi
+
 mkdir -p "$D/err"
+out=$(env -u DISPLAY -u WAYLAND_DISPLAY "$T" view --scene cornell 2>&1); rc=$?
+check "view without a display fails and suggests render" "[ $rc -ne 0 ] && grep -q 'tandem render' <<<\"\$out\""
 expect_error "reference bad spp" "--spp" "$T" reference --spp 0 --out "$D/err/r/"
 expect_error "reference bad blades" "--blades" "$T" reference --blades 2 --out "$D/err/r/"
 expect_error "reference negative shutter" "--shutter" "$T" reference --shutter -1 --out "$D/err/r/"

@@ -1,0 +1,247 @@
+#include "viewer_app.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GL/gl.h>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/profiler.h"
+
+namespace tandem {
+
+namespace {
+
+std::string glfwProblem;
+void onGlfwError(int code, const char* text) {
+  glfwProblem = "GLFW error " + std::to_string(code) + ": " + (text ? text : "");
+}
+
+// What the window shows: the frame's image over the whole framebuffer (the render is the
+// window size times the resolution scale; the texture's linear filter upsamples it).
+void drawImage(GLuint tex, int fbWidth, int fbHeight) {
+  ImGui::GetBackgroundDrawList()->AddImage(
+      reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex)), ImVec2(0, 0),
+      ImVec2(float(fbWidth), float(fbHeight)));
+}
+
+void makeParent(const std::string& path) {
+  const auto dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty()) std::filesystem::create_directories(dir);
+}
+
+void captureWindow(const std::string& path, int w, int h) {
+  makeParent(path);
+  std::vector<uint8_t> px(size_t(w) * size_t(h) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  Buffer img(w, h, 3);
+  for (int y = 0; y < h; ++y)  // OpenGL's rows start at the bottom
+    for (int x = 0; x < w; ++x) {
+      const uint8_t* p = &px[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4];
+      img.setRgb(x, y, Vec3(p[0], p[1], p[2]) / 255.0f);
+    }
+  writePng(path, img);
+}
+
+}  // namespace
+
+void saveScreenshot(ViewerState& s, const std::string& path) {
+  if (s.frame.output.data.empty()) return;
+  makeParent(path);
+  writePng(path, s.frame.output);
+  s.message = "wrote " + path;
+  std::printf("%s\n", s.message.c_str());
+}
+
+int runViewer(const ViewerOptions& o) {
+  validateRenderOptions(o.render);
+  if (!(o.scale > 0.05f && o.scale <= 2.0f))
+    throw InputError("command line", "--scale", "must be in (0.05, 2]");
+  if (o.frames < 0) throw InputError("command line", "--frames", "must be >= 0");
+  // Scene and pipeline first: bad input fails before any window appears.
+  ViewerState s;
+  s.opts = o;
+  Scene scene = loadSceneFor(o.render);
+  s.scene = &scene;
+  s.baseCamera = s.startCamera = cameraFor(scene, o.render);
+  s.fly = FlyCamera::fromDesc(s.startCamera);
+  s.fly.speed = std::max(0.1f, length(scene.bounds().extent()) * 0.15f);
+  Pipeline pipeline = loadPipelineFor(o.render);
+  s.pipelineName = o.render.pipeline;
+  s.model = PipelineModel::from(pipeline, o.render.pipeline);
+  // Progressive passes keep converging while the camera stands still.
+  for (auto& p : s.model.passes)
+    if (p.values.count("accumulate")) p.values["accumulate"] = 1, p.values["progress"] = 0;
+
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  glfwSetErrorCallback(onGlfwError);
+  if ((!display || !*display) && (!wayland || !*wayland))
+    throw InputError("tandem view", "display",
+                     "no display to open a window on (DISPLAY and WAYLAND_DISPLAY are unset); "
+                     "use `tandem render` to write images, or run under Xvfb "
+                     "(xvfb-run tandem view ...)");
+  if (!glfwInit())
+    throw InputError("tandem view", "display",
+                     "cannot open the display (" + glfwProblem +
+                         "); use `tandem render` to write images instead");
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GL_TRUE);
+  GLFWwindow* window = glfwCreateWindow(o.render.width, o.render.height,
+                                        ("Tandem: " + scene.name).c_str(), nullptr, nullptr);
+  if (!window) {
+    glfwTerminate();
+    throw InputError("tandem view", "OpenGL",
+                     "cannot create an OpenGL 3.3 core window (" + glfwProblem +
+                         "); use `tandem render` to write images instead");
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(0);  // show frames as they come; the renderer sets the pace
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working folder
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330");
+
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window, &fbw, &fbh);
+  s.view.camera = s.fly.toDesc(s.baseCamera);
+  s.view.width = std::max(1, int(float(fbw) * o.scale));
+  s.view.height = std::max(1, int(float(fbh) * o.scale));
+  RenderWorker worker(scene, s.model, s.view, o.render.seed);
+
+  double last = glfwGetTime(), lastX = 0, lastY = 0;
+  bool looking = false, screenshotsDone = false;
+  int texW = 0, texH = 0;
+  while (!glfwWindowShouldClose(window)) {
+    glfwPollEvents();
+    const double now = glfwGetTime();
+    const float dt = float(std::min(now - last, 0.1));
+    last = now;
+    ImGuiIO& io = ImGui::GetIO();
+
+    // Camera: WASD/QE to move (shift: 4x), right mouse button held to look around.
+    if (!io.WantCaptureKeyboard) {
+      auto down = [&](int k) { return glfwGetKey(window, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+      const float boost = down(GLFW_KEY_LEFT_SHIFT) > 0 ? 4.0f : 1.0f;
+      const float r = down(GLFW_KEY_D) - down(GLFW_KEY_A), u = down(GLFW_KEY_E) - down(GLFW_KEY_Q),
+                  f = down(GLFW_KEY_W) - down(GLFW_KEY_S);
+      if (r != 0 || u != 0 || f != 0) s.playing = false, s.fly.move(r, u, f, dt * boost);
+      static bool f12Was = false;
+      const bool f12 = glfwGetKey(window, GLFW_KEY_F12) == GLFW_PRESS;
+      if (f12 && !f12Was) saveScreenshot(s, s.screenshotFile);
+      f12Was = f12;
+    }
+    double mx, my;
+    glfwGetCursorPos(window, &mx, &my);
+    const bool rmb = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    if (rmb && !io.WantCaptureMouse) {
+      if (looking) s.fly.look(float(mx - lastX), float(my - lastY));
+      looking = true;
+      s.playing = false;
+    } else {
+      looking = false;
+    }
+    lastX = mx, lastY = my;
+
+    // Path playback and recording, in the scene-file path format (seconds).
+    if (s.playing && s.path.size() >= 2) {
+      const double t = now - s.playStart + s.path.front().time;
+      if (t > s.path.back().time) s.playing = false;
+      const CameraDesc c = sampleCameraPath(s.path, s.baseCamera, float(t));
+      s.fly = FlyCamera::fromDesc(c);
+    }
+    if (s.recording && now - s.lastKey >= 0.25) {
+      const CameraDesc c = s.fly.toDesc(s.baseCamera);
+      s.path.push_back({float(now - s.recordStart), c.position, c.lookAt});
+      s.lastKey = now;
+    }
+
+    glfwGetFramebufferSize(window, &fbw, &fbh);
+    ViewState v = s.view;
+    v.camera = s.fly.toDesc(s.baseCamera);
+    v.width = std::max(1, int(float(fbw) * s.opts.scale));
+    v.height = std::max(1, int(float(fbh) * s.opts.scale));
+    if (std::memcmp(&v.camera, &s.view.camera, sizeof(CameraDesc)) != 0 ||
+        v.width != s.view.width || v.height != s.view.height ||
+        v.shownBuffer != s.view.shownBuffer || v.varianceScale != s.view.varianceScale) {
+      s.view = v;
+      worker.setView(v);
+    }
+
+    // The viewer's own cost: upload + UI (+ drawing), timed every displayed frame.
+    const auto t0 = Clock::now();
+    if (worker.takeFrame(s.frame)) {
+      s.history.add(s.frame.timings);
+      glBindTexture(GL_TEXTURE_2D, tex);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      if (s.frame.width != texW || s.frame.height != texH) {
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, s.frame.width, s.frame.height, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, s.frame.rgba.data());
+        texW = s.frame.width, texH = s.frame.height;
+      } else {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, texW, texH, GL_RGBA, GL_UNSIGNED_BYTE,
+                        s.frame.rgba.data());
+      }
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (texW > 0) drawImage(tex, fbw, fbh);
+    if (!o.hideUi) drawPanels(s, worker);
+    ImGui::Render();
+    glViewport(0, 0, fbw, fbh);
+    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    s.viewerMs = float(msSince(t0));
+    if (s.frame.serial > 0) s.viewerMsSum += s.viewerMs, ++s.viewerFrames;
+
+    // Scripted runs: once enough frames have finished, write what was asked and maybe quit.
+    if (!screenshotsDone && o.frames > 0 && s.frame.serial >= uint64_t(o.frames) &&
+        s.frame.width == s.view.width && s.frame.height == s.view.height && texW > 0) {
+      if (!o.windowCapture.empty()) {
+        captureWindow(o.windowCapture, fbw, fbh);
+        std::printf("wrote %s\n", o.windowCapture.c_str());
+      }
+      if (!o.screenshot.empty()) saveScreenshot(s, o.screenshot);
+      screenshotsDone = true;
+      std::printf(
+          "view: %llu frames of %s at %dx%d; %.2f fps (mean frame %.2f ms over the last %zu); "
+          "viewer cost (upload + UI) %.3f ms per displayed frame\n",
+          static_cast<unsigned long long>(s.frame.serial), s.pipelineName.c_str(), s.frame.width,
+          s.frame.height, s.history.framesPerSecond(), s.history.averageFrameMs(), s.history.size(),
+          s.viewerFrames ? s.viewerMsSum / s.viewerFrames : 0.0);
+      if (!worker.error().empty()) std::printf("view: %s\n", worker.error().c_str());
+      if (o.exitAfter) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
+    glfwSwapBuffers(window);
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glDeleteTextures(1, &tex);
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return 0;
+}
+
+}  // namespace tandem
