@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <thread>
 
 #include "core/error.h"
 #include "core/image_io.h"
@@ -21,9 +22,30 @@ namespace tandem {
 
 namespace {
 
+constexpr double kDisplayHz = 60;  // window refresh cap; frames come from the worker
+
 std::string glfwProblem;
 void onGlfwError(int code, const char* text) {
   glfwProblem = "GLFW error " + std::to_string(code) + ": " + (text ? text : "");
+}
+
+// Input marks the window for redrawing for a few refreshes (ImGui needs a frame or two to react);
+// otherwise the window is redrawn only when the worker has finished a new frame. ImGui's GLFW
+// backend chains to these callbacks, which are installed before it.
+int redrawsPending = 2;
+void markInput(GLFWwindow*) {
+  redrawsPending = 3;
+}
+void installRedrawCallbacks(GLFWwindow* w) {
+  glfwSetCursorPosCallback(w, [](GLFWwindow* x, double, double) { markInput(x); });
+  glfwSetMouseButtonCallback(w, [](GLFWwindow* x, int, int, int) { markInput(x); });
+  glfwSetScrollCallback(w, [](GLFWwindow* x, double, double) { markInput(x); });
+  glfwSetKeyCallback(w, [](GLFWwindow* x, int, int, int, int) { markInput(x); });
+  glfwSetCharCallback(w, [](GLFWwindow* x, unsigned) { markInput(x); });
+  glfwSetWindowFocusCallback(w, [](GLFWwindow* x, int) { markInput(x); });
+  glfwSetCursorEnterCallback(w, [](GLFWwindow* x, int) { markInput(x); });
+  glfwSetFramebufferSizeCallback(w, [](GLFWwindow* x, int, int) { markInput(x); });
+  glfwSetWindowRefreshCallback(w, markInput);
 }
 
 // What the window shows: the frame's image over the whole framebuffer (the render is the
@@ -32,6 +54,13 @@ void drawImage(GLuint tex, int fbWidth, int fbHeight) {
   ImGui::GetBackgroundDrawList()->AddImage(
       reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex)), ImVec2(0, 0),
       ImVec2(float(fbWidth), float(fbHeight)));
+}
+
+// The window refreshes at most kDisplayHz: without a cap the loop spins and, on a software GL
+// (Mesa llvmpipe), redraws the window as fast as it can on the cores the renderer needs.
+void waitForNextRefresh(double loopStart) {
+  const double spare = 1.0 / kDisplayHz - (glfwGetTime() - loopStart);
+  if (spare > 0) std::this_thread::sleep_for(std::chrono::duration<double>(spare));
 }
 
 void makeParent(const std::string& path) {
@@ -112,6 +141,7 @@ int runViewer(const ViewerOptions& o) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working folder
+  installRedrawCallbacks(window);
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330");
 
@@ -189,7 +219,13 @@ int runViewer(const ViewerOptions& o) {
 
     // The viewer's own cost: upload + UI (+ drawing), timed every displayed frame.
     const auto t0 = Clock::now();
-    if (worker.takeFrame(s.frame)) {
+    const bool fresh = worker.takeFrame(s.frame);
+    if (!fresh && redrawsPending == 0) {
+      waitForNextRefresh(now);
+      continue;
+    }
+    redrawsPending = std::max(0, redrawsPending - 1);
+    if (fresh) {
       s.history.add(s.frame.timings);
       glBindTexture(GL_TEXTURE_2D, tex);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -226,14 +262,19 @@ int runViewer(const ViewerOptions& o) {
       screenshotsDone = true;
       std::printf(
           "view: %llu frames of %s at %dx%d; %.2f fps (mean frame %.2f ms over the last %zu); "
-          "viewer cost (upload + UI) %.3f ms per displayed frame\n",
+          "viewer cost (upload + UI) %.3f ms + present %.3f ms per displayed frame\n",
           static_cast<unsigned long long>(s.frame.serial), s.pipelineName.c_str(), s.frame.width,
           s.frame.height, s.history.framesPerSecond(), s.history.averageFrameMs(), s.history.size(),
-          s.viewerFrames ? s.viewerMsSum / s.viewerFrames : 0.0);
+          s.viewerFrames ? s.viewerMsSum / s.viewerFrames : 0.0,
+          s.viewerFrames ? s.presentMsSum / s.viewerFrames : 0.0);
       if (!worker.error().empty()) std::printf("view: %s\n", worker.error().c_str());
       if (o.exitAfter) glfwSetWindowShouldClose(window, GLFW_TRUE);
     }
+    const auto t1 = Clock::now();
     glfwSwapBuffers(window);
+    s.presentMs = float(msSince(t1));
+    if (s.frame.serial > 0) s.presentMsSum += s.presentMs;
+    waitForNextRefresh(now);
   }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

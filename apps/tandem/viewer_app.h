@@ -35,6 +35,8 @@ struct ViewerState {
   float viewerMs = 0;      // upload + UI of the last displayed frame
   double viewerMsSum = 0;  // for the average printed at exit
   int viewerFrames = 0;
+  float presentMs = 0;  // buffer swap of the last displayed frame (the GL driver's drawing)
+  double presentMsSum = 0;
   std::string message;  // last status line (saved, loaded, errors)
   // Camera path recording and playback (scene-file cameraPath keys).
   std::vector<CameraKey> path;

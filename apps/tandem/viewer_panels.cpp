@@ -85,7 +85,7 @@ void viewPanel(ViewerState& s, RenderWorker& worker) {
   ImGui::Text("%s: %dx%d  %.1f fps  %.1f ms", s.pipelineName.c_str(), s.frame.width, s.frame.height,
               s.history.framesPerSecond(), s.history.averageFrameMs());
   if (s.frame.samplesPerPixel > 0) ImGui::Text("progressive: %d spp", s.frame.samplesPerPixel);
-  ImGui::Text("viewer (upload + UI): %.2f ms", s.viewerMs);
+  ImGui::Text("viewer: upload + UI %.2f ms, present %.2f ms", s.viewerMs, s.presentMs);
   if (!worker.error().empty())
     ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", worker.error().c_str());
   if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
