@@ -13,7 +13,6 @@ VerbRunner addViewVerb(CLI::App& app) {
   struct Args {
     RenderOptions render;
     std::string screenshot, windowCapture;
-    int frames = 0;
     bool exitAfter = false, hideUi = false;
     float scale = 1.0f;
   };
@@ -29,15 +28,15 @@ VerbRunner addViewVerb(CLI::App& app) {
   sub->add_option("--scale", a->scale, "Render resolution / window resolution (0.05-2)");
   sub->add_flag("--exit", a->exitAfter, "Quit after --frames frames and the screenshots");
   sub->add_flag("--hide-ui", a->hideUi, "No panels (for captures of the image alone)");
-  return [a]() -> int {
+  return [a, sub]() -> int {
 #ifdef TANDEM_HAVE_VIEWER
     ViewerOptions o;
     o.render = a->render;
     o.screenshot = a->screenshot;
     o.windowCapture = a->windowCapture;
-    o.frames = a->render.frames > 1
-                   ? a->render.frames
-                   : (a->screenshot.empty() && a->windowCapture.empty() && !a->exitAfter ? 0 : 3);
+    // Without --frames, scripted runs (screenshot, capture, exit) wait for 3 frames.
+    const bool scripted = !a->screenshot.empty() || !a->windowCapture.empty() || a->exitAfter;
+    o.frames = sub->count("--frames") > 0 ? a->render.frames : scripted ? 3 : 0;
     o.exitAfter = a->exitAfter;
     o.hideUi = a->hideUi;
     o.scale = a->scale;

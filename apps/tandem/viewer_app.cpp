@@ -159,7 +159,7 @@ int runViewer(const ViewerOptions& o) {
   RenderWorker worker(scene, s.model, s.view, o.render.seed);
 
   double last = glfwGetTime(), lastX = 0, lastY = 0;
-  bool looking = false, screenshotsDone = false;
+  bool looking = false, screenshotsDone = false, reportNow = false;
   int texW = 0, texH = 0;
   while (!glfwWindowShouldClose(window)) {
     glfwPollEvents();
@@ -260,6 +260,14 @@ int runViewer(const ViewerOptions& o) {
       }
       if (!o.screenshot.empty()) saveScreenshot(s, o.screenshot);
       screenshotsDone = true;
+      reportNow = true;
+    }
+    const auto t1 = Clock::now();
+    glfwSwapBuffers(window);
+    s.presentMs = float(msSince(t1));
+    if (s.frame.serial > 0) s.presentMsSum += s.presentMs;
+    if (reportNow) {  // after the swap, so the frame's present time is in the average
+      reportNow = false;
       std::printf(
           "view: %llu frames of %s at %dx%d; %.2f fps (mean frame %.2f ms over the last %zu); "
           "viewer cost (upload + UI) %.3f ms + present %.3f ms per displayed frame\n",
@@ -270,10 +278,6 @@ int runViewer(const ViewerOptions& o) {
       if (!worker.error().empty()) std::printf("view: %s\n", worker.error().c_str());
       if (o.exitAfter) glfwSetWindowShouldClose(window, GLFW_TRUE);
     }
-    const auto t1 = Clock::now();
-    glfwSwapBuffers(window);
-    s.presentMs = float(msSince(t1));
-    if (s.frame.serial > 0) s.presentMsSum += s.presentMs;
     waitForNextRefresh(now);
   }
   ImGui_ImplOpenGL3_Shutdown();
