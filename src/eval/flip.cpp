@@ -20,34 +20,30 @@ struct Plane {
   float at(int x, int y) const { return v[size_t(y) * size_t(w) + size_t(x)]; }
 };
 
-// Separable convolution with replicated borders: rows with kx, then columns with ky.
-Plane convolve(const Plane& in, const std::vector<float>& kx, const std::vector<float>& ky) {
-  const int rx = int(kx.size() / 2), ry = int(ky.size() / 2);
-  Plane tmp(in.w, in.h), out(in.w, in.h);
+// One direction of a separable convolution with replicated borders: (dx, dy) is (1, 0) for rows,
+// (0, 1) for columns.
+void convolve1d(const Plane& in, Plane& out, const std::vector<float>& kernel, int dx, int dy) {
+  const int r = int(kernel.size() / 2);
   parallelRange(
       size_t(in.h),
       [&](size_t b, size_t e) {
         for (int y = int(b); y < int(e); ++y)
           for (int x = 0; x < in.w; ++x) {
             float s = 0;
-            for (int k = -rx; k <= rx; ++k)
-              s += kx[size_t(k + rx)] * in.at(std::clamp(x + k, 0, in.w - 1), y);
-            tmp.at(x, y) = s;
-          }
-      },
-      16);
-  parallelRange(
-      size_t(in.h),
-      [&](size_t b, size_t e) {
-        for (int y = int(b); y < int(e); ++y)
-          for (int x = 0; x < in.w; ++x) {
-            float s = 0;
-            for (int k = -ry; k <= ry; ++k)
-              s += ky[size_t(k + ry)] * tmp.at(x, std::clamp(y + k, 0, in.h - 1));
+            for (int k = -r; k <= r; ++k)
+              s += kernel[size_t(k + r)] *
+                   in.at(std::clamp(x + k * dx, 0, in.w - 1), std::clamp(y + k * dy, 0, in.h - 1));
             out.at(x, y) = s;
           }
       },
       16);
+}
+
+// Separable convolution with replicated borders: rows with kx, then columns with ky.
+Plane convolve(const Plane& in, const std::vector<float>& kx, const std::vector<float>& ky) {
+  Plane tmp(in.w, in.h), out(in.w, in.h);
+  convolve1d(in, tmp, kx, 1, 0);
+  convolve1d(tmp, out, ky, 0, 1);
   return out;
 }
 
