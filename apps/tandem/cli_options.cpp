@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "pipeline/renderer.h"
 #include "scene/loaders.h"
 
 namespace tandem {
@@ -93,6 +94,28 @@ void addSceneOptions(CLI::App* app, RenderOptions& o) {
       "Add a directional light: dx,dy,dz[,intensity[,r,g,b]] (travel direction, W/m^2)");
   app->add_option("--emissive-lights", o.emissiveLights,
                   "Emissive meshes as punctual lights: auto (when the scene has none), on, off");
+  app->add_flag("--stereo", o.stereo,
+                "Stereo: both eyes side by side (--width and --height give one eye)");
+  app->add_option("--ipd", o.ipd, "Stereo interpupillary distance in metres (default 0.064)");
+  app->add_option("--convergence", o.convergence,
+                  "Stereo: converged axes meeting this many metres ahead (default: parallel)");
+}
+
+StereoDesc stereoFor(const Scene& s, const RenderOptions& o) {
+  StereoDesc st = s.stereo;
+  if (o.stereo || o.ipd > 0 || o.convergence > 0) st.enabled = true;
+  if (o.ipd > 0) st.ipd = o.ipd;
+  if (o.convergence > 0) {
+    st.converged = true;
+    st.convergence = o.convergence;
+  }
+  return st;
+}
+
+RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o) {
+  RenderSettings r{.width = o.width, .height = o.height, .seed = o.seed};
+  r.stereo = stereoFor(s, o);
+  return r;
 }
 
 void addRenderOptions(CLI::App* app, RenderOptions& o) {
@@ -125,6 +148,10 @@ void validateRenderOptions(const RenderOptions& o) {
     throw InputError("command line", "--threads", "must be in [0, 4096]");
   if (o.vfov != 0 && !(o.vfov > 0 && o.vfov < 180))
     throw InputError("command line", "--vfov", "must be in (0, 180)");
+  if (o.ipd < 0 || o.ipd > 1000 || !std::isfinite(o.ipd))
+    throw InputError("command line", "--ipd", "must be in (0, 1000] metres");
+  if (o.convergence < 0 || !std::isfinite(o.convergence))
+    throw InputError("command line", "--convergence", "must be a positive distance in metres");
   if (o.emissiveLights != "auto" && o.emissiveLights != "on" && o.emissiveLights != "off")
     throw InputError("command line", "--emissive-lights", "expected auto, on or off");
 }

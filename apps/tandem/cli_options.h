@@ -25,6 +25,9 @@ struct RenderOptions {
   std::vector<std::string> pointLights, sunLights;
   std::string emissiveLights = "auto";  // auto | on | off
   std::vector<std::string> set;         // pass parameters: label.param=value
+  bool stereo = false;                  // two eyes side by side (--width is one eye)
+  float ipd = 0;                        // > 0: interpupillary distance (implies --stereo)
+  float convergence = 0;                // > 0: converged axes meeting this far ahead
 };
 
 // Scene, size, output, seed, threads, camera overrides and lights (every rendering verb).
@@ -35,6 +38,11 @@ void addRenderOptions(CLI::App* app, RenderOptions& o);
 void validateRenderOptions(const RenderOptions& o);
 // Loads the scene, adds command-line lights.
 Scene loadSceneFor(const RenderOptions& o);
+// The scene's stereo settings with --stereo, --ipd and --convergence applied.
+StereoDesc stereoFor(const Scene& s, const RenderOptions& o);
+// Width, height, seed and stereo as render settings.
+struct RenderSettings;
+RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o);
 // Loads the pipeline and applies --set parameters.
 Pipeline loadPipelineFor(const RenderOptions& o);
 // The scene camera with command-line overrides applied (a default view when it has none).

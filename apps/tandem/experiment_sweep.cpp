@@ -185,7 +185,7 @@ int runSweepExperiment(const Json& j, const std::string& file, const ExperimentO
                 s.reference.spp);
     std::fflush(stdout);
     const ReferenceImage ref = referenceImage(job, cache);
-    const Buffer refDisplay = visualizeBuffer("hdr", ref.hdr);
+    const Buffer refDisplay = visualizeBuffer(ref.hdr);
     writePng((report.dir() / (label + "_reference.png")).string(), refDisplay);
     report.image(label + "_reference.png", label + ": reference, " + std::to_string(ref.spp) +
                                                " spp" + (ref.fromCache ? " (cached)" : ""));

@@ -21,6 +21,8 @@ std::string referenceKey(const ReferenceJob& job) {
   const ReferenceSettings& s = job.settings;
   h.pod(job.time).pod(job.shutter).pod(job.width).pod(job.height);
   h.pod(s.spp).pod(s.timeLimitS).pod(s.path.maxDepth).pod(s.path.rouletteDepth).pod(s.seed);
+  if (job.stereo.enabled)  // keeps the keys of mono references as they were
+    h.pod(job.stereo.ipd).pod(job.stereo.converged).pod(job.stereo.convergence);
   return h.hex();
 }
 
@@ -69,6 +71,7 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   p.setParam(std::string("pt_reference.progress=") + (s.progress ? "true" : "false"), "reference");
   RenderSettings rs{
       .width = job.width, .height = job.height, .seed = s.seed, .shutter = job.shutter};
+  rs.stereo = job.stereo;
   Renderer r(*job.scene, std::move(p), rs);
   r.context().cluster = cluster;
   const auto start = Clock::now();
@@ -78,7 +81,7 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   for (const PassTiming& t : ft.passes)
     if (t.name == "pt_reference/sampling")
       img.rays = uint64_t(t.rays), img.samplingSeconds = t.ms * 1e-3;
-  img.spp = r.context().samplesPerPixel;
+  img.spp = int(r.context().counters["spp"]);
   img.hdr = r.context().input("hdr");
   img.variance = r.context().input("variance");
   img.relativeError = relativeNoise(img.hdr, img.variance);

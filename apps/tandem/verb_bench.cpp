@@ -32,7 +32,7 @@ struct BenchVerb {
     Pipeline pipeline = loadPipelineFor(opts);
     Scene scene = loadSceneFor(opts);
     CameraDesc base = cameraFor(scene, opts);
-    RenderSettings settings{.width = opts.width, .height = opts.height, .seed = opts.seed};
+    RenderSettings settings = renderSettingsFor(scene, opts);
     Renderer renderer(scene, std::move(pipeline), settings);
     for (int f = 0; f < warmup; ++f)
       renderer.renderFrame(f, pathCamera(scene, base, 0, opts.frames));

@@ -34,7 +34,7 @@ VerbRunner addCompareVerb(CLI::App& app) {
     ImageMetrics m = compareImages(a, b, args->heatmap.empty() ? nullptr : &map);
     // FLIP compares what a viewer sees: HDR images tonemapped as `render` writes them.
     auto display = [](const std::string& path, const Buffer& img) {
-      return hasExtension(path, ".exr") ? visualizeBuffer("hdr", img) : img;
+      return hasExtension(path, ".exr") ? visualizeBuffer(img) : img;
     };
     Buffer flipErrors;
     const double f = flip(display(args->a, a), display(args->b, b), &flipErrors);

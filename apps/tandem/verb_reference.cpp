@@ -66,6 +66,7 @@ struct ReferenceVerb {
     job.shutter = shutter;
     job.width = opts.width;
     job.height = opts.height;
+    job.stereo = stereoFor(scene, opts);
     job.settings.spp = spp;
     job.settings.timeLimitS = timeLimit;
     job.settings.path.maxDepth = maxDepth;
@@ -89,7 +90,7 @@ struct ReferenceVerb {
     const fs::path base = dir / stem;
     const std::string png = isFile && hasExtension(out, ".png") ? out : base.string() + ".png";
     const std::string exr = isFile && hasExtension(out, ".exr") ? out : base.string() + ".exr";
-    writeBuffer(png, "hdr", img.hdr);  // ACES, as the reference pipeline's tonemap
+    writeBuffer(png, img.hdr);  // ACES, as the reference pipeline's tonemap
     writeExr(exr, img.hdr);
     writeExr(base.string() + ".variance.exr", img.variance);
     std::printf("wrote %s\nwrote %s\nwrote %s\n", png.c_str(), exr.c_str(),

@@ -46,13 +46,14 @@ struct RenderVerb {
     std::string stem = isFile ? fs::path(out).stem().string() : scene.name + "_" + pipeline.name;
     fs::path base = dir / stem;
 
-    RenderSettings settings{.width = opts.width, .height = opts.height, .seed = opts.seed};
-    Renderer renderer(scene, std::move(pipeline), settings);
+    Renderer renderer(scene, std::move(pipeline), renderSettingsFor(scene, opts));
     FrameTimings last;
     for (int f = 0; f < opts.frames; ++f) last = renderer.renderFrame(f, camera);
-    std::printf("scene %s (%zu triangles, %zu lights), pipeline %s, %dx%d, %d frame(s)\n",
+    FrameContext& ctx = renderer.context();
+    std::printf("scene %s (%zu triangles, %zu lights), pipeline %s, %dx%d%s, %d frame(s)\n",
                 scene.name.c_str(), scene.triangleCount(), scene.lights.size(),
-                renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames);
+                renderer.pipeline().name.c_str(), ctx.width, ctx.height,
+                ctx.views.size() > 1 ? " (stereo)" : "", opts.frames);
     for (const PassTiming& p : last.passes) {
       std::printf("  %-28s %9.2f ms", p.name.c_str(), p.ms);
       if (p.rays > 0) std::printf("  %8.2f Mrays/s", p.rays / (p.ms * 1e3));
@@ -60,18 +61,17 @@ struct RenderVerb {
     }
     std::printf("  %-28s %9.2f ms\n", "frame", last.totalMs);
 
-    FrameContext& ctx = renderer.context();
-    if (ctx.rasterStats.trianglesIn > 0)
-      std::printf("  raster: %zu triangles, %zu culled, %zu clipped, %zu set up and binned\n",
-                  ctx.rasterStats.trianglesIn, ctx.rasterStats.trianglesCulled,
-                  ctx.rasterStats.trianglesClipped, ctx.rasterStats.trianglesBinned);
+    if (ctx.counters.count("raster/triangles_in"))
+      std::printf("  raster: %.0f triangles, %.0f culled, %.0f clipped, %.0f set up and binned\n",
+                  ctx.counters["raster/triangles_in"], ctx.counters["raster/triangles_culled"],
+                  ctx.counters["raster/triangles_clipped"], ctx.counters["raster/triangles_binned"]);
     const std::string& outName = renderer.pipeline().output;
     if (isFile) {
-      writeBuffer(out, outName, ctx.input(outName));
+      writeBuffer(out, ctx.input(outName));
       std::printf("wrote %s\n", out.c_str());
     } else {
       std::string png = base.string() + ".png";
-      writeBuffer(png, outName, ctx.input(outName));
+      writeBuffer(png, ctx.input(outName));
       std::printf("wrote %s\n", png.c_str());
       if (ctx.buffers.count("hdr")) {
         std::string exr = base.string() + ".exr";
@@ -82,7 +82,7 @@ struct RenderVerb {
     for (const std::string& a : aovs) {
       std::string ext = isFile && hasExtension(out, ".exr") ? ".exr" : ".png";
       std::string p = base.string() + "_" + a + ext;
-      writeBuffer(p, a, ctx.input(a));
+      writeBuffer(p, ctx.input(a));
       std::printf("wrote %s\n", p.c_str());
     }
     return 0;

@@ -154,7 +154,9 @@ int runViewer(const ViewerOptions& o) {
   int fbw = 0, fbh = 0;
   glfwGetFramebufferSize(window, &fbw, &fbh);
   s.view.camera = s.fly.toDesc(s.baseCamera);
-  s.view.width = std::max(1, int(float(fbw) * o.scale));
+  s.view.stereo = stereoFor(scene, o.render);
+  const int eyes = s.view.stereo.enabled ? 2 : 1;  // both eyes share the window side by side
+  s.view.width = std::max(1, int(float(fbw) * o.scale) / eyes);
   s.view.height = std::max(1, int(float(fbh) * o.scale));
   RenderWorker worker(scene, s.model, s.view, o.render.seed);
 
@@ -208,7 +210,7 @@ int runViewer(const ViewerOptions& o) {
     glfwGetFramebufferSize(window, &fbw, &fbh);
     ViewState v = s.view;
     v.camera = s.fly.toDesc(s.baseCamera);
-    v.width = std::max(1, int(float(fbw) * s.opts.scale));
+    v.width = std::max(1, int(float(fbw) * s.opts.scale) / eyes);
     v.height = std::max(1, int(float(fbh) * s.opts.scale));
     if (std::memcmp(&v.camera, &s.view.camera, sizeof(CameraDesc)) != 0 ||
         v.width != s.view.width || v.height != s.view.height ||
@@ -253,7 +255,7 @@ int runViewer(const ViewerOptions& o) {
 
     // Scripted runs: once enough frames have finished, write what was asked and maybe quit.
     if (!screenshotsDone && o.frames > 0 && s.frame.serial >= uint64_t(o.frames) &&
-        s.frame.width == s.view.width && s.frame.height == s.view.height && texW > 0) {
+        s.frame.width == s.view.width * eyes && s.frame.height == s.view.height && texW > 0) {
       if (!o.windowCapture.empty()) {
         captureWindow(o.windowCapture, fbw, fbh);
         std::printf("wrote %s\n", o.windowCapture.c_str());

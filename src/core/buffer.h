@@ -1,21 +1,86 @@
 // A named frame buffer: width x height pixels of `channels` floats, interleaved per pixel.
-// Every G-buffer target, mask and image is one of these, so passes, AOV output and metrics
-// treat them alike (ids are stored as exact small integers in float).
+// Every G-buffer target, mask, list and image is one of these, so passes, AOV output and metrics
+// treat them alike (ids are stored as exact small integers in float). A buffer knows its kind, so
+// the AOV writer and the viewer show it correctly without knowing its name.
 #pragma once
+#include <algorithm>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/math.h"
 
 namespace tandem {
 
+// What the values of a buffer mean (how to show them, what may feed what).
+enum class BufferKind {
+  Color,     // linear HDR radiance (tonemapped for display)
+  Display,   // display-encoded sRGB in [0,1] (a pipeline's final image)
+  Depth,     // reversed-Z depth: 1 at the near plane, 0 background
+  Position,  // world position
+  Normal,    // unit vectors
+  Id,        // small integers, -1 none (false-coloured)
+  Motion,    // screen-space motion in pixels (2 channels)
+  Mask,      // weights or flags in [0,1], one channel per mask
+  Count,     // non-negative integers (samples, rays)
+  Variance,  // variance of a mean (shown as standard error)
+  Material,  // material terms in [0,1] (albedo, specular, optical)
+  List,      // records, not pixels: an N x 1 list (per object, per sample)
+};
+const char* kindName(BufferKind k);
+
+// A buffer's size relative to the frame: the frame, 1/2 or 1/4 of it (rounded up), a fixed size
+// (a 1 x 1 value, an N x 1 list), or sized by its pass at run time (a list whose length depends on
+// the scene).
+struct Extent {
+  enum class Scale { Frame, Half, Quarter, Fixed, Any };
+  Scale scale = Scale::Frame;
+  int width = 0, height = 0;  // Fixed only
+
+  static Extent frame() { return {}; }
+  static Extent half() { return {Scale::Half, 0, 0}; }
+  static Extent quarter() { return {Scale::Quarter, 0, 0}; }
+  static Extent fixed(int w, int h) { return {Scale::Fixed, w, h}; }
+  static Extent any() { return {Scale::Any, 0, 0}; }
+  int divisor() const { return scale == Scale::Half ? 2 : scale == Scale::Quarter ? 4 : 1; }
+  // Pixel size for a frame of fw x fh (Any: 0 x 0, the pass decides).
+  void resolve(int fw, int fh, int& w, int& h) const {
+    if (scale == Scale::Fixed) {
+      w = width;
+      h = height;
+    } else if (scale == Scale::Any) {
+      w = h = 0;
+    } else {
+      w = (fw + divisor() - 1) / divisor();
+      h = (fh + divisor() - 1) / divisor();
+    }
+  }
+  bool operator==(const Extent& o) const {
+    return scale == o.scale && (scale != Scale::Fixed || (width == o.width && height == o.height));
+  }
+  std::string name() const;
+};
+
+// A pass's buffer slot: its name (fixed by the pass), channel count, kind, extent, and whether it
+// reads last frame's value of the buffer (a history input: valid unless the history was reset) or
+// may be missing (an optional input).
+struct BufferSlot {
+  std::string slot;
+  int channels = 1;
+  BufferKind kind = BufferKind::Color;
+  Extent extent = Extent::frame();
+  bool history = false;
+  bool optional = false;
+};
+
 struct Buffer {
   int width = 0, height = 0, channels = 0;
+  BufferKind kind = BufferKind::Color;
   std::vector<float> data;
 
   Buffer() = default;
-  Buffer(int w, int h, int c, float fill = 0.0f)
-      : width(w), height(h), channels(c), data(size_t(w) * h * c, fill) {}
+  Buffer(int w, int h, int c, float fill = 0.0f, BufferKind k = BufferKind::Color)
+      : width(w), height(h), channels(c), kind(k), data(size_t(w) * h * c, fill) {}
 
   size_t pixelCount() const { return size_t(width) * height; }
   float* at(int x, int y) { return &data[(size_t(y) * width + x) * channels]; }

@@ -1,5 +1,7 @@
 #include "core/color.h"
 
+#include <algorithm>
+
 #include <array>
 
 namespace tandem {
@@ -25,6 +27,33 @@ float linearToSrgbFast(float c) {
   int i = int(x);
   float f = x - float(i);
   return t[i] + (t[i + 1] - t[i]) * f;
+}
+
+namespace {
+float aces(float x) {
+  const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
+  return std::clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0f, 1.0f);
+}
+}  // namespace
+
+Vec3 tonemapPixel(Vec3 c, float ev, ToneOperator op) {
+  c = c * std::exp2(ev);
+  for (int k = 0; k < 3; ++k) {
+    float v = std::isfinite(c[k]) ? std::max(c[k], 0.0f) : 0.0f;
+    switch (op) {
+      case ToneOperator::Clamp:
+        v = std::min(v, 1.0f);
+        break;
+      case ToneOperator::Reinhard:
+        v = v / (1.0f + v);
+        break;
+      case ToneOperator::Aces:
+        v = aces(v);
+        break;
+    }
+    c[k] = linearToSrgbFast(v);
+  }
+  return c;
 }
 
 }  // namespace tandem

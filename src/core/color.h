@@ -17,6 +17,10 @@ inline float linearToSrgb(float c) {
 // in [0,1] (well under half an 8-bit step), about 5x cheaper than pow per channel.
 float linearToSrgbFast(float c);
 
+enum class ToneOperator { Clamp = 0, Reinhard = 1, Aces = 2 };
+// Exposure (2^EV), tone curve and sRGB encoding of one linear colour (non-finite -> 0).
+Vec3 tonemapPixel(Vec3 hdr, float exposureEV, ToneOperator op);
+
 inline Vec3 srgbToLinear(Vec3 c) {
   return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
 }

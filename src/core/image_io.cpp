@@ -164,8 +164,12 @@ Buffer load8bit(const std::string& path, int wantChannels) {
 }  // namespace
 
 Buffer loadImage(const std::string& path) {
-  if (hasExtension(path, ".exr")) return loadExr(path);
-  return load8bit(path, 3);
+  if (!hasExtension(path, ".exr")) {
+    Buffer b = load8bit(path, 3);
+    b.kind = BufferKind::Display;  // 8-bit files hold display-encoded colour
+    return b;
+  }
+  return loadExr(path);
 }
 
 Buffer loadTextureFile(const std::string& path) {

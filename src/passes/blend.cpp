@@ -1,19 +1,20 @@
 #include "passes/blend.h"
 
 #include "core/parallel.h"
+#include "passes/rt_stats.h"
 #include "pipeline/frame_context.h"
 #include "rt/whitted.h"
 
 namespace tandem {
 
 void BlendPass::execute(FrameContext& ctx) {
-  const Buffer& L = ctx.input(bufferName("hdr"));
-  const Buffer& S = ctx.input(bufferName("shadow"));
-  const Buffer& M = ctx.input(bufferName("reflection"));
-  const Buffer& R = ctx.input(bufferName("refraction"));
-  const Buffer& optical = ctx.input(bufferName("optical"));
-  const Buffer& mask = ctx.input(bufferName("heuristic_mask"));
-  Buffer& out = ctx.output(bufferName("composite"), 3);
+  const Buffer& L = ctx.input(*this, "hdr");
+  const Buffer& S = ctx.input(*this, "shadow");
+  const Buffer& M = ctx.input(*this, "reflection");
+  const Buffer& R = ctx.input(*this, "refraction");
+  const Buffer& optical = ctx.input(*this, "optical");
+  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  Buffer& out = ctx.output(*this, "composite");
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {

@@ -1,9 +1,8 @@
 #include "passes/deferred_shading.h"
 
-#include "core/parallel.h"
-#include "pipeline/frame_context.h"
+#include "pipeline/gbuffer_io.h"
+#include "pipeline/view_tiles.h"
 #include "shading/blinn_phong.h"
-#include "shading/gbuffer_sample.h"
 
 namespace tandem {
 
@@ -12,15 +11,15 @@ std::vector<BufferSlot> DeferredShadingPass::inputs() const {
 }
 
 void DeferredShadingPass::execute(FrameContext& ctx) {
-  GBufferReader g(ctx, *this);
-  Buffer& hdr = ctx.output(bufferName("hdr"), 3);
+  const GBufferReader g = gbufferSource(ctx, *this);
+  Buffer& hdr = ctx.output(*this, "hdr");
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
-  parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
+  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         Vec3 o, d;
-        ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
+        v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
         SurfaceSample s;
         Vec3 c = g.read(x, y, s) ? shadeBlinnPhong(s, -d, shading) : scene.skyRadiance(d);
         hdr.setRgb(x, y, c);

@@ -176,10 +176,15 @@ std::vector<ParamDesc> HeuristicPass::params() const {
        {}}};
 }
 
+void HeuristicPass::resetHistory() {
+  selectedLast_.clear();
+  selectedFrame_ = -1;
+}
+
 void HeuristicPass::updateMeasurements(const RtStats& stats) {
-  // Each frame's RT figures are folded in once: ½ old + ½ new (the first taken as is).
-  if (stats.serial < 0 || stats.serial == measuredFrame_) return;
-  measuredFrame_ = stats.serial;
+  // Each frame's RT figures (last frame's history value, seen once) are folded in: ½ old + ½ new
+  // (the first taken as is).
+  if (stats.ms <= 0) return;  // the RT pass did not run (bypassed, or no history)
   auto fold = [](double& m, double v) { m = m > 0 ? 0.5 * m + 0.5 * v : v; };
   msPerPixel_.resize(stats.pixels.size());
   measuredRays_.resize(stats.pixels.size());
@@ -204,22 +209,25 @@ void HeuristicPass::execute(FrameContext& ctx) {
     boundsVersion_ = ctx.frame.geometryVersion;
   }
   // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
-  if (ctx.rtStats.serial >= 0 && ctx.rtStats.serial == selectedFrame_)
-    calibration_.observe(selectedCost_, ctx.rtStats.ms);
-  updateMeasurements(ctx.rtStats);
+  const Buffer* prevStats = ctx.previous(*this, "rt_stats");
+  const RtStats rtStats = prevStats ? readRtStats(*prevStats) : RtStats{};
+  if (rtStats.ms > 0 && selectedFrame_ >= 0 && selectedFrame_ == ctx.serial - 1)
+    calibration_.observe(selectedCost_, rtStats.ms);
+  updateMeasurements(rtStats);
   measuredRays_.resize(n);
 
-  const Buffer& ids = ctx.input(bufferName("object_id"));
+  const Buffer& ids = ctx.input(*this, "object_id");
   std::vector<uint32_t> pixels = countObjectPixels(ids, n);
   selectedLast_.resize(n, 0);
   const bool perEffect = param("per_effect") != 0;
   evaluated_ =
-      evaluateObjects(scene, bounds_, ctx.camera, pixels, selectedLast_, param("importance"),
+      evaluateObjects(scene, bounds_, ctx.camera(), pixels, selectedLast_, param("importance"),
                       param("count_recursion") != 0 ? &measuredRays_ : nullptr);
   // With a ms budget, costs are predicted CPU ms and T is in CPU ms (the calibration's rate is
   // CPU ms per wall ms of the RT pass; its prior, the worker count).
   const bool msBudget = param("budget_ms") > 0;
-  ctx.rtStats.timeEffects = msBudget;  // this frame's RT pass times each object and effect
+  // This frame's RT pass times each object and effect.
+  ctx.output(*this, "rt_request").data[0] = msBudget ? 1.0f : 0.0f;
   if (!calibrationPrior_) {
     calibration_ = BudgetCalibration(double(tbb::this_task_arena::max_concurrency()));
     calibrationPrior_ = true;
@@ -267,7 +275,7 @@ void HeuristicPass::execute(FrameContext& ctx) {
   }
   selectedFrame_ = ctx.serial;
   selectedLast_ = selected;
-  Buffer& mask = ctx.output(bufferName("heuristic_mask"), kEffectCount);
+  Buffer& mask = ctx.output(*this, "heuristic_mask");
   parallelRange(
       mask.pixelCount(),
       [&](size_t b, size_t e) {

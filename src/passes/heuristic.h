@@ -13,14 +13,15 @@
 //    reflection (the paper's future work);
 //  - count_recursion: Q is the rays per pixel the RT pass actually traced for the object and
 //    effect (recursion included), the paper's Q being the prior until it has been traced.
-// Input: object_id. Output: heuristic_mask (3 channels).
+// Inputs: object_id, rt_stats (last frame's, a history input). Outputs: heuristic_mask (3
+// channels), rt_request (1 x 1: 1 asks rt_secondary to time each object and effect).
 #pragma once
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "core/buffer.h"
-#include "pipeline/frame_context.h"
+#include "passes/rt_stats.h"
 #include "pipeline/pass.h"
 #include "scene/camera.h"
 #include "scene/frame_scene.h"
@@ -96,10 +97,16 @@ class HeuristicPass : public Pass {
   std::string description() const override {
     return "Per-object relevancy/cost selection under budget T (seed 002 §3.2)";
   }
-  std::vector<BufferSlot> inputs() const override { return {{"object_id", 1}}; }
-  std::vector<BufferSlot> outputs() const override { return {{"heuristic_mask", 3}}; }
+  std::vector<BufferSlot> inputs() const override {
+    return {{"object_id", 1, BufferKind::Id}, rtStatsSlot(true)};
+  }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"heuristic_mask", 3, BufferKind::Mask},
+            {"rt_request", 1, BufferKind::Mask, Extent::fixed(1, 1)}};
+  }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+  void resetHistory() override;
 
   const std::vector<ObjectHeuristic>& lastEvaluation() const { return evaluated_; }
   // Selected node ids (objects, or object * 3 + effect with per_effect).
@@ -116,7 +123,6 @@ class HeuristicPass : public Pass {
   std::vector<Bounds3> bounds_;
   uint64_t boundsVersion_ = ~0ull;
   std::vector<std::array<double, kEffectCount>> measuredRays_;
-  int64_t measuredFrame_ = -1;
   BudgetCalibration calibration_;
   bool calibrationPrior_ = false;  // prior set to the worker count on first use
   std::vector<std::array<double, kEffectCount>> msPerPixel_;  // measured, smoothed

@@ -1,6 +1,5 @@
 #include "passes/pt_reference.h"
 
-#include "core/hash.h"
 #include "pipeline/frame_context.h"
 #include "rt/reference_render.h"
 
@@ -15,7 +14,14 @@ std::vector<ParamDesc> PTReferencePass::params() const {
            1e7,
            "seconds; > 0 stops at the last batch that fits",
            {}},
-          {"max_depth", ParamType::Int, 16, 1, 1024, "maximum path length in bounces", {}},
+          {"max_depth",
+           ParamType::Int,
+           16,
+           1,
+           1024,
+           "maximum path length in bounces",
+           {},
+           /*invalidatesHistory=*/true},
           {"progress", ParamType::Bool, 1, 0, 1, "progress bar on a terminal's stderr", {}},
           {"accumulate",
            ParamType::Bool,
@@ -39,37 +45,50 @@ void PTReferencePass::execute(FrameContext& ctx) {
   settings.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);
   SampleCluster single;
   SampleCluster& cluster = ctx.cluster ? *ctx.cluster : single;
-  SampleSums fresh;
-  SampleSums& sums = param("accumulate") != 0 ? sums_ : fresh;
-  if (param("accumulate") != 0) {
+  const bool accumulate = param("accumulate") != 0;
+  if (accumulate) {
     // Samples continue by index, so the frame number must not change the sequence.
     settings.seed = ctx.seed * 0x9E3779B97F4A7C15ull;
-    // Everything the samples depend on; any change starts the accumulation over.
-    Hasher h;
-    h.pod(ctx.camera.viewProj)
-        .pod(ctx.shutterCamera.viewProj)
-        .pod(ctx.camera.desc.apertureDiameter);
-    h.pod(ctx.camera.desc.focusDistance).pod(ctx.camera.desc.apertureBlades);
-    // Scene time matters only through moved geometry (geometryVersion) and the shutter length.
-    h.pod(ctx.frame.geometryVersion).pod(ctx.frame.shutterClose - ctx.frame.time);
-    h.pod(ctx.width).pod(ctx.height).pod(settings.seed).pod(settings.path.maxDepth);
-    h.pod(ctx.scene);
-    if (h.value() != stateKey_ || sums.width != ctx.width || sums.height != ctx.height) {
-      sums.reset(ctx.width, ctx.height);
-      stateKey_ = h.value();
-    }
-    settings.spp = std::min(settings.spp, sums.samples + int(param("frame_spp")));
+    // History resets (scene, size, pipeline, lens, max_depth) clear sums_; a moved camera or
+    // moved geometry starts over too (scene time matters only through moved geometry).
+    if (ctx.anyCameraMoved() || ctx.frame.geometryVersion != geometryVersion_) sums_.clear();
+    geometryVersion_ = ctx.frame.geometryVersion;
     settings.timeLimitS = 0;
     settings.progress = false;
+  } else {
+    sums_.clear();
   }
-  ReferenceResult r =
-      renderReference(rt, *ctx.scene, ctx.camera, ctx.shutterCamera, settings, cluster, sums);
-  Buffer& hdr = ctx.output(bufferName("hdr"), 3);
-  Buffer& variance = ctx.output(bufferName("variance"), 1);
-  sums.resolve(hdr, &variance);
-  ctx.samplesPerPixel = r.spp;
-  ctx.passRays += double(r.rays);
-  ctx.passParts.push_back({"sampling", r.seconds * 1e3, double(r.rays)});
+  sums_.resize(ctx.views.size());
+  Buffer& hdr = ctx.output(*this, "hdr");
+  Buffer& variance = ctx.output(*this, "variance");
+  int spp = 0;
+  double seconds = 0;
+  for (size_t i = 0; i < ctx.views.size(); ++i) {
+    const View& v = ctx.views[i];
+    SampleSums& sums = sums_[i];
+    if (sums.width != v.width() || sums.height != v.height()) sums.reset(v.width(), v.height());
+    ReferenceSettings eye = settings;
+    eye.seed += uint64_t(i) * 0xD1B54A32D192ED03ull;  // eyes get independent samples
+    if (accumulate) eye.spp = std::min(settings.spp, sums.samples + int(param("frame_spp")));
+    ReferenceResult r =
+        renderReference(rt, *ctx.scene, v.camera, v.shutterCamera, eye, cluster, sums);
+    spp = i == 0 ? r.spp : std::min(spp, r.spp);
+    seconds += r.seconds;
+    ctx.passRays += double(r.rays);
+    if (ctx.views.size() == 1) {
+      sums.resolve(hdr, &variance);
+    } else {
+      Buffer h(v.width(), v.height(), 3), var(v.width(), v.height(), 1);
+      sums.resolve(h, &var);
+      for (int y = 0; y < v.height(); ++y)
+        for (int x = 0; x < v.width(); ++x) {
+          hdr.setRgb(x + v.x, y + v.y, h.rgb(x, y));
+          variance.at(x + v.x, y + v.y)[0] = var.at(x, y)[0];
+        }
+    }
+  }
+  ctx.counters["spp"] = spp;
+  ctx.passParts.push_back({"sampling", seconds * 1e3, ctx.passRays});
 }
 
 }  // namespace tandem

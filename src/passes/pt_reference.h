@@ -5,8 +5,8 @@
 // Outputs: hdr (the mean) and variance (of the mean's luminance: the noise left).
 // Parameters: spp, time_limit, max_depth, progress, accumulate, frame_spp. With `accumulate`
 // (the viewer's progressive mode) each frame adds `frame_spp` samples to the last frame's while
-// the camera, scene, size and settings stay the same, up to `spp`, and starts over when any
-// changes.
+// the camera and geometry stay the same, up to `spp`, and starts over on a history reset (scene,
+// size, pipeline, lens, max_depth), a camera move or moved geometry. Stereo: one render per eye.
 #pragma once
 #include "pipeline/pass.h"
 #include "rt/reference_render.h"
@@ -19,13 +19,16 @@ class PTReferencePass : public Pass {
   std::string description() const override {
     return "Progressive reference path tracing (NEE + MIS, thin lens, motion blur, Sobol)";
   }
-  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}, {"variance", 1}}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"hdr", 3}, {"variance", 1, BufferKind::Variance}};
+  }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+  void resetHistory() override { sums_.clear(); }
 
  private:
-  SampleSums sums_;        // carried across frames in accumulate mode
-  uint64_t stateKey_ = 0;  // what the sums were rendered for
+  std::vector<SampleSums> sums_;  // per view, carried across frames in accumulate mode
+  uint64_t geometryVersion_ = ~0ull;
 };
 
 }  // namespace tandem

@@ -3,10 +3,10 @@
 #include <tbb/combinable.h>
 
 #include "core/cycle_clock.h"
-#include "core/parallel.h"
-#include "pipeline/frame_context.h"
+#include "passes/rt_stats.h"
+#include "pipeline/gbuffer_io.h"
+#include "pipeline/view_tiles.h"
 #include "rt/whitted.h"
-#include "shading/gbuffer_sample.h"
 
 namespace tandem {
 
@@ -23,8 +23,13 @@ std::vector<ParamDesc> whittedParams() {
 
 std::vector<BufferSlot> RTSecondaryPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
-  in.push_back({"heuristic_mask", kEffectCount});
+  in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
+  in.push_back({"rt_request", 1, BufferKind::Mask, Extent::fixed(1, 1), false, true});
   return in;
+}
+
+std::vector<BufferSlot> RTSecondaryPass::outputs() const {
+  return {{"shadow", 3}, {"reflection", 3}, {"refraction", 3}, rtStatsSlot(false)};
 }
 
 namespace {
@@ -44,14 +49,15 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   const size_t objects = scene.objects.size();
   const ShadingContext shading = ShadingContext::from(scene);
   Whitted whitted(rt, scene, shading, {int(param("max_depth")), float(param("importance_cutoff"))});
-  GBufferReader g(ctx, *this);
-  const Buffer& mask = ctx.input(bufferName("heuristic_mask"));
-  Buffer& shadow = ctx.output(bufferName("shadow"), 3);
-  Buffer& reflection = ctx.output(bufferName("reflection"), 3);
-  Buffer& refraction = ctx.output(bufferName("refraction"), 3);
-  const bool timed = ctx.rtStats.timeEffects;
+  const GBufferReader g = gbufferSource(ctx, *this);
+  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  Buffer& shadow = ctx.output(*this, "shadow");
+  Buffer& reflection = ctx.output(*this, "reflection");
+  Buffer& refraction = ctx.output(*this, "refraction");
+  const Buffer* request = ctx.optionalInput(*this, "rt_request");
+  const bool timed = request && request->data[0] > 0.5f;
   tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
-  parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
+  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     std::vector<Vec3> vis(scene.lights.size());
     EffectTallies& tally = tallies.local();
     for (int y = y0; y < y1; ++y)
@@ -64,7 +70,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         if ((want[0] || want[1] || want[2]) && g.read(x, y, s)) {
           EffectTally& t = tally[size_t(s.object)];
           Vec3 o, d;
-          ctx.camera.generateRay(x + 0.5f, y + 0.5f, o, d);
+          v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
           // What each effect costs this object, in rays and in time (the heuristic's ms budget
           // and recursion-aware costs are built from these).
           uint64_t r0 = rt.raysOnThisThread(), c0 = timed ? cycleNow() : 0;
@@ -101,7 +107,8 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         refraction.setRgb(x, y, refractionRgb);
       }
   });
-  RtStats& stats = ctx.rtStats;
+  RtStats stats;
+  stats.timeEffects = timed;
   stats.pixels.assign(objects, {});
   stats.rays.assign(objects, {});
   stats.cpuMs.assign(objects, {});
@@ -114,8 +121,8 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         stats.cpuMs[o][e] += double(tally[o].ticks[e]) * msPerTick;
       }
   });
-  stats.serial = ctx.serial;
   stats.ms = msSince(start);
+  writeRtStats(stats, ctx.output(*this, "rt_stats", int(objects) + 1, 1));
   ctx.passRays += double(rt.raysTraced() - raysBefore);
 }
 

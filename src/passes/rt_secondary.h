@@ -2,7 +2,9 @@
 // G-buffer (no primary rays): shadow rays to every light (Listing 8b), reflection and refraction
 // rays with recursion (Listing 8c, rt/whitted.h). Outside the mask: shadow 1, reflection and
 // refraction 0 (Figure 5's buffers).
-// Inputs: G-buffer sample targets, heuristic_mask. Outputs: shadow, reflection, refraction.
+// Inputs: G-buffer sample targets, heuristic_mask, rt_request (optional: 1 times each object and
+// effect). Outputs: shadow, reflection, refraction, rt_stats (what it traced, for the next
+// frame's heuristic).
 // Parameters: max_depth, importance_cutoff.
 #pragma once
 #include "pipeline/pass.h"
@@ -19,9 +21,7 @@ class RTSecondaryPass : public Pass {
     return "Ray-traced shadows, reflections, refractions for masked pixels (seed 002 §3.3)";
   }
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override {
-    return {{"shadow", 3}, {"reflection", 3}, {"refraction", 3}};
-  }
+  std::vector<BufferSlot> outputs() const override;
   std::vector<ParamDesc> params() const override { return whittedParams(); }
   void execute(FrameContext& ctx) override;
 };

@@ -18,18 +18,21 @@ void RTWhittedPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   Whitted whitted(rt, scene, shading, {int(param("max_depth")), float(param("importance_cutoff"))});
-  Buffer& hdr = ctx.output(bufferName("hdr"), 3);
-  Buffer& ids = ctx.output(bufferName("object_id"), 1);
-  tracePrimaryRays(ctx.camera, rt, [&](int x, int y, const Ray& r, const Hit& h) {
-    if (!h.valid()) {
-      hdr.setRgb(x, y, scene.skyRadiance(r.dir));
-      ids.at(x, y)[0] = -1;
-      return;
-    }
-    SurfaceSample s = resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir);
-    hdr.setRgb(x, y, whitted.shadePrimary(s, r.dir));
-    ids.at(x, y)[0] = float(h.object);
-  });
+  Buffer& hdr = ctx.output(*this, "hdr");
+  Buffer& ids = ctx.output(*this, "object_id");
+  for (const View& v : ctx.views)
+    tracePrimaryRays(v.camera, rt, [&](int x, int y, const Ray& r, const Hit& h) {
+      x += v.x;
+      y += v.y;
+      if (!h.valid()) {
+        hdr.setRgb(x, y, scene.skyRadiance(r.dir));
+        ids.at(x, y)[0] = -1;
+        return;
+      }
+      SurfaceSample s = resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir);
+      hdr.setRgb(x, y, whitted.shadePrimary(s, r.dir));
+      ids.at(x, y)[0] = float(h.object);
+    });
   // Primary rays are counted by the tracer too, so the delta covers every ray of the pass.
   ctx.passRays += double(rt.raysTraced() - before);
 }

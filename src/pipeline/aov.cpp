@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/image_io.h"
-#include "passes/tonemap.h"
+#include "core/color.h"
 
 namespace tandem {
 
@@ -18,34 +18,34 @@ Vec3 idColor(int id) {
           0.25f + 0.75f * (((h >> 16) & 0xff) / 255.0f)};
 }
 
-Buffer visualizeBuffer(const std::string& name, const Buffer& b, float scale) {
+Buffer visualizeBuffer(const Buffer& b, float scale) {
   Buffer out(b.width, b.height, 3);
   const size_t n = b.pixelCount();
   auto set = [&](size_t i, Vec3 c) { out.setRgb(int(i % b.width), int(i / b.width), c); };
-  if (name == "output") {
+  if (b.kind == BufferKind::Display) {
     for (size_t i = 0; i < n; ++i) set(i, b.rgb(int(i % b.width), int(i / b.width)));
     return out;
   }
-  if (name.find("_id") != std::string::npos) {
+  if (b.kind == BufferKind::Id) {
     for (size_t i = 0; i < n; ++i) set(i, idColor(int(std::lround(b.data[i * b.channels]))));
     return out;
   }
-  if (name == "depth") {
+  if (b.kind == BufferKind::Depth) {
     // Reversed-Z: brighter is nearer; stretch the visible range to [0,1].
     float lo = 1e30f, hi = 0;
     for (size_t i = 0; i < n; ++i)
-      if (b.data[i] > 0) {
-        lo = std::min(lo, b.data[i]);
-        hi = std::max(hi, b.data[i]);
+      if (b.data[i * b.channels] > 0) {
+        lo = std::min(lo, b.data[i * b.channels]);
+        hi = std::max(hi, b.data[i * b.channels]);
       }
     for (size_t i = 0; i < n; ++i) {
-      float d = b.data[i];
+      float d = b.data[i * b.channels];
       float v = d > 0 && hi > lo ? 0.1f + 0.9f * (d - lo) / (hi - lo) : (d > 0 ? 1.0f : 0.0f);
       set(i, Vec3(v));
     }
     return out;
   }
-  if (name.find("normal") != std::string::npos) {
+  if (b.kind == BufferKind::Normal && b.channels >= 3) {
     for (size_t i = 0; i < n; ++i) {
       const float* p = &b.data[i * b.channels];
       Vec3 v{p[0], p[1], p[2]};
@@ -53,15 +53,16 @@ Buffer visualizeBuffer(const std::string& name, const Buffer& b, float scale) {
     }
     return out;
   }
-  if (name == "motion") {
+  if (b.kind == BufferKind::Motion && b.channels >= 2) {
     float m = 1e-6f;
     for (size_t i = 0; i < n; ++i)
-      m = std::max({m, std::abs(b.data[2 * i]), std::abs(b.data[2 * i + 1])});
+      m = std::max({m, std::abs(b.data[i * b.channels]), std::abs(b.data[i * b.channels + 1])});
     for (size_t i = 0; i < n; ++i)
-      set(i, {0.5f + 0.5f * b.data[2 * i] / m, 0.5f + 0.5f * b.data[2 * i + 1] / m, 0.5f});
+      set(i, {0.5f + 0.5f * b.data[i * b.channels] / m,
+              0.5f + 0.5f * b.data[i * b.channels + 1] / m, 0.5f});
     return out;
   }
-  if (name == "position") {
+  if (b.kind == BufferKind::Position) {
     Bounds3 bb;
     for (size_t i = 0; i < n; ++i) bb.extend(b.rgb(int(i % b.width), int(i / b.width)));
     Vec3 ext = vmax(bb.extent(), Vec3(1e-6f));
@@ -71,18 +72,19 @@ Buffer visualizeBuffer(const std::string& name, const Buffer& b, float scale) {
     }
     return out;
   }
-  if (name == "variance") {
+  if (b.kind == BufferKind::Variance) {
     // Standard error of each pixel mean, times `scale`, as grey: the noise left to converge.
     for (size_t i = 0; i < n; ++i)
       set(i, Vec3(std::min(std::sqrt(std::max(b.data[i * b.channels], 0.0f)) * scale, 1.0f)));
     return out;
   }
-  if (name == "hdr" || name == "emission" || name == "composite") {
+  if (b.kind == BufferKind::Color) {
     for (size_t i = 0; i < n; ++i)
       set(i, tonemapPixel(b.rgb(int(i % b.width), int(i / b.width)), 0.0f, ToneOperator::Aces));
     return out;
   }
-  // Material terms, optical properties, masks: shown as stored (clamped), one channel as grey.
+  // Material terms, optical properties, masks, counts, lists: shown as stored (clamped), one
+  // channel as grey.
   for (size_t i = 0; i < n; ++i) {
     const float* p = &b.data[i * b.channels];
     Vec3 c = b.channels >= 3 ? Vec3(p[0], p[1], p[2]) : Vec3(p[0]);
@@ -91,11 +93,11 @@ Buffer visualizeBuffer(const std::string& name, const Buffer& b, float scale) {
   return out;
 }
 
-void writeBuffer(const std::string& path, const std::string& name, const Buffer& b) {
+void writeBuffer(const std::string& path, const Buffer& b) {
   if (hasExtension(path, ".exr")) {
     writeExr(path, b);
   } else {
-    writePng(path, visualizeBuffer(name, b));
+    writePng(path, visualizeBuffer(b));
   }
 }
 

@@ -1,5 +1,6 @@
-// Turning any named buffer into a viewable image (PNG) or a raw one (EXR): depth normalised,
-// normals as colour, ids false-coloured, motion vectors as colour, HDR colour tonemapped.
+// Turning any buffer into a viewable image (PNG) or a raw one (EXR), by its kind: depth
+// normalised, normals as colour, ids false-coloured, motion vectors as colour, HDR colour
+// tonemapped, variance as standard error. Reduced-extent buffers keep their own size.
 #pragma once
 #include <string>
 
@@ -7,13 +8,12 @@
 
 namespace tandem {
 
-// Display-ready RGB in [0,1] (sRGB encoded) for a buffer named `name`. `scale` multiplies the
-// standard error shown for `variance`.
-Buffer visualizeBuffer(const std::string& name, const Buffer& b, float scale = 1.0f);
+// Display-ready RGB in [0,1] (sRGB encoded), the buffer's size. `scale` multiplies the standard
+// error shown for a variance buffer.
+Buffer visualizeBuffer(const Buffer& b, float scale = 1.0f);
 // Deterministic distinct colour for an integer id (-1 -> black).
 Vec3 idColor(int id);
-// Writes a buffer to `path`: EXR gets raw values, PNG the visualisation (or `name == "output"`,
-// which is already display encoded).
-void writeBuffer(const std::string& path, const std::string& name, const Buffer& b);
+// Writes a buffer to `path`: EXR gets raw values, PNG the visualisation.
+void writeBuffer(const std::string& path, const Buffer& b);
 
 }  // namespace tandem

@@ -1,6 +1,14 @@
 #include "pipeline/frame_context.h"
 
+#include "pipeline/pass.h"
+
 namespace tandem {
+
+bool FrameContext::anyCameraMoved() const {
+  for (const View& v : views)
+    if (v.cameraMoved) return true;
+  return false;
+}
 
 RayTracer& FrameContext::rayTracer() {
   if (!rt_) rt_ = std::make_unique<RayTracer>();
@@ -8,11 +16,28 @@ RayTracer& FrameContext::rayTracer() {
   return *rt_;
 }
 
-Buffer& FrameContext::output(const std::string& name, int channels) {
-  Buffer& b = buffers[name];
-  if (b.width != width || b.height != height || b.channels != channels)
-    b = Buffer(width, height, channels);
+Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, int h) {
+  const std::optional<BufferSlot> s = pass.outputSlot(slot);
+  TANDEM_ASSERT(s.has_value());  // a pass writes only the slots it declares
+  if (s->extent.scale != Extent::Scale::Any) s->extent.resolve(width, height, w, h);
+  Buffer& b = buffers[pass.bufferName(slot)];
+  if (b.width != w || b.height != h || b.channels != s->channels) b = Buffer(w, h, s->channels);
+  b.kind = s->kind;
   return b;
+}
+
+const Buffer& FrameContext::input(const Pass& pass, const std::string& slot) const {
+  return input(pass.bufferName(slot));
+}
+
+const Buffer* FrameContext::previous(const Pass& pass, const std::string& slot) const {
+  auto it = history.find(pass.bufferName(slot));
+  return it == history.end() ? nullptr : &it->second;
+}
+
+const Buffer* FrameContext::optionalInput(const Pass& pass, const std::string& slot) const {
+  auto it = buffers.find(pass.bufferName(slot));
+  return it == buffers.end() ? nullptr : &it->second;
 }
 
 const Buffer& FrameContext::input(const std::string& name) const {

@@ -27,6 +27,7 @@ void Pass::setParam(const std::string& name, double value) {
     if ((d.type == ParamType::Int || d.type == ParamType::Enum || d.type == ParamType::Bool) &&
         value != std::floor(value))
       throw InputError("", "pass '" + type() + "' parameter '" + name + "'", "expected an integer");
+    if (d.invalidatesHistory && param(name) != value) historyInvalidated = true;
     values_[name] = value;
     return;
   }
@@ -40,6 +41,22 @@ void Pass::resetParams() {
 const std::string& Pass::bufferName(const std::string& slot) const {
   auto it = bindings.find(slot);
   return it != bindings.end() ? it->second : slot;
+}
+
+namespace {
+std::optional<BufferSlot> findSlot(const std::vector<BufferSlot>& slots, const std::string& name) {
+  for (const BufferSlot& s : slots)
+    if (s.slot == name) return s;
+  return std::nullopt;
+}
+}  // namespace
+
+std::optional<BufferSlot> Pass::outputSlot(const std::string& slot) const {
+  return findSlot(outputs(), slot);
+}
+
+std::optional<BufferSlot> Pass::inputSlot(const std::string& slot) const {
+  return findSlot(inputs(), slot);
 }
 
 }  // namespace tandem

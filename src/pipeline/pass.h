@@ -3,9 +3,11 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/buffer.h"
 #include "core/json_fields.h"
 
 namespace tandem {
@@ -21,12 +23,14 @@ struct ParamDesc {
   double defaultValue = 0, min = 0, max = 1;
   std::string doc;
   std::vector<std::string> choices;  // Enum: value is the index into choices
+  bool invalidatesHistory = false;   // an edit resets every pass's history (a new picture)
 };
 
-// A buffer slot: the slot name (fixed by the pass) and the channel count it reads or writes.
-struct BufferSlot {
-  std::string slot;
-  int channels = 1;
+// What a pass asks of the next frame before it is rendered (the renderer merges every enabled
+// pass's request).
+struct FrameRequest {
+  bool jitter = false;   // sub-pixel projection jitter from the Halton (2, 3) sequence
+  int jitterPhases = 8;  // length of the jitter cycle (the largest asked for wins)
 };
 
 class Pass {
@@ -38,6 +42,15 @@ class Pass {
   virtual std::vector<BufferSlot> outputs() const { return {}; }
   virtual std::vector<ParamDesc> params() const { return {}; }
   virtual void execute(FrameContext& ctx) = 0;
+  // Asks for what the next frame needs (default: nothing).
+  virtual void request(FrameRequest&) const {}
+  // Forget everything carried from earlier frames (camera cut, resize, scene reload, pipeline
+  // switch, an invalidating parameter edit). Declared history inputs are dropped by the
+  // pipeline; this is for state a pass keeps itself.
+  virtual void resetHistory() {}
+  // Declaration of a slot by name (null when the pass has no such slot).
+  std::optional<BufferSlot> outputSlot(const std::string& slot) const;
+  std::optional<BufferSlot> inputSlot(const std::string& slot) const;
 
   // Parameter values, validated against params(); read with param("name").
   double param(const std::string& name) const;
@@ -51,6 +64,8 @@ class Pass {
   // A disabled pass is bypassed: each output takes the first input with the same channel count
   // (tonemap off shows the raw HDR), or zeros when there is none.
   bool enabled = true;
+  // Set when a parameter marked invalidatesHistory was edited; the pipeline resets and clears it.
+  bool historyInvalidated = false;
 
  private:
   std::map<std::string, double> values_;

@@ -8,84 +8,13 @@
 
 namespace tandem {
 
+// Generated at build time from pipelines/*.json (cmake/embed_pipelines.cmake).
+const std::map<std::string, std::string>& builtinPipelineSources();
+
 namespace {
-
-// Built-in pipelines: the same JSON a user would write (also in pipelines/*.json).
 const std::map<std::string, std::string>& builtins() {
-  static const std::map<std::string, std::string> b = {{"deferred", R"({
-  "name": "deferred",
-  "passes": [
-    {"type": "raster_gbuffer"},
-    {"type": "deferred_shading"},
-    {"type": "tonemap"}
-  ],
-  "output": "output"
-})"},
-                                                       {"deferred-rt-gbuffer", R"({
-  "name": "deferred-rt-gbuffer",
-  "passes": [
-    {"type": "rt_gbuffer"},
-    {"type": "deferred_shading"},
-    {"type": "tonemap"}
-  ],
-  "output": "output"
-})"},
-                                                       {"hybrid-heuristic", R"({
-  "name": "hybrid-heuristic",
-  "passes": [
-    {"type": "raster_gbuffer"},
-    {"type": "deferred_shading"},
-    {"type": "heuristic"},
-    {"type": "rt_secondary"},
-    {"type": "blend"},
-    {"type": "tonemap", "inputs": {"hdr": "composite"}}
-  ],
-  "output": "output"
-})"},
-                                                       {"hybrid-all", R"({
-  "name": "hybrid-all",
-  "passes": [
-    {"type": "raster_gbuffer"},
-    {"type": "deferred_shading"},
-    {"type": "heuristic", "params": {"select_all": true}},
-    {"type": "rt_secondary"},
-    {"type": "blend"},
-    {"type": "tonemap", "inputs": {"hdr": "composite"}}
-  ],
-  "output": "output"
-})"},
-                                                       {"hybrid-budget", R"({
-  "name": "hybrid-budget",
-  "passes": [
-    {"type": "raster_gbuffer"},
-    {"type": "deferred_shading"},
-    {"type": "heuristic",
-     "params": {"budget_ms": 50, "per_effect": true, "count_recursion": true}},
-    {"type": "rt_secondary"},
-    {"type": "blend"},
-    {"type": "tonemap", "inputs": {"hdr": "composite"}}
-  ],
-  "output": "output"
-})"},
-                                                       {"reference", R"({
-  "name": "reference",
-  "passes": [
-    {"type": "pt_reference"},
-    {"type": "tonemap"}
-  ],
-  "output": "output"
-})"},
-                                                       {"rt-only", R"({
-  "name": "rt-only",
-  "passes": [
-    {"type": "rt_whitted"},
-    {"type": "tonemap"}
-  ],
-  "output": "output"
-})"}};
-  return b;
+  return builtinPipelineSources();
 }
-
 }  // namespace
 
 const std::vector<std::string>& Pipeline::builtinNames() {
@@ -217,24 +146,68 @@ Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
 }
 
 void Pipeline::validate(const std::string& source) const {
-  std::map<std::string, int> available;  // buffer -> channels
+  std::map<std::string, BufferSlot> available, produced;  // buffer -> producer's declaration
+  for (const auto& p : passes)
+    for (const BufferSlot& out : p->outputs()) produced[p->bufferName(out.slot)] = out;
   for (size_t i = 0; i < passes.size(); ++i) {
     const Pass& p = *passes[i];
+    const std::string where = "passes[" + std::to_string(i) + "] (" + p.type() + ")";
     for (const BufferSlot& in : p.inputs()) {
       const std::string& buf = p.bufferName(in.slot);
-      auto it = available.find(buf);
-      if (it == available.end())
-        throw InputError(source, "passes[" + std::to_string(i) + "] (" + p.type() + ")",
-                         "input '" + buf + "' is not produced by an earlier pass");
-      if (it->second != in.channels)
-        throw InputError(source, "passes[" + std::to_string(i) + "] (" + p.type() + ")",
-                         "input '" + buf + "' has " + std::to_string(it->second) +
+      // A history input reads last frame's value: any pass of the pipeline may produce it.
+      const auto& pool = in.history ? produced : available;
+      auto it = pool.find(buf);
+      if (it == pool.end()) {
+        if (in.optional) continue;
+        throw InputError(source, where,
+                         in.history ? "history input '" + buf + "' is not produced by any pass"
+                                    : "input '" + buf + "' is not produced by an earlier pass");
+      }
+      const BufferSlot& out = it->second;
+      if (out.channels != in.channels)
+        throw InputError(source, where,
+                         "input '" + buf + "' has " + std::to_string(out.channels) +
                              " channels, expected " + std::to_string(in.channels));
+      if (out.kind != in.kind)
+        throw InputError(source, where,
+                         "input '" + buf + "' is " + kindName(out.kind) + ", expected " +
+                             kindName(in.kind));
+      if (in.extent.scale != Extent::Scale::Any && !(out.extent == in.extent))
+        throw InputError(source, where,
+                         "input '" + buf + "' has extent " + out.extent.name() + ", expected " +
+                             in.extent.name());
     }
-    for (const BufferSlot& out : p.outputs()) available[p.bufferName(out.slot)] = out.channels;
+    for (const BufferSlot& out : p.outputs()) available[p.bufferName(out.slot)] = out;
   }
   if (!available.count(output))
     throw InputError(source, "output", "buffer '" + output + "' is not produced by any pass");
+}
+
+std::vector<std::string> Pipeline::historyBuffers() const {
+  std::vector<std::string> names;
+  for (const auto& p : passes)
+    for (const BufferSlot& in : p->inputs())
+      if (in.history && std::find(names.begin(), names.end(), p->bufferName(in.slot)) == names.end())
+        names.push_back(p->bufferName(in.slot));
+  return names;
+}
+
+FrameRequest Pipeline::request() const {
+  FrameRequest r;
+  for (const auto& p : passes) {
+    if (!p->enabled) continue;
+    FrameRequest pr;
+    p->request(pr);
+    if (pr.jitter) {
+      r.jitterPhases = r.jitter ? std::max(r.jitterPhases, pr.jitterPhases) : pr.jitterPhases;
+      r.jitter = true;
+    }
+  }
+  return r;
+}
+
+void Pipeline::resetHistory() {
+  for (auto& p : passes) p->resetHistory();
 }
 
 std::vector<std::string> Pipeline::producedBuffers() const {
@@ -248,14 +221,20 @@ std::vector<std::string> Pipeline::producedBuffers() const {
 }
 
 namespace {
+// A disabled pass: each output takes the first (this frame's) input with the same channel count
+// and extent (tonemap off shows the raw HDR), or zeros.
 void bypass(const Pass& p, FrameContext& ctx) {
   const std::vector<BufferSlot> ins = p.inputs();
   for (const BufferSlot& o : p.outputs()) {
-    Buffer& out = ctx.output(p.bufferName(o.slot), o.channels);
-    auto same = std::find_if(ins.begin(), ins.end(),
-                             [&](const BufferSlot& i) { return i.channels == o.channels; });
-    if (same != ins.end() && ctx.buffers.count(p.bufferName(same->slot)))
-      out.data = ctx.input(p.bufferName(same->slot)).data;
+    auto same = std::find_if(ins.begin(), ins.end(), [&](const BufferSlot& i) {
+      return !i.history && i.channels == o.channels && ctx.has(p.bufferName(i.slot));
+    });
+    const Buffer* src = same != ins.end() ? &ctx.input(p.bufferName(same->slot)) : nullptr;
+    const bool fits = src && (o.extent.scale == Extent::Scale::Any ||
+                              (o.extent == same->extent));
+    Buffer& out = ctx.output(p, o.slot, src ? src->width : 0, src ? src->height : 0);
+    if (fits && src->sameShape(out))
+      out.data = src->data;
     else
       out.fill(0.0f);
   }
@@ -266,6 +245,17 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
   FrameTimings ft;
   auto frameStart = Clock::now();
   ++ctx.serial;
+  ctx.counters.clear();
+  // An edit of an invalidating parameter starts every pass's history over.
+  for (auto& p : passes)
+    if (p->historyInvalidated) {
+      ctx.historyReset = true;
+      p->historyInvalidated = false;
+    }
+  if (ctx.historyReset) {
+    ctx.history.clear();
+    resetHistory();
+  }
   for (auto& p : passes) {
     ctx.passRays = 0;
     ctx.passParts.clear();
@@ -280,6 +270,17 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     for (PassTiming& part : ctx.passParts)
       ft.passes.push_back({label + "/" + part.name, part.ms, part.rays});
   }
+  // What the next frame reads as last frame's value (copied: the buffer stays readable).
+  auto h0 = Clock::now();
+  bool any = false;
+  for (const std::string& name : historyBuffers()) {
+    auto it = ctx.buffers.find(name);
+    if (it == ctx.buffers.end()) continue;
+    ctx.history[name] = it->second;
+    any = true;
+  }
+  if (any) ft.passes.push_back({"history", msSince(h0), 0});
+  ctx.historyReset = false;
   ft.totalMs = msSince(frameStart);
   return ft;
 }

@@ -34,9 +34,17 @@ class Pipeline {
   static const std::vector<std::string>& builtinNames();
   static std::string builtinJson(const std::string& name);  // empty when unknown
 
-  // Every input is produced by an earlier pass with the same channel count, and the output
+  // Every input is produced by an earlier pass (a history input: by any pass) with the same
+  // channel count, kind and extent (an optional input may be produced by none), and the output
   // buffer exists. Throws InputError naming `source`, the pass and the buffer.
   void validate(const std::string& source) const;
+  // Buffers some pass reads as last frame's value (kept by execute() for the next frame).
+  std::vector<std::string> historyBuffers() const;
+  // What the enabled passes ask of the next frame (jitter).
+  FrameRequest request() const;
+  // Every pass forgets its own history (the frame context's history buffers are cleared too
+  // when execute() sees ctx.historyReset).
+  void resetHistory();
   // Buffer names produced by the passes, in order (for --aov listings and the viewer).
   std::vector<std::string> producedBuffers() const;
 

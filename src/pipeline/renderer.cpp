@@ -4,16 +4,82 @@
 
 namespace tandem {
 
+namespace {
+float radicalInverse(int i, int base) {
+  float f = 1.0f, r = 0.0f;
+  while (i > 0) {
+    f /= float(base);
+    r += f * float(i % base);
+    i /= base;
+  }
+  return r;
+}
+}  // namespace
+
+Vec2 haltonJitter(int i) {
+  return {radicalInverse(i, 2) - 0.5f, radicalInverse(i, 3) - 0.5f};
+}
+
 Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings)
-    : scene_(scene), pipeline_(std::move(pipeline)), settings_(settings) {
-  ctx_.scene = &scene_;
-  ctx_.width = settings.width;
-  ctx_.height = settings.height;
+    : scene_(&scene), pipeline_(std::move(pipeline)), settings_(settings) {
+  ctx_.scene = scene_;
   ctx_.seed = settings.seed;
+  applySize();
+  resetHistory("first frame");
+}
+
+void Renderer::resetHistory(const std::string& reason) {
+  ctx_.historyReset = true;
+  resetReason_ = reason;
+  ++resets_;
+}
+
+void Renderer::applySize() {
+  ctx_.width = settings_.width * (settings_.stereo.enabled ? 2 : 1);
+  ctx_.height = settings_.height;
+}
+
+void Renderer::resize(int width, int height) {
+  settings_.width = width;
+  settings_.height = height;
+  applySize();
+  resetHistory("resize");
+}
+
+void Renderer::setScene(const Scene& scene) {
+  scene_ = &scene;
+  ctx_.scene = scene_;
+  ctx_.frame = FrameScene{};
+  first_ = true;
+  resetHistory("scene reload");
+}
+
+void Renderer::setPipeline(Pipeline pipeline) {
+  pipeline_ = std::move(pipeline);
+  ctx_.buffers.clear();  // another pipeline's buffers must not look produced
+  resetHistory("pipeline switch");
 }
 
 FrameTimings Renderer::renderFrame(int index, const CameraDesc& camera, Vec2 jitter) {
   return renderFrameAt(index, float(index) / settings_.frameRate, camera, camera, jitter);
+}
+
+void Renderer::makeViews(const CameraDesc& camera, const CameraDesc& shutterClose, Vec2 jitter) {
+  const CameraDesc prevDesc = first_ ? camera : lastCamera_;
+  const int eyes = settings_.stereo.enabled ? 2 : 1;
+  const int w = settings_.width, h = settings_.height;
+  ctx_.views.resize(size_t(eyes));
+  for (int e = 0; e < eyes; ++e) {
+    View& v = ctx_.views[size_t(e)];
+    const StereoDesc& st = settings_.stereo;
+    v.camera = Camera::make(eyeCamera(camera, st, e), w, h, jitter);
+    v.prevCamera = Camera::make(eyeCamera(prevDesc, st, e), w, h);
+    v.shutterCamera = Camera::make(eyeCamera(shutterClose, st, e), w, h, jitter);
+    v.x = e * w;
+    v.y = 0;
+    v.cameraMoved = std::memcmp(&v.camera.viewProjUnjittered, &v.prevCamera.viewProjUnjittered,
+                                sizeof(Mat4)) != 0;
+  }
 }
 
 FrameTimings Renderer::renderFrameAt(int index, float t, const CameraDesc& camera,
@@ -21,16 +87,22 @@ FrameTimings Renderer::renderFrameAt(int index, float t, const CameraDesc& camer
   // The first frame has no history: it is its own previous frame (zero motion, unless animated
   // objects moved during the frame interval, which we take from t - 1/frameRate).
   float tPrev = first_ ? t - 1.0f / settings_.frameRate : lastTime_;
-  CameraDesc prevDesc = first_ ? camera : lastCamera_;
+  // A change of lens or field of view is a new picture for every temporal pass.
+  if (!first_ && (camera.vfovDeg != lastCamera_.vfovDeg ||
+                  camera.projection != lastCamera_.projection ||
+                  camera.apertureDiameter != lastCamera_.apertureDiameter ||
+                  camera.focusDistance != lastCamera_.focusDistance ||
+                  camera.apertureBlades != lastCamera_.apertureBlades))
+    resetHistory("lens change");
   auto t0 = Clock::now();
-  ctx_.frame.update(scene_, t, tPrev, settings_.shutter);
+  ctx_.frame.update(*scene_, t, tPrev, settings_.shutter);
   double updateMs = msSince(t0);
   ctx_.frameIndex = index;
-  ctx_.camera = Camera::make(camera, settings_.width, settings_.height, jitter);
-  ctx_.prevCamera = Camera::make(prevDesc, settings_.width, settings_.height);
-  ctx_.shutterCamera = Camera::make(shutterClose, settings_.width, settings_.height, jitter);
-  ctx_.cameraMoved = std::memcmp(&ctx_.camera.viewProjUnjittered,
-                                 &ctx_.prevCamera.viewProjUnjittered, sizeof(Mat4)) != 0;
+  const FrameRequest req = pipeline_.request();
+  if (jitter.x == 0 && jitter.y == 0 && req.jitter)
+    jitter = haltonJitter(1 + jitterIndex_++ % std::max(req.jitterPhases, 1));
+  ctx_.jitter = jitter;
+  makeViews(camera, shutterClose, jitter);
   FrameTimings ft = pipeline_.execute(ctx_);
   ft.passes.insert(ft.passes.begin(), PassTiming{"scene_update", updateMs, 0});
   ft.totalMs += updateMs;

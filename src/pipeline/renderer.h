@@ -1,24 +1,33 @@
-// The render loop shared by `render`, `bench` and (later) the viewer: evaluates the scene at the
-// frame's time, sets up this and last frame's cameras, and runs the pipeline.
+// The render loop shared by `render`, `bench`, the experiments and the viewer: evaluates the scene
+// at the frame's time, sets up the views (one camera, or two eyes side by side for stereo) with
+// this and last frame's cameras and any jitter a pass asked for, fires history resets, and runs
+// the pipeline.
 #pragma once
+#include <string>
+
 #include "pipeline/frame_context.h"
 #include "pipeline/pipeline.h"
 
 namespace tandem {
 
 struct RenderSettings {
-  int width = 1280, height = 720;  // [1, 16384]
+  int width = 1280, height = 720;  // one view (one eye in stereo), [1, 16384]
   uint64_t seed = 0;
   float frameRate = 30.0f;  // frame index -> scene time (seconds) = index / frameRate
   float shutter = 0.0f;     // seconds the shutter stays open from the frame time (motion blur)
+  StereoDesc stereo{};      // enabled: two eyes side by side, the frame 2 x width wide
 };
+
+// The i-th point (i >= 1) of the Halton (2, 3) sequence, minus 0.5: a jitter in pixels.
+Vec2 haltonJitter(int i);
 
 class Renderer {
  public:
   Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings);
 
   // Renders frame `index` seen through `camera` (scene time index / frameRate), with an optional
-  // sub-pixel jitter in pixels (TAA); motion vectors never include the jitter.
+  // sub-pixel jitter in pixels (overrides a pass's jitter request when non-zero); motion vectors
+  // never include the jitter.
   FrameTimings renderFrame(int index, const CameraDesc& camera, Vec2 jitter = {0, 0});
   // Renders at scene time `time` (seconds); `shutterClose` is the camera when the shutter closes
   // (motion blur over settings.shutter seconds; the same camera for a still one).
@@ -26,16 +35,33 @@ class Renderer {
                              const CameraDesc& shutterClose, Vec2 jitter = {0, 0});
   const Buffer& output() const { return ctx_.input(pipeline_.output); }
   FrameContext& context() { return ctx_; }
+  const FrameContext& context() const { return ctx_; }
   Pipeline& pipeline() { return pipeline_; }
+  const RenderSettings& settings() const { return settings_; }
+
+  // History resets: each starts every temporal pass over on the next frame.
+  void cut() { resetHistory("camera cut"); }                // the next camera is unrelated
+  void resize(int width, int height);                       // a new frame size
+  void setScene(const Scene& scene);                        // a (re)loaded scene
+  void setPipeline(Pipeline pipeline);                      // a pipeline switch
+  void resetHistory(const std::string& reason);
+  const std::string& lastResetReason() const { return resetReason_; }
+  int resets() const { return resets_; }  // how many resets fired (tests)
 
  private:
-  const Scene& scene_;
+  void applySize();
+  void makeViews(const CameraDesc& camera, const CameraDesc& shutterClose, Vec2 jitter);
+
+  const Scene* scene_;
   Pipeline pipeline_;
   RenderSettings settings_;
   FrameContext ctx_;
   bool first_ = true;
   CameraDesc lastCamera_;
   float lastTime_ = 0;
+  int jitterIndex_ = 0;
+  std::string resetReason_;
+  int resets_ = 0;
 };
 
 }  // namespace tandem

@@ -1,36 +1,28 @@
 #include "raster/gbuffer.h"
 
-#include "pipeline/frame_context.h"
 
 namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSlots() {
+  using K = BufferKind;
   static const std::vector<BufferSlot> slots = {
-      {"depth", 1},   {"position", 3},  {"normal", 3},      {"geo_normal", 3},
-      {"diffuse", 4}, {"specular", 4},  {"emission", 3},    {"ambient", 3},
-      {"optical", 3}, {"object_id", 1}, {"material_id", 1}, {"motion", 2}};
+      {"depth", 1, K::Depth},       {"position", 3, K::Position},  {"normal", 3, K::Normal},
+      {"geo_normal", 3, K::Normal}, {"diffuse", 4, K::Material},   {"specular", 4, K::Material},
+      {"emission", 3, K::Color},    {"ambient", 3, K::Material},   {"optical", 3, K::Material},
+      {"object_id", 1, K::Id},      {"material_id", 1, K::Id},     {"motion", 2, K::Motion}};
   return slots;
 }
 
-GBufferView GBufferView::create(FrameContext& ctx, const Pass& pass) {
-  auto get = [&](const char* slot, int c) {
-    return ctx.output(pass.bufferName(slot), c).data.data();
-  };
-  GBufferView v;
-  v.depth = get("depth", 1);
-  v.position = get("position", 3);
-  v.normal = get("normal", 3);
-  v.geoNormal = get("geo_normal", 3);
-  v.diffuse = get("diffuse", 4);
-  v.specular = get("specular", 4);
-  v.emission = get("emission", 3);
-  v.ambient = get("ambient", 3);
-  v.optical = get("optical", 3);
-  v.objectId = get("object_id", 1);
-  v.materialId = get("material_id", 1);
-  v.motion = get("motion", 2);
-  v.width = ctx.width;
-  return v;
+GBufferView GBufferView::create(const std::function<Buffer&(const BufferSlot&)>& target) {
+  const std::vector<BufferSlot>& s = gbufferSlots();
+  float* p[12];
+  int width = 0;
+  for (size_t i = 0; i < 12; ++i) {
+    Buffer& b = target(s[i]);
+    p[i] = b.data.data();
+    width = b.width;
+  }
+  return {p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], width};
 }
 
 namespace {
@@ -85,25 +77,25 @@ bool toPixel(const Mat4& vp, const Camera& c, Vec4 q, Vec2& px) {
   return true;
 }
 
-Vec2 screenMotion(const FrameContext& ctx, Vec4 now, Vec4 before) {
+Vec2 screenMotion(const View& v, Vec4 now, Vec4 before) {
   Vec2 a, b;
-  if (!toPixel(ctx.camera.viewProjUnjittered, ctx.camera, now, a) ||
-      !toPixel(ctx.prevCamera.viewProjUnjittered, ctx.prevCamera, before, b))
+  if (!toPixel(v.camera.viewProjUnjittered, v.camera, now, a) ||
+      !toPixel(v.prevCamera.viewProjUnjittered, v.prevCamera, before, b))
     return {0, 0};
   return a - b;
 }
 }  // namespace
 
-Vec2 motionVector(const FrameContext& ctx, int object, Vec3 p) {
-  const FrameObject& fo = ctx.frame.objects[object];
-  if (!fo.moved && !ctx.cameraMoved) return {0, 0};
+Vec2 motionVector(const FrameScene& fs, const View& view, int object, Vec3 p) {
+  const FrameObject& fo = fs.objects[size_t(object)];
+  if (!fo.moved && !view.cameraMoved) return {0, 0};
   Vec3 prev = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
-  return screenMotion(ctx, Vec4(p, 1.0f), Vec4(prev, 1.0f));
+  return screenMotion(view, Vec4(p, 1.0f), Vec4(prev, 1.0f));
 }
 
-Vec2 backgroundMotion(const FrameContext& ctx, Vec3 dir) {
-  if (!ctx.cameraMoved || ctx.camera.desc.projection != Projection::Perspective) return {0, 0};
-  return screenMotion(ctx, Vec4(dir, 0.0f), Vec4(dir, 0.0f));
+Vec2 backgroundMotion(const View& view, Vec3 dir) {
+  if (!view.cameraMoved || view.camera.desc.projection != Projection::Perspective) return {0, 0};
+  return screenMotion(view, Vec4(dir, 0.0f), Vec4(dir, 0.0f));
 }
 
 }  // namespace tandem

@@ -14,15 +14,16 @@
 //   material_id  1  material index, -1 for background
 //   motion       2  screen-space motion in pixels: this frame's position minus last frame's
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "pipeline/pass.h"
+#include "core/buffer.h"
+#include "scene/frame_scene.h"
+#include "scene/view.h"
 #include "shading/surface.h"
 
 namespace tandem {
-
-struct FrameContext;
 
 const std::vector<BufferSlot>& gbufferSlots();
 
@@ -32,14 +33,16 @@ struct GBufferView {
       *objectId, *materialId, *motion;
   int width;
 
-  static GBufferView create(FrameContext& ctx, const class Pass& pass);
+  // `target(slot)` gives the buffer of one of gbufferSlots(), `width` pixels wide.
+  static GBufferView create(const std::function<Buffer&(const BufferSlot&)>& target);
   void write(int x, int y, const SurfaceSample& s, float depth, Vec2 motion);
   void writeBackground(int x, int y, Vec2 motion);
 };
 
-// Screen-space motion of a surface point of `object`: where it is now minus where it was.
-Vec2 motionVector(const FrameContext& ctx, int object, Vec3 worldPos);
+// Screen-space motion of a surface point of `object` in `view`: where it is now minus where it was
+// (unjittered cameras).
+Vec2 motionVector(const FrameScene& fs, const View& view, int object, Vec3 worldPos);
 // Motion of the background seen along `dir` (a point at infinity: only camera rotation moves it).
-Vec2 backgroundMotion(const FrameContext& ctx, Vec3 dir);
+Vec2 backgroundMotion(const View& view, Vec3 dir);
 
 }  // namespace tandem

@@ -71,7 +71,7 @@ int clipPolygon(Vec4* poly, int n, unsigned mask) {
 }  // namespace
 
 void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
-                        RasterStats* stats) {
+                        RasterStats* stats, float tau) {
   const Scene& scene = *fs.scene;
   const int W = cam.width, H = cam.height;
   out.resize(W, H);
@@ -82,13 +82,18 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
   // 1. Vertices to clip space.
   clip_.resize(fs.objects.size());
   for (size_t o = 0; o < fs.objects.size(); ++o) {
-    const auto& pos = fs.objects[o].positions;
+    const FrameObject& fo = fs.objects[o];
+    const auto& pos = fo.positions;
     auto& c = clip_[o];
     c.resize(pos.size());
+    const bool atTau = tau >= 0.0f && !fo.stepPositions.empty();
     parallelRange(
         pos.size(),
         [&](size_t b, size_t e) {
-          for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(pos[i], 1.0f);
+          if (atTau)
+            for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(positionAt(fo, i, tau), 1.0f);
+          else
+            for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(pos[i], 1.0f);
         },
         4096);
   }

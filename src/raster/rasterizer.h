@@ -21,8 +21,11 @@ struct RasterStats {
 
 class Rasterizer {
  public:
+  // Draws `fs` through `cam` (which may look through a lens point: Camera::make's `lens`). With
+  // `tau` in [0, 1] moving objects are drawn where they are at that fraction of the shutter
+  // (positionAt); tau < 0 draws them at the frame time.
   void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
-              RasterStats* stats = nullptr);
+              RasterStats* stats = nullptr, float tau = -1.0f);
 
   struct SetupTriangle {
     int32_t x[3], y[3];  // fixed point, 8 sub-pixel bits, positive orientation

@@ -4,17 +4,36 @@
 
 namespace tandem {
 
-Camera Camera::make(const CameraDesc& d, int width, int height, Vec2 jitter) {
+CameraDesc eyeCamera(const CameraDesc& centre, const StereoDesc& stereo, int eye) {
+  if (!stereo.enabled) return centre;
+  const Mat4 view = Mat4::lookAt(centre.position, centre.lookAt, centre.up);
+  const Vec3 right(view.m[0][0], view.m[0][1], view.m[0][2]);
+  const Vec3 forward = -Vec3(view.m[2][0], view.m[2][1], view.m[2][2]);
+  const Vec3 offset = right * ((eye == 0 ? -0.5f : 0.5f) * stereo.ipd);
+  CameraDesc d = centre;
+  d.position = centre.position + offset;
+  // Parallel: the target moves with the eye. Converged: both eyes aim at the same point.
+  d.lookAt = stereo.converged ? centre.position + forward * stereo.convergence
+                              : centre.lookAt + offset;
+  return d;
+}
+
+Camera Camera::make(const CameraDesc& d, int width, int height, Vec2 jitter, Vec2 lens) {
   Camera c;
   c.desc = d;
   c.width = width;
   c.height = height;
   c.jitter = jitter;
-  c.view = Mat4::lookAt(d.position, d.lookAt, d.up);
+  const Mat4 centreView = Mat4::lookAt(d.position, d.lookAt, d.up);
+  c.right = Vec3(centreView.m[0][0], centreView.m[0][1], centreView.m[0][2]);
+  c.upVec = Vec3(centreView.m[1][0], centreView.m[1][1], centreView.m[1][2]);
+  c.forward = -Vec3(centreView.m[2][0], centreView.m[2][1], centreView.m[2][2]);
+  if (d.projection != Projection::Perspective) lens = {0, 0};
+  c.lens = lens;
+  const Vec3 shift = c.right * lens.x + c.upVec * lens.y;
+  c.eye = d.position + shift;
+  c.view = lens.x == 0 && lens.y == 0 ? centreView : Mat4::lookAt(c.eye, d.lookAt + shift, d.up);
   c.invView = c.view.inverse();
-  c.right = Vec3(c.view.m[0][0], c.view.m[0][1], c.view.m[0][2]);
-  c.upVec = Vec3(c.view.m[1][0], c.view.m[1][1], c.view.m[1][2]);
-  c.forward = -Vec3(c.view.m[2][0], c.view.m[2][1], c.view.m[2][2]);
   float aspect = float(width) / float(height);
   c.aspect = aspect;
   c.tanHalfFov = std::tan(radians(d.vfovDeg) * 0.5f);
@@ -28,6 +47,9 @@ Camera Camera::make(const CameraDesc& d, int width, int height, Vec2 jitter) {
     p.m[2][3] = d.nearPlane;
     p.m[3][2] = -1;
     p.m[3][3] = 0;
+    // Shear for a lens point: a point of the focus plane (view z = -focus) keeps its NDC.
+    p.m[0][2] = -p.m[0][0] * lens.x / d.focusDistance;
+    p.m[1][2] = -p.m[1][1] * lens.y / d.focusDistance;
   } else {
     // Reversed-Z orthographic: ndc z = (far - dist) / (far - near).
     float hh = d.orthoHeight * 0.5f, hw = hh * aspect;
@@ -51,8 +73,10 @@ void Camera::generateRay(float px, float py, Vec3& origin, Vec3& dir) const {
   float sy = 1.0f - (py + jitter.y) / height * 2.0f;  // NDC y
   if (desc.projection == Projection::Perspective) {
     float t = tanHalfFov;
-    origin = desc.position;
-    dir = normalize(forward + right * (sx * t * aspect) + upVec * (sy * t));
+    origin = eye;
+    // Through the pixel's point of the focus plane (lens 0: the pinhole ray).
+    const float lx = lens.x / desc.focusDistance, ly = lens.y / desc.focusDistance;
+    dir = normalize(forward + right * (sx * t * aspect - lx) + upVec * (sy * t - ly));
   } else {
     float hh = desc.orthoHeight * 0.5f;
     origin = desc.position + right * (sx * hh * aspect) + upVec * (sy * hh);
@@ -60,10 +84,7 @@ void Camera::generateRay(float px, float py, Vec3& origin, Vec3& dir) const {
   }
 }
 
-void Camera::generateThinLensRay(float px, float py, float u1, float u2, Vec3& origin,
-                                 Vec3& dir) const {
-  generateRay(px, py, origin, dir);
-  if (desc.apertureDiameter <= 0.0f || desc.projection != Projection::Perspective) return;
+Vec2 Camera::lensPoint(float u1, float u2) const {
   const float radius = 0.5f * desc.apertureDiameter;
   float lx = 0.0f, ly = 0.0f;  // lens point in units of the aperture radius
   if (desc.apertureBlades >= 3) {
@@ -90,8 +111,16 @@ void Camera::generateThinLensRay(float px, float py, float u1, float u2, Vec3& o
     lx = r * std::cos(phi);
     ly = r * std::sin(phi);
   }
+  return {radius * lx, radius * ly};
+}
+
+void Camera::generateThinLensRay(float px, float py, float u1, float u2, Vec3& origin,
+                                 Vec3& dir) const {
+  generateRay(px, py, origin, dir);
+  if (desc.apertureDiameter <= 0.0f || desc.projection != Projection::Perspective) return;
+  const Vec2 l = lensPoint(u1, u2);
   Vec3 focus = origin + dir * (desc.focusDistance / dot(dir, forward));
-  origin = desc.position + right * (radius * lx) + upVec * (radius * ly);
+  origin = eye + right * l.x + upVec * l.y;
   dir = normalize(focus - origin);
 }
 

@@ -12,6 +12,8 @@ namespace tandem {
 
 // Fields absent from `j` keep `base`'s values; throws InputError naming file and field.
 CameraDesc cameraFromJson(const Json& j, const std::string& file, CameraDesc base = {});
+// "stereo": {"enabled" (default true), "ipd", "converged", "convergence"}.
+StereoDesc stereoFromJson(const Json& j, const std::string& file, StereoDesc base = {});
 Json cameraToJson(const CameraDesc& c);
 std::vector<CameraKey> cameraPathFromJson(const Json& j, const std::string& file,
                                           const CameraDesc& base);

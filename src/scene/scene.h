@@ -60,6 +60,7 @@ struct Scene {
   Skybox skybox;
   CameraDesc camera;
   bool hasCamera = false;
+  StereoDesc stereo;  // scene file "stereo": {"ipd", "converged", "convergence"}; --stereo
   std::vector<CameraKey> cameraPath;
   LoadStats stats;
 

@@ -239,6 +239,16 @@ CameraDesc cameraFromJson(const Json& j, const std::string& file, CameraDesc d) 
   return d;
 }
 
+StereoDesc stereoFromJson(const Json& j, const std::string& file, StereoDesc d) {
+  JsonFields f(j, file, "stereo");
+  d.enabled = f.boolean("enabled", true);
+  d.ipd = f.number("ipd", d.ipd, 1e-6f, 1e3f);
+  d.converged = f.boolean("converged", d.converged);
+  d.convergence = f.number("convergence", d.convergence, 1e-6f, 1e9f);
+  f.finish();
+  return d;
+}
+
 Json cameraToJson(const CameraDesc& d) {
   auto v = [](Vec3 x) { return Json::array({x.x, x.y, x.z}); };
   Json j = {
@@ -364,6 +374,7 @@ Scene loadSceneFile(const std::string& path) {
   if (f.has("skybox")) readSkybox(c, f.raw("skybox"));
   if (f.has("camera")) readCamera(c, f.raw("camera"));
   if (f.has("cameraPath")) s.cameraPath = cameraPathFromJson(f.raw("cameraPath"), path, s.camera);
+  if (f.has("stereo")) s.stereo = stereoFromJson(f.raw("stereo"), path, s.stereo);
   f.finish();
   if (s.objects.empty()) throw InputError(path, "objects", "scene has no objects");
   validateScene(s, path);

@@ -1,29 +1,36 @@
 #include "shading/gbuffer_sample.h"
 
-#include "pipeline/frame_context.h"
 
 namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSampleSlots() {
+  using K = BufferKind;
   static const std::vector<BufferSlot> slots = {
-      {"position", 3}, {"normal", 3},  {"geo_normal", 3}, {"diffuse", 4},   {"specular", 4},
-      {"emission", 3}, {"ambient", 3}, {"optical", 3},    {"object_id", 1}, {"material_id", 1}};
+      {"position", 3, K::Position}, {"normal", 3, K::Normal},   {"geo_normal", 3, K::Normal},
+      {"diffuse", 4, K::Material},  {"specular", 4, K::Material}, {"emission", 3, K::Color},
+      {"ambient", 3, K::Material},  {"optical", 3, K::Material},  {"object_id", 1, K::Id},
+      {"material_id", 1, K::Id}};
   return slots;
 }
 
-GBufferReader::GBufferReader(const FrameContext& ctx, const Pass& pass) {
-  auto get = [&](const char* slot) { return ctx.input(pass.bufferName(slot)).data.data(); };
-  position_ = get("position");
-  normal_ = get("normal");
-  geoNormal_ = get("geo_normal");
-  diffuse_ = get("diffuse");
-  specular_ = get("specular");
-  emission_ = get("emission");
-  ambient_ = get("ambient");
-  optical_ = get("optical");
-  objectId_ = get("object_id");
-  materialId_ = get("material_id");
-  width_ = ctx.width;
+GBufferReader::GBufferReader(const std::function<const Buffer&(const BufferSlot&)>& source) {
+  const std::vector<BufferSlot>& s = gbufferSampleSlots();
+  const float* p[10];
+  for (size_t i = 0; i < 10; ++i) {
+    const Buffer& b = source(s[i]);
+    p[i] = b.data.data();
+    width_ = b.width;
+  }
+  position_ = p[0];
+  normal_ = p[1];
+  geoNormal_ = p[2];
+  diffuse_ = p[3];
+  specular_ = p[4];
+  emission_ = p[5];
+  ambient_ = p[6];
+  optical_ = p[7];
+  objectId_ = p[8];
+  materialId_ = p[9];
 }
 
 bool GBufferReader::read(int x, int y, SurfaceSample& s) const {

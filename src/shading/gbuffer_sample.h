@@ -1,20 +1,20 @@
 // Reads a SurfaceSample back from the G-buffer, the inverse of GBufferView::write, so image-space
 // passes shade exactly what a ray hit would have shaded.
 #pragma once
+#include <functional>
 #include <vector>
 
-#include "pipeline/pass.h"
+#include "core/buffer.h"
 #include "shading/surface.h"
 
 namespace tandem {
-
-struct FrameContext;
 
 const std::vector<BufferSlot>& gbufferSampleSlots();
 
 class GBufferReader {
  public:
-  GBufferReader(const FrameContext& ctx, const Pass& pass);
+  // `source(slot)` gives the buffer of one of gbufferSampleSlots().
+  explicit GBufferReader(const std::function<const Buffer&(const BufferSlot&)>& source);
   // False for background pixels.
   bool read(int x, int y, SurfaceSample& s) const;
 

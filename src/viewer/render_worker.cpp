@@ -48,7 +48,10 @@ RenderWorker::~RenderWorker() {
 
 void RenderWorker::setView(const ViewState& v) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (v.width != view_.width || v.height != view_.height) rebuild_ = true;
+  if (v.width != view_.width || v.height != view_.height || v.stereo.enabled != view_.stereo.enabled ||
+      v.stereo.ipd != view_.stereo.ipd || v.stereo.converged != view_.stereo.converged ||
+      v.stereo.convergence != view_.stereo.convergence)
+    rebuild_ = true;
   view_ = v;
 }
 
@@ -108,6 +111,7 @@ void RenderWorker::loop() {
         if (rebuild_ || !renderer) {
           RenderSettings rs{
               .width = std::max(view.width, 1), .height = std::max(view.height, 1), .seed = seed_};
+          rs.stereo = view.stereo;
           renderer = std::make_unique<Renderer>(scene_, model_.build(), rs);
           rebuild_ = false;
         } else {
@@ -133,16 +137,16 @@ void RenderWorker::loop() {
       f.timings = renderer->renderFrameAt(frameIndex, view.time, view.camera, view.camera);
       ++frameIndex;
       FrameContext& ctx = renderer->context();
-      f.width = ctx.width;
-      f.height = ctx.height;
-      f.samplesPerPixel = ctx.samplesPerPixel;
+      f.samplesPerPixel = ctx.counters.count("spp") ? int(ctx.counters.at("spp")) : 0;
       f.buffers = renderer->pipeline().producedBuffers();
       const std::string& outName = renderer->pipeline().output;
       f.shown = view.shownBuffer.empty() || !ctx.buffers.count(view.shownBuffer) ? outName
                                                                                  : view.shownBuffer;
       f.output = ctx.input(outName);
-      const Buffer shown = visualizeBuffer(f.shown == outName ? "output" : f.shown,
-                                           ctx.input(f.shown), view.varianceScale);
+      // Shown at its own size (a reduced-extent buffer is stretched over the window).
+      const Buffer shown = visualizeBuffer(ctx.input(f.shown), view.varianceScale);
+      f.width = shown.width;
+      f.height = shown.height;
       f.rgba.resize(shown.pixelCount() * 4);
       for (size_t i = 0; i < shown.pixelCount(); ++i) {
         for (int c = 0; c < 3; ++c)

@@ -167,7 +167,7 @@ TEST(ViewerSupport, ReferenceAccumulatesOverFramesAndResets) {
   p.setParam("pt_reference.spp=16", "test");
   Renderer r(s, std::move(p), RenderSettings{.width = 40, .height = 24});
   for (int f = 0; f < 6; ++f) r.renderFrame(f, s.camera);  // the last two add nothing
-  EXPECT_EQ(r.context().samplesPerPixel, 16);
+  EXPECT_EQ(int(r.context().counters.at("spp")), 16);
   Pipeline one = Pipeline::load("reference");
   one.setParam("pt_reference.spp=16", "test");
   Renderer ref(s, std::move(one), RenderSettings{.width = 40, .height = 24});
@@ -176,7 +176,7 @@ TEST(ViewerSupport, ReferenceAccumulatesOverFramesAndResets) {
   CameraDesc moved = s.camera;
   moved.position.x += 0.1f;
   r.renderFrame(6, moved);
-  EXPECT_EQ(r.context().samplesPerPixel, 4);
+  EXPECT_EQ(int(r.context().counters.at("spp")), 4);
 }
 
 // The worker thread renders what the view asks; its output is the renderer's, parameter edits

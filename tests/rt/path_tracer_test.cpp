@@ -76,7 +76,7 @@ TEST(PathTracer, LambertPlaneUnderPointLight) {
   // Off-centre pixels: the point they see, and the analytic radiance there.
   for (int x : {2, 8, 24, 30}) {
     Vec3 o, d;
-    r->context().camera.generateRay(x + 0.5f, 16.5f, o, d);
+    r->context().camera().generateRay(x + 0.5f, 16.5f, o, d);
     Vec3 p = o + d * (-o.y / d.y);
     Vec3 toL = l.position - p;
     double dist = length(toL), cosT = toL.y / dist;

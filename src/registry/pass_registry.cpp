@@ -1,4 +1,6 @@
-// The explicit list of pass types. Add a new pass here (and to src/CMakeLists.txt).
+// The explicit list of pass types (above the passes, below the built-in pipelines). Add a new
+// pass here (and to src/CMakeLists.txt).
+#include "passes/accumulation.h"
 #include "passes/blend.h"
 #include "passes/deferred_shading.h"
 #include "passes/heuristic.h"
@@ -7,6 +9,7 @@
 #include "passes/rt_gbuffer.h"
 #include "passes/rt_secondary.h"
 #include "passes/rt_whitted.h"
+#include "passes/taa.h"
 #include "passes/tonemap.h"
 #include "pipeline/pipeline.h"
 
@@ -14,8 +17,8 @@ namespace tandem {
 
 const std::vector<std::string>& passTypes() {
   static const std::vector<std::string> types = {
-      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic", "rt_secondary",
-      "blend",          "rt_whitted", "pt_reference",     "tonemap"};
+      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic", "rt_secondary", "blend",
+      "rt_whitted",     "pt_reference", "taa",            "accumulation", "tonemap"};
   return types;
 }
 
@@ -28,6 +31,8 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "blend") return std::make_unique<BlendPass>();
   if (type == "rt_whitted") return std::make_unique<RTWhittedPass>();
   if (type == "pt_reference") return std::make_unique<PTReferencePass>();
+  if (type == "taa") return std::make_unique<TAAPass>();
+  if (type == "accumulation") return std::make_unique<AccumulationPass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

@@ -1,0 +1,51 @@
+#include "core/buffer.h"
+
+namespace tandem {
+
+const char* kindName(BufferKind k) {
+  switch (k) {
+    case BufferKind::Color:
+      return "colour";
+    case BufferKind::Display:
+      return "display colour";
+    case BufferKind::Depth:
+      return "depth";
+    case BufferKind::Position:
+      return "position";
+    case BufferKind::Normal:
+      return "normal";
+    case BufferKind::Id:
+      return "id";
+    case BufferKind::Motion:
+      return "motion";
+    case BufferKind::Mask:
+      return "mask";
+    case BufferKind::Count:
+      return "count";
+    case BufferKind::Variance:
+      return "variance";
+    case BufferKind::Material:
+      return "material";
+    case BufferKind::List:
+      return "list";
+  }
+  return "?";
+}
+
+std::string Extent::name() const {
+  switch (scale) {
+    case Scale::Frame:
+      return "frame";
+    case Scale::Half:
+      return "1/2 frame";
+    case Scale::Quarter:
+      return "1/4 frame";
+    case Scale::Fixed:
+      return std::to_string(width) + "x" + std::to_string(height);
+    case Scale::Any:
+      return "any size";
+  }
+  return "?";
+}
+
+}  // namespace tandem

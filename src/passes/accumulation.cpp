@@ -1,0 +1,99 @@
+#include "passes/accumulation.h"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "core/parallel.h"
+#include "pipeline/frame_context.h"
+#include "rt/reference_render.h"
+#include "shading/blinn_phong.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+std::vector<TimeLensPair> stratifiedTimeLensPairs(int n, uint64_t seed) {
+  std::vector<int> perm(static_cast<size_t>(n));
+  std::iota(perm.begin(), perm.end(), 0);
+  std::mt19937_64 rng(seed ^ 0x5851F42D4C957F2Dull);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<TimeLensPair> pairs(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    // Hammersley point i of n over the lens square; time stratum perm[i].
+    uint32_t b = uint32_t(i);
+    b = (b << 16) | (b >> 16);
+    b = ((b & 0x55555555u) << 1) | ((b & 0xAAAAAAAAu) >> 1);
+    b = ((b & 0x33333333u) << 2) | ((b & 0xCCCCCCCCu) >> 2);
+    b = ((b & 0x0F0F0F0Fu) << 4) | ((b & 0xF0F0F0F0u) >> 4);
+    b = ((b & 0x00FF00FFu) << 8) | ((b & 0xFF00FF00u) >> 8);
+    pairs[size_t(i)] = {(float(perm[size_t(i)]) + 0.5f) / float(n), (float(i) + 0.5f) / float(n),
+                        float(b) * 2.3283064365386963e-10f};
+  }
+  return pairs;
+}
+
+std::vector<ParamDesc> AccumulationPass::params() const {
+  return {{"samples", ParamType::Int, 64, 1, 4096, "rasterized images averaged", {}, true},
+          {"mode",
+           ParamType::Enum,
+           2,
+           0,
+           2,
+           "what the samples vary",
+           {"dof", "motion_blur", "both"},
+           true}};
+}
+
+void AccumulationPass::execute(FrameContext& ctx) {
+  const int n = int(param("samples")), mode = int(param("mode"));
+  const bool lens = mode != 1, time = mode != 0;
+  const Scene& scene = *ctx.scene;
+  const ShadingContext shading = ShadingContext::from(scene);
+  const std::vector<TimeLensPair> pairs = stratifiedTimeLensPairs(n, ctx.seed);
+  Buffer& hdr = ctx.output(*this, "hdr");
+  hdr.fill(0.0f);
+  const float weight = 1.0f / float(n);
+  double rasterMs = 0, shadeMs = 0;
+  uint64_t triangles = 0;
+  for (const View& v : ctx.views) {
+    for (const TimeLensPair& p : pairs) {
+      const float tau = time ? p.tau : 0.0f;
+      // The camera along its shutter path, then moved to the lens point.
+      const Camera atTau = time ? cameraAtShutter(v.camera, v.shutterCamera, tau) : v.camera;
+      const Vec2 lensPoint = lens ? atTau.lensPoint(p.u1, p.u2) : Vec2{0, 0};
+      const Camera cam = Camera::make(atTau.desc, v.width(), v.height(), v.camera.jitter, lensPoint);
+      auto t0 = Clock::now();
+      RasterStats stats;
+      rasterizer_.render(ctx.frame, cam, visibility_, &stats, time ? tau : -1.0f);
+      triangles += stats.trianglesBinned;
+      rasterMs += msSince(t0);
+      auto t1 = Clock::now();
+      parallelTiles(v.width(), v.height(), [&](int x0, int y0, int x1, int y1) {
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x) {
+            const size_t i = size_t(y) * size_t(v.width()) + size_t(x);
+            Vec3 o, d;
+            cam.generateRay(float(x) + 0.5f, float(y) + 0.5f, o, d);
+            Vec3 c;
+            if (visibility_.object[i] == kNoObject) {
+              c = scene.skyRadiance(d);
+            } else {
+              const SurfaceSample s = resolveSurface(ctx.frame, int(visibility_.object[i]),
+                                                     int(visibility_.prim[i]), o, d, tau);
+              c = shadeBlinnPhong(s, -d, shading);
+            }
+            float* h = hdr.at(x + v.x, y + v.y);
+            h[0] += c.x * weight;
+            h[1] += c.y * weight;
+            h[2] += c.z * weight;
+          }
+      });
+      shadeMs += msSince(t1);
+    }
+  }
+  ctx.passParts.push_back({"raster", rasterMs, 0});
+  ctx.passParts.push_back({"shade", shadeMs, 0});
+  ctx.counters["accumulation/triangles_binned"] = double(triangles);
+}
+
+}  // namespace tandem

@@ -1,0 +1,39 @@
+// accumulation: the brute-force baseline for depth of field and motion blur (Haeberli & Akeley
+// 1990's accumulation buffer). The scene is rasterized N whole times, each at one (time, lens)
+// pair — objects where they are at shutter fraction tau (and the camera moved along its shutter
+// path), the view moved to a lens point with the projection sheared so the focus plane stays put —
+// each image resolved and shaded with the one shading function, and the N images averaged.
+// Pairs: times stratified over the shutter, lens points stratified over the aperture (disk or the
+// camera's n-gon, Hammersley points), the two decorrelated by a seeded permutation.
+// Output: hdr. Parameters: samples, mode (dof, motion_blur, both).
+#pragma once
+#include <vector>
+
+#include "pipeline/pass.h"
+#include "raster/rasterizer.h"
+
+namespace tandem {
+
+// Sample i of n: shutter fraction tau and lens coordinates (u1, u2) in [0,1)^2.
+struct TimeLensPair {
+  float tau, u1, u2;
+};
+std::vector<TimeLensPair> stratifiedTimeLensPairs(int n, uint64_t seed);
+
+class AccumulationPass : public Pass {
+ public:
+  std::string type() const override { return "accumulation"; }
+  std::string description() const override {
+    return "Averages N rasterized images at stratified (time, lens) pairs (DoF / motion-blur "
+           "baseline)";
+  }
+  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
+  std::vector<ParamDesc> params() const override;
+  void execute(FrameContext& ctx) override;
+
+ private:
+  Rasterizer rasterizer_;
+  VisibilityBuffer visibility_;
+};
+
+}  // namespace tandem

@@ -1,0 +1,27 @@
+// taa: temporal anti-aliasing (Karis 2014, "High-quality temporal supersampling"). Each frame
+// the projection is jittered by the next point of the Halton (2, 3) sequence; the pass
+// reprojects last frame's result through the motion vectors (Catmull-Rom), clamps it to the
+// current 3x3 neighbourhood's box in YCoCg (so disoccluded or changed pixels do not ghost), and
+// blends with the current frame (weight `alpha`; weights divided by 1 + luma so a bright sample
+// does not flicker). After a history reset, or where the reprojected point leaves the view, the
+// current frame is taken as is.
+// Inputs: hdr (jittered colour), motion; history input: taa (last frame's result). Output: taa.
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class TAAPass : public Pass {
+ public:
+  std::string type() const override { return "taa"; }
+  std::string description() const override {
+    return "Temporal anti-aliasing: jitter, reprojection, YCoCg neighbourhood clamp (Karis 2014)";
+  }
+  std::vector<BufferSlot> inputs() const override;
+  std::vector<BufferSlot> outputs() const override { return {{"taa", 3}}; }
+  std::vector<ParamDesc> params() const override;
+  void request(FrameRequest& r) const override;
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem
