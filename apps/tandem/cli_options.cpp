@@ -114,8 +114,17 @@ StereoDesc stereoFor(const Scene& s, const RenderOptions& o) {
 
 RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o) {
   RenderSettings r{.width = o.width, .height = o.height, .seed = o.seed};
+  r.shutter = o.shutter;
   r.stereo = stereoFor(s, o);
   return r;
+}
+
+void addLensOptions(CLI::App* app, RenderOptions& o) {
+  app->add_option("--shutter", o.shutter,
+                  "Motion blur: seconds the shutter stays open from the frame time");
+  app->add_option("--aperture", o.aperture, "Thin lens aperture diameter in metres (0 = pinhole)");
+  app->add_option("--focus", o.focus, "Focus distance in metres");
+  app->add_option("--blades", o.blades, "Polygonal aperture with this many blades (0 = circle)");
 }
 
 void addRenderOptions(CLI::App* app, RenderOptions& o) {
@@ -126,6 +135,7 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
   app->add_option("--aov", o.aov,
                   "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
   app->add_option("--frames", o.frames, "Frames to render (scene time advances 1/30 s per frame)");
+  addLensOptions(app, o);
   app->add_option("--set", o.set,
                   "Set a pass parameter: pass.param=value (e.g. heuristic.budget_ms=40); "
                   "repeatable");
@@ -148,6 +158,14 @@ void validateRenderOptions(const RenderOptions& o) {
     throw InputError("command line", "--threads", "must be in [0, 4096]");
   if (o.vfov != 0 && !(o.vfov > 0 && o.vfov < 180))
     throw InputError("command line", "--vfov", "must be in (0, 180)");
+  if (!(o.shutter >= 0 && o.shutter <= 1000))
+    throw InputError("command line", "--shutter", "must be in [0, 1000] seconds");
+  if (!(o.aperture < 0 || o.aperture <= 1000))
+    throw InputError("command line", "--aperture", "must be in [0, 1000] metres");
+  if (!(o.focus >= 0 && o.focus <= 1e9))
+    throw InputError("command line", "--focus", "must be a positive distance in metres");
+  if (o.blades == 1 || o.blades == 2 || o.blades > 64)
+    throw InputError("command line", "--blades", "must be 0 (circle) or 3 to 64");
   if (o.ipd < 0 || o.ipd > 1000 || !std::isfinite(o.ipd))
     throw InputError("command line", "--ipd", "must be in (0, 1000] metres");
   if (o.convergence < 0 || !std::isfinite(o.convergence))
@@ -196,6 +214,9 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
   // Keep the near plane sensible for tiny models seen from close up.
   float dist = length(c.lookAt - c.position);
   c.nearPlane = std::min(c.nearPlane, dist * 0.05f);
+  if (o.aperture >= 0) c.apertureDiameter = o.aperture;
+  if (o.focus > 0) c.focusDistance = o.focus;
+  if (o.blades >= 0) c.apertureBlades = o.blades;
   return c;
 }
 

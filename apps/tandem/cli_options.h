@@ -28,11 +28,17 @@ struct RenderOptions {
   bool stereo = false;                  // two eyes side by side (--width is one eye)
   float ipd = 0;                        // > 0: interpupillary distance (implies --stereo)
   float convergence = 0;                // > 0: converged axes meeting this far ahead
+  // Lens and shutter (render, bench, view): < 0 / 0 keep the scene camera's.
+  float shutter = 0;  // seconds the shutter stays open (motion blur)
+  float aperture = -1, focus = 0;
+  int blades = -1;
 };
 
 // Scene, size, output, seed, threads, camera overrides and lights (every rendering verb).
 void addSceneOptions(CLI::App* app, RenderOptions& o);
-// addSceneOptions plus pipeline, AOVs, frames and --set.
+// --shutter, --aperture, --focus, --blades.
+void addLensOptions(CLI::App* app, RenderOptions& o);
+// addSceneOptions, addLensOptions, pipeline, AOVs, frames and --set.
 void addRenderOptions(CLI::App* app, RenderOptions& o);
 // Validates option values; throws InputError naming the option.
 void validateRenderOptions(const RenderOptions& o);

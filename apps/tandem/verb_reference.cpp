@@ -22,9 +22,9 @@ namespace {
 
 struct ReferenceVerb {
   RenderOptions opts;
-  int spp = 1024, maxDepth = 16, blades = -1;
+  int spp = 1024, maxDepth = 16;
   double timeLimit = 0;
-  float time = 0, shutter = 0, aperture = -1, focus = -1;
+  float time = 0;
   bool cameraPath = false, noCache = false, quiet = false;
   std::string cache;
 
@@ -36,14 +36,6 @@ struct ReferenceVerb {
       throw InputError("command line", "--max-depth", "must be in [1, 1024]");
     if (!(timeLimit >= 0)) throw InputError("command line", "--time-limit", "must be >= 0 seconds");
     if (!std::isfinite(time)) throw InputError("command line", "--time", "must be finite");
-    if (!(shutter >= 0 && shutter < 1e6f))
-      throw InputError("command line", "--shutter", "must be >= 0 seconds");
-    if (blades == 1 || blades == 2 || blades > 64)
-      throw InputError("command line", "--blades", "must be 0 (circular) or 3-64");
-    if (aperture != -1 && !(aperture >= 0))
-      throw InputError("command line", "--aperture", "must be >= 0 metres");
-    if (focus != -1 && !(focus > 0))
-      throw InputError("command line", "--focus", "must be > 0 metres");
   }
 
   int run() {
@@ -56,10 +48,8 @@ struct ReferenceVerb {
     Scene scene = loadSceneFor(opts);
     ReferenceJob job;
     job.scene = &scene;
-    CameraDesc cam = cameraFor(scene, opts);
-    if (aperture >= 0) cam.apertureDiameter = aperture;
-    if (focus > 0) cam.focusDistance = focus;
-    if (blades >= 0) cam.apertureBlades = blades;
+    CameraDesc cam = cameraFor(scene, opts);  // with --aperture, --focus, --blades
+    const float shutter = opts.shutter;
     job.camera = cameraPath ? pathCameraAt(scene, cam, time) : cam;
     job.shutterCamera = cameraPath ? pathCameraAt(scene, cam, time + shutter) : job.camera;
     job.time = time;
@@ -114,12 +104,9 @@ VerbRunner addReferenceVerb(CLI::App& app) {
   sub->add_option("--time-limit", v->timeLimit, "Stop after this many seconds (0 = none)");
   sub->add_option("--max-depth", v->maxDepth, "Maximum path length in bounces (default 16)");
   sub->add_option("--time", v->time, "Scene time in seconds (animation)");
-  sub->add_option("--shutter", v->shutter, "Motion blur: seconds the shutter stays open");
   sub->add_flag("--camera-path", v->cameraPath,
                 "Camera from the scene's camera path at --time (moving while the shutter is open)");
-  sub->add_option("--aperture", v->aperture, "Thin lens aperture diameter in metres");
-  sub->add_option("--focus", v->focus, "Focus distance in metres");
-  sub->add_option("--blades", v->blades, "Polygonal aperture with this many blades (0 = circle)");
+  addLensOptions(sub, v->opts);
   sub->add_option("--cache", v->cache,
                   "Cache folder (default $TANDEM_REFERENCE_CACHE or out/reference-cache)");
   sub->add_flag("--no-cache", v->noCache, "Always render; do not read or write the cache");

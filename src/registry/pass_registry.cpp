@@ -3,6 +3,7 @@
 #include "passes/accumulation.h"
 #include "passes/blend.h"
 #include "passes/deferred_shading.h"
+#include "passes/downsample.h"
 #include "passes/heuristic.h"
 #include "passes/pt_reference.h"
 #include "passes/raster_gbuffer.h"
@@ -18,7 +19,7 @@ namespace tandem {
 const std::vector<std::string>& passTypes() {
   static const std::vector<std::string> types = {
       "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic", "rt_secondary", "blend",
-      "rt_whitted",     "pt_reference", "taa",            "accumulation", "tonemap"};
+      "rt_whitted",     "pt_reference", "taa",            "accumulation", "downsample", "tonemap"};
   return types;
 }
 
@@ -33,6 +34,7 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "pt_reference") return std::make_unique<PTReferencePass>();
   if (type == "taa") return std::make_unique<TAAPass>();
   if (type == "accumulation") return std::make_unique<AccumulationPass>();
+  if (type == "downsample") return std::make_unique<DownsamplePass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

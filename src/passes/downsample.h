@@ -1,0 +1,26 @@
+// downsample: a colour buffer at 1/2 or 1/4 of the frame (box or bilinear), the low-resolution
+// input of reduced-extent passes (gather DoF at 1/2 resolution, mip-based blurs).
+// Input: hdr. Output: half (1/2 extent) or quarter (1/4 extent). Parameter: filter.
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class DownsamplePass : public Pass {
+ public:
+  std::string type() const override { return "downsample"; }
+  std::string description() const override {
+    return "Colour at 1/2 and 1/4 resolution (box or bilinear)";
+  }
+  std::vector<BufferSlot> inputs() const override { return {{"hdr", 3}}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"half", 3, BufferKind::Color, Extent::half()},
+            {"quarter", 3, BufferKind::Color, Extent::quarter()}};
+  }
+  std::vector<ParamDesc> params() const override {
+    return {{"filter", ParamType::Enum, 0, 0, 1, "reduction filter", {"box", "bilinear"}}};
+  }
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem
