@@ -28,11 +28,11 @@ Buffer convolve1d(const Buffer& in, const std::vector<float>& k, bool horizontal
             if (horizontal) {
               const float* row = &in.data[y * size_t(W) * C];
               // Interior: one contiguous multiply-add over the row (vectorised).
-              const int xa = std::max(0, -t), xb = std::min(W, W - t);
+              const int xa = std::min(W, std::max(0, -t)), xb = std::max(xa, std::min(W, W - t));
               for (int i = xa * C; i < xb * C; ++i) o[i] += w * row[i + t * C];
               for (int x = 0; x < xa; ++x)
                 for (int c = 0; c < C; ++c) o[x * C + c] += w * row[clampi(x + t, 0, W - 1) * C + c];
-              for (int x = std::max(xb, xa); x < W; ++x)
+              for (int x = xb; x < W; ++x)
                 for (int c = 0; c < C; ++c) o[x * C + c] += w * row[clampi(x + t, 0, W - 1) * C + c];
             } else {
               const float* row = &in.data[size_t(clampi(int(y) + t, 0, H - 1)) * W * C];

@@ -17,7 +17,7 @@ Buffer gaussianBlur(const Buffer& in, float sigma);
 // centred, not normalised here).
 Buffer separableFilter(const Buffer& in, const std::vector<float>& kx, const std::vector<float>& ky);
 // 5x5 Sobel gradient of channel `channel`: 2 channels (d/dx, d/dy), x to the right, y down;
-// kernels smooth (1 4 6 4 1) x derive (-1 -2 0 2 1), unnormalised (a unit ramp gives 48).
+// kernels smooth (1 4 6 4 1) x derive (-1 -2 0 2 1), unnormalised (a unit-slope ramp gives 128).
 Buffer sobel5x5(const Buffer& in, int channel = 0);
 // Per-channel median of each 3x3 neighbourhood.
 Buffer median3x3(const Buffer& in);

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/parallel.h"
+#include "core/low_discrepancy.h"
 #include "pipeline/frame_context.h"
 #include "rt/reference_render.h"
 #include "shading/blinn_phong.h"
@@ -13,21 +14,18 @@
 namespace tandem {
 
 std::vector<TimeLensPair> stratifiedTimeLensPairs(int n, uint64_t seed) {
-  std::vector<int> perm(static_cast<size_t>(n));
+  std::vector<int> perm(static_cast<size_t>(n)), jitterOrder(static_cast<size_t>(n));
   std::iota(perm.begin(), perm.end(), 0);
+  std::iota(jitterOrder.begin(), jitterOrder.end(), 0);
   std::mt19937_64 rng(seed ^ 0x5851F42D4C957F2Dull);
   std::shuffle(perm.begin(), perm.end(), rng);
+  std::shuffle(jitterOrder.begin(), jitterOrder.end(), rng);
   std::vector<TimeLensPair> pairs(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
     // Hammersley point i of n over the lens square; time stratum perm[i].
-    uint32_t b = uint32_t(i);
-    b = (b << 16) | (b >> 16);
-    b = ((b & 0x55555555u) << 1) | ((b & 0xAAAAAAAAu) >> 1);
-    b = ((b & 0x33333333u) << 2) | ((b & 0xCCCCCCCCu) >> 2);
-    b = ((b & 0x0F0F0F0Fu) << 4) | ((b & 0xF0F0F0F0u) >> 4);
-    b = ((b & 0x00FF00FFu) << 8) | ((b & 0xFF00FF00u) >> 8);
-    pairs[size_t(i)] = {(float(perm[size_t(i)]) + 0.5f) / float(n), (float(i) + 0.5f) / float(n),
-                        float(b) * 2.3283064365386963e-10f};
+    const Vec2 lens = hammersley(i, n);
+    pairs[size_t(i)] = {(float(perm[size_t(i)]) + 0.5f) / float(n), lens.x, lens.y,
+                        haltonJitter(1 + jitterOrder[size_t(i)])};
   }
   return pairs;
 }
@@ -41,12 +39,13 @@ std::vector<ParamDesc> AccumulationPass::params() const {
            2,
            "what the samples vary",
            {"dof", "motion_blur", "both"},
-           true}};
+           true},
+          {"antialias", ParamType::Bool, 1, 0, 1, "jitter each image within the pixel", {}}};
 }
 
 void AccumulationPass::execute(FrameContext& ctx) {
   const int n = int(param("samples")), mode = int(param("mode"));
-  const bool lens = mode != 1, time = mode != 0;
+  const bool lens = mode != 1, time = mode != 0, aa = param("antialias") != 0;
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   const std::vector<TimeLensPair> pairs = stratifiedTimeLensPairs(n, ctx.seed);
@@ -61,7 +60,8 @@ void AccumulationPass::execute(FrameContext& ctx) {
       // The camera along its shutter path, then moved to the lens point.
       const Camera atTau = time ? cameraAtShutter(v.camera, v.shutterCamera, tau) : v.camera;
       const Vec2 lensPoint = lens ? atTau.lensPoint(p.u1, p.u2) : Vec2{0, 0};
-      const Camera cam = Camera::make(atTau.desc, v.width(), v.height(), v.camera.jitter, lensPoint);
+      const Vec2 jitter = aa ? v.camera.jitter + p.jitter : v.camera.jitter;
+      const Camera cam = Camera::make(atTau.desc, v.width(), v.height(), jitter, lensPoint);
       auto t0 = Clock::now();
       RasterStats stats;
       rasterizer_.render(ctx.frame, cam, visibility_, &stats, time ? tau : -1.0f);

@@ -5,7 +5,9 @@
 // each image resolved and shaded with the one shading function, and the N images averaged.
 // Pairs: times stratified over the shutter, lens points stratified over the aperture (disk or the
 // camera's n-gon, Hammersley points), the two decorrelated by a seeded permutation.
-// Output: hdr. Parameters: samples, mode (dof, motion_blur, both).
+// Each image is also offset by a sub-pixel jitter (Halton (2, 3), in a third independent order), so
+// the average is anti-aliased like the reference's pixel-area samples.
+// Output: hdr. Parameters: samples, mode (dof, motion_blur, both), antialias.
 #pragma once
 #include <vector>
 
@@ -17,6 +19,7 @@ namespace tandem {
 // Sample i of n: shutter fraction tau and lens coordinates (u1, u2) in [0,1)^2.
 struct TimeLensPair {
   float tau, u1, u2;
+  Vec2 jitter;  // sub-pixel offset of the image (anti-aliasing), in [-0.5, 0.5)^2
 };
 std::vector<TimeLensPair> stratifiedTimeLensPairs(int n, uint64_t seed);
 

@@ -4,22 +4,6 @@
 
 namespace tandem {
 
-namespace {
-float radicalInverse(int i, int base) {
-  float f = 1.0f, r = 0.0f;
-  while (i > 0) {
-    f /= float(base);
-    r += f * float(i % base);
-    i /= base;
-  }
-  return r;
-}
-}  // namespace
-
-Vec2 haltonJitter(int i) {
-  return {radicalInverse(i, 2) - 0.5f, radicalInverse(i, 3) - 0.5f};
-}
-
 Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings)
     : scene_(&scene), pipeline_(std::move(pipeline)), settings_(settings) {
   ctx_.scene = scene_;

@@ -5,6 +5,7 @@
 #pragma once
 #include <string>
 
+#include "core/low_discrepancy.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/pipeline.h"
 
@@ -18,8 +19,6 @@ struct RenderSettings {
   StereoDesc stereo{};      // enabled: two eyes side by side, the frame 2 x width wide
 };
 
-// The i-th point (i >= 1) of the Halton (2, 3) sequence, minus 0.5: a jitter in pixels.
-Vec2 haltonJitter(int i);
 
 class Renderer {
  public:
