@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "pipeline/renderer.h"
+#include "scene/scene_camera.h"
 #include "scene/loaders.h"
 
 namespace tandem {
@@ -193,16 +194,7 @@ Scene loadSceneFor(const RenderOptions& o) {
 }
 
 CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
-  CameraDesc c = s.camera;
-  if (!s.hasCamera) {
-    // Frame the scene's bounds from the +Z side, like a model viewer.
-    Bounds3 b = s.bounds();
-    Vec3 centre = b.center();
-    float radius = std::max(length(b.extent()) * 0.5f, 1e-3f);
-    c.lookAt = centre;
-    c.position = centre + Vec3(0, radius * 0.3f, radius * 2.2f);
-    c.nearPlane = std::max(radius * 1e-3f, 1e-5f);
-  }
+  CameraDesc c = defaultCamera(s);
   if (!o.cameraPos.empty()) c.position = parseVec3("--camera-pos", o.cameraPos);
   if (!o.lookAt.empty()) c.lookAt = parseVec3("--look-at", o.lookAt);
   if (!o.up.empty()) c.up = parseVec3("--up", o.up);
@@ -211,30 +203,10 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
     throw InputError("command line", "--look-at", "must differ from the camera position");
   if (length(cross(normalize(c.lookAt - c.position), normalize(c.up))) < 1e-6f)
     throw InputError("command line", "--up", "must not be parallel to the view direction");
-  // Keep the near plane sensible for tiny models seen from close up.
-  float dist = length(c.lookAt - c.position);
-  c.nearPlane = std::min(c.nearPlane, dist * 0.05f);
+  fitNearPlane(c);  // sensible for tiny models seen from close up
   if (o.aperture >= 0) c.apertureDiameter = o.aperture;
   if (o.focus > 0) c.focusDistance = o.focus;
   if (o.blades >= 0) c.apertureBlades = o.blades;
-  return c;
-}
-
-CameraDesc pathCameraAt(const Scene& s, const CameraDesc& base, float t) {
-  return s.cameraPath.empty() ? base : sampleCameraPath(s.cameraPath, base, t);
-}
-
-CameraDesc pathCamera(const Scene& s, const CameraDesc& base, int i, int n) {
-  float u = n > 1 ? float(i) / float(n - 1) : 0.0f;
-  if (!s.cameraPath.empty()) {
-    float t0 = s.cameraPath.front().time, t1 = s.cameraPath.back().time;
-    return sampleCameraPath(s.cameraPath, base, t0 + (t1 - t0) * u);
-  }
-  CameraDesc c = base;
-  Vec3 off = base.position - base.lookAt;
-  float a = radians(-20.0f + 40.0f * u);
-  c.position = base.lookAt + Vec3(off.x * std::cos(a) + off.z * std::sin(a), off.y,
-                                  -off.x * std::sin(a) + off.z * std::cos(a));
   return c;
 }
 

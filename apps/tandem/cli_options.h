@@ -8,6 +8,7 @@
 
 #include "pipeline/pipeline.h"
 #include "scene/scene.h"
+#include "scene/scene_camera.h"
 
 namespace tandem {
 
@@ -53,11 +54,6 @@ RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o);
 Pipeline loadPipelineFor(const RenderOptions& o);
 // The scene camera with command-line overrides applied (a default view when it has none).
 CameraDesc cameraFor(const Scene& s, const RenderOptions& o);
-// Camera for frame i of n along the scene's path (the path bench flies), or a gentle orbit of
-// `base` when the scene has none.
-CameraDesc pathCamera(const Scene& s, const CameraDesc& base, int i, int n);
-// The camera on the scene's path at path time t (seconds); `base` when the scene has no path.
-CameraDesc pathCameraAt(const Scene& s, const CameraDesc& base, float t);
 std::vector<std::string> splitList(const std::string& s);
 // Caps oneTBB's worker count for the lifetime of the returned object (null: all cores).
 std::unique_ptr<tbb::global_control> limitThreads(const RenderOptions& o);

@@ -9,8 +9,8 @@
 
 #include "cli_options.h"
 #include "core/error.h"
-#include "experiment_heuristic.h"
-#include "experiment_sweep.h"
+#include "eval/experiment_heuristic.h"
+#include "eval/experiment_sweep.h"
 #include "verbs.h"
 
 #ifndef TANDEM_SOURCE_DIR

@@ -12,7 +12,7 @@
 #include "core/image_io.h"
 #include "mpi_cluster.h"
 #include "pipeline/aov.h"
-#include "reference_cache.h"
+#include "eval/reference_cache.h"
 #include "verbs.h"
 
 namespace tandem {

@@ -275,6 +275,13 @@ void HeuristicPass::execute(FrameContext& ctx) {
   }
   selectedFrame_ = ctx.serial;
   selectedLast_ = selected;
+  // For experiments and the viewer: what was selected out of what (nodes: objects, or
+  // object-effect pairs with per_effect).
+  ctx.counters["heuristic/selected"] = double(selected_.size());
+  ctx.counters["heuristic/nodes"] = double(nodes.size());
+  ctx.counters["heuristic/visible_objects"] = double(evaluated_.size());
+  ctx.counters["heuristic/budget"] = budget_;
+  ctx.counters["heuristic/selected_cost"] = selectedCost_;
   Buffer& mask = ctx.output(*this, "heuristic_mask");
   parallelRange(
       mask.pixelCount(),

@@ -1,4 +1,4 @@
-#include "reference_cache.h"
+#include "eval/reference_cache.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "machine_info.h"
+#include "eval/machine_info.h"
 
 #include <cstdio>
 #include <fstream>

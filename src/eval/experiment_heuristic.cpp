@@ -1,4 +1,4 @@
-#include "experiment_heuristic.h"
+#include "eval/experiment_heuristic.h"
 
 #include <cmath>
 #include <cstdio>
@@ -8,13 +8,13 @@
 #include <sstream>
 #include <thread>
 
-#include "cli_options.h"
+#include "scene/loaders.h"
+#include "scene/scene_camera.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/json_fields.h"
 #include "eval/metrics.h"
-#include "experiment_report.h"
-#include "passes/heuristic.h"
+#include "eval/experiment_report.h"
 #include "pipeline/renderer.h"
 
 #ifndef TANDEM_SOURCE_DIR
@@ -64,11 +64,15 @@ HeuristicExperimentOptions heuristicOptionsFromJson(const nlohmann::json& j,
 
 namespace {
 
-// One pipeline rendering one scene, with access to its heuristic pass (if any).
+// One pipeline rendering one scene; its heuristic (if any) reports through frame counters.
 struct Run {
   std::string pipeline;
   std::unique_ptr<Renderer> renderer;
-  const HeuristicPass* heuristic = nullptr;
+  bool heuristic = false;
+  double counter(const char* name) const {
+    auto it = renderer->context().counters.find(name);
+    return it == renderer->context().counters.end() ? 0.0 : it->second;
+  }
 
   Run(const Scene& scene, const std::string& name, const std::vector<std::string>& params,
       const HeuristicExperimentOptions& o)
@@ -77,8 +81,7 @@ struct Run {
     for (const std::string& a : params) p.setParam(a, "experiment heuristic");
     RenderSettings settings{.width = o.width, .height = o.height};
     renderer = std::make_unique<Renderer>(scene, std::move(p), settings);
-    for (const auto& pass : renderer->pipeline().passes)
-      if (auto* h = dynamic_cast<const HeuristicPass*>(pass.get())) heuristic = h;
+    for (const auto& pass : renderer->pipeline().passes) heuristic |= pass->type() == "heuristic";
   }
 };
 
@@ -110,8 +113,8 @@ StaticResult runStatic(Run& run, const CameraDesc& cam, const HeuristicExperimen
   r.frame = summarize(frames).median;
   r.image = run.renderer->output();
   if (run.heuristic) {
-    r.selected = run.heuristic->lastSelection().size();
-    r.visible = run.heuristic->lastEvaluation().size();
+    r.selected = size_t(run.counter("heuristic/selected"));
+    r.visible = size_t(run.counter("heuristic/visible_objects"));
     r.mask = run.renderer->context().input("heuristic_mask");
   }
   return r;
@@ -151,9 +154,7 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   // Load every scene before rendering anything, so a bad one fails fast and writes nothing.
   std::vector<Scene> scenes;
   for (const std::string& spec : specs) {
-    RenderOptions ro;
-    ro.scene = spec;
-    scenes.push_back(loadSceneFor(ro));
+    scenes.push_back(loadScene(spec));
   }
   if (!o.out.empty() && !fs::exists(o.out)) fs::create_directories(o.out);
   const fs::path dir(o.out);
@@ -168,8 +169,7 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
     std::printf("experiment heuristic: %s (%zu triangles, %zu objects)\n", res.name.c_str(),
                 scene.triangleCount(), scene.objects.size());
     std::fflush(stdout);
-    RenderOptions ro;
-    const CameraDesc cam = cameraFor(scene, ro);
+    const CameraDesc cam = defaultCamera(scene);
 
     // Table 5: the static shot.
     {
@@ -210,8 +210,7 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
       bool within = std::abs(rtMs - o.budgetMs) <= o.tolerance * o.budgetMs;
       // The budget binds when something visible was left out; otherwise the RT stage simply
       // had less to do than the budget allows.
-      size_t candidates = heuristicNodes(scene, budget.heuristic->lastEvaluation(), true, 0).size();
-      bool binds = budget.heuristic->lastSelection().size() < candidates;
+      bool binds = budget.counter("heuristic/selected") < budget.counter("heuristic/nodes");
       res.withinBand += within;
       res.binding += binds;
       res.bindingWithin += binds && within;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "machine_info.h"
+#include "eval/machine_info.h"
 
 namespace tandem {
 

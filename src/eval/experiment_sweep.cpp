@@ -1,4 +1,4 @@
-#include "experiment_sweep.h"
+#include "eval/experiment_sweep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,16 +6,17 @@
 #include <filesystem>
 #include <limits>
 
-#include "cli_options.h"
+#include "scene/loaders.h"
+#include "scene/scene_camera.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/json_fields.h"
 #include "eval/flip.h"
 #include "eval/metrics.h"
-#include "experiment_report.h"
+#include "eval/experiment_report.h"
 #include "pipeline/aov.h"
 #include "pipeline/renderer.h"
-#include "reference_cache.h"
+#include "eval/reference_cache.h"
 
 namespace tandem {
 namespace fs = std::filesystem;
@@ -141,9 +142,7 @@ int runSweepExperiment(const Json& j, const std::string& file, const ExperimentO
   // Check every scene and pipeline (and the sweep's parameter) before rendering anything.
   std::vector<Scene> scenes;
   for (const std::string& spec : s.scenes) {
-    RenderOptions ro;
-    ro.scene = spec;
-    scenes.push_back(loadSceneFor(ro));
+    scenes.push_back(loadScene(spec));
   }
   bool sweepApplies = false;
   std::vector<bool> setApplies(s.set.size(), false);
@@ -173,8 +172,7 @@ int runSweepExperiment(const Json& j, const std::string& file, const ExperimentO
   for (size_t si = 0; si < scenes.size(); ++si) {
     const Scene& scene = scenes[si];
     const std::string label = sceneLabel(s.scenes[si]);
-    RenderOptions ro;
-    const CameraDesc cam = cameraFor(scene, ro);
+    const CameraDesc cam = defaultCamera(scene);
     ReferenceJob job;
     job.scene = &scene;
     job.camera = job.shutterCamera = cam;

@@ -1,4 +1,4 @@
-#include "experiment_report.h"
+#include "eval/experiment_report.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,0 +1,18 @@
+// The cameras a scene implies: its own (or one framing its bounds when it has none) and the
+// camera along its recorded path (the one `bench` flies; a gentle orbit when it has none).
+#pragma once
+#include "scene/scene.h"
+
+namespace tandem {
+
+// The scene's camera, or one framing its bounds from the +Z side (like a model viewer); the
+// near plane kept sensible for tiny models seen from close up.
+CameraDesc defaultCamera(const Scene& s);
+// Keeps the near plane below 5 % of the distance to the target.
+void fitNearPlane(CameraDesc& c);
+// The camera on the scene's path at path time t (seconds); `base` when the scene has no path.
+CameraDesc pathCameraAt(const Scene& s, const CameraDesc& base, float t);
+// Camera for frame i of n along the scene's path, or a gentle orbit of `base` when it has none.
+CameraDesc pathCamera(const Scene& s, const CameraDesc& base, int i, int n);
+
+}  // namespace tandem
