@@ -18,7 +18,42 @@ std::vector<ParamDesc> whittedParams() {
            0,
            1,
            "stop recursing when a ray's weight falls below this",
+           {}},
+          {"shadow_attenuation",
+           ParamType::Enum,
+           0,
+           0,
+           1,
+           "occluder colour for Listing 8b: textured (as the G-buffer) or the base material's",
+           {"textured", "base"}},
+          {"shade_at_max_depth",
+           ParamType::Bool,
+           0,
+           0,
+           1,
+           "at max depth shade pure mirrors / clear glass with Blinn-Phong (Listing 8c: 0)",
            {}}};
+}
+
+WhittedSettings whittedSettings(const Pass& p) {
+  WhittedSettings w;
+  w.maxDepth = int(p.param("max_depth"));
+  w.importanceCutoff = float(p.param("importance_cutoff"));
+  w.texturedShadows = p.param("shadow_attenuation") == 0;
+  w.shadeAtMaxDepth = p.param("shade_at_max_depth") != 0;
+  return w;
+}
+
+std::vector<ParamDesc> RTSecondaryPass::params() const {
+  std::vector<ParamDesc> p = whittedParams();
+  p.push_back({"outside_mask_shadow",
+               ParamType::Float,
+               0,
+               0,
+               1,
+               "shadow value outside the mask (Listing 8a: 0; 1 is neutral)",
+               {}});
+  return p;
 }
 
 std::vector<BufferSlot> RTSecondaryPass::inputs() const {
@@ -48,7 +83,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   const size_t objects = scene.objects.size();
   const ShadingContext shading = ShadingContext::from(scene);
-  Whitted whitted(rt, scene, shading, {int(param("max_depth")), float(param("importance_cutoff"))});
+  Whitted whitted(rt, scene, shading, whittedSettings(*this));
   const GBufferReader g = gbufferSource(ctx, *this);
   const Buffer& mask = ctx.input(*this, "heuristic_mask");
   Buffer& shadow = ctx.output(*this, "shadow");
@@ -56,6 +91,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   Buffer& refraction = ctx.output(*this, "refraction");
   const Buffer* request = ctx.optionalInput(*this, "rt_request");
   const bool timed = request && request->data[0] > 0.5f;
+  const float outsideShadow = float(param("outside_mask_shadow"));
   tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     std::vector<Vec3> vis(scene.lights.size());
@@ -66,8 +102,11 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         const bool want[kEffectCount] = {m[kShadow] > 0.5f, m[kReflection] > 0.5f,
                                          m[kRefraction] > 0.5f};
         SurfaceSample s;
-        Vec3 shadowRgb(1.0f), reflectionRgb(0.0f), refractionRgb(0.0f);
+        // Listing 8a: 0 in all three outside the mask (`outside_mask_shadow` = 1 keeps the
+        // shadow buffer neutral there instead; blend never reads it outside the mask).
+        Vec3 shadowRgb(outsideShadow), reflectionRgb(0.0f), refractionRgb(0.0f);
         if ((want[0] || want[1] || want[2]) && g.read(x, y, s)) {
+          shadowRgb = Vec3(1.0f);
           EffectTally& t = tally[size_t(s.object)];
           Vec3 o, d;
           v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);

@@ -1,18 +1,20 @@
 // rt_secondary: seed 002 §3.3 (Listing 8a) for the pixels of the heuristic mask, starting from the
 // G-buffer (no primary rays): shadow rays to every light (Listing 8b), reflection and refraction
-// rays with recursion (Listing 8c, rt/whitted.h). Outside the mask: shadow 1, reflection and
-// refraction 0 (Figure 5's buffers).
+// rays with recursion (Listing 8c, rt/whitted.h). Outside the mask all three are 0 (Listing 8a;
+// Figure 5's buffers), or the shadow 1 with outside_mask_shadow = 1.
 // Inputs: G-buffer sample targets, heuristic_mask, rt_request (optional: 1 times each object and
 // effect). Outputs: shadow, reflection, refraction, rt_stats (what it traced, for the next
 // frame's heuristic).
 // Parameters: max_depth, importance_cutoff.
 #pragma once
 #include "pipeline/pass.h"
+#include "rt/whitted.h"
 
 namespace tandem {
 
-// Parameters shared by every pass that traces Whitted rays.
+// Parameters shared by every pass that traces Whitted rays, and the settings they give.
 std::vector<ParamDesc> whittedParams();
+WhittedSettings whittedSettings(const Pass& p);
 
 class RTSecondaryPass : public Pass {
  public:
@@ -22,7 +24,7 @@ class RTSecondaryPass : public Pass {
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;
-  std::vector<ParamDesc> params() const override { return whittedParams(); }
+  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
 };
 

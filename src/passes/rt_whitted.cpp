@@ -17,7 +17,7 @@ void RTWhittedPass::execute(FrameContext& ctx) {
   const uint64_t before = rt.raysTraced();
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
-  Whitted whitted(rt, scene, shading, {int(param("max_depth")), float(param("importance_cutoff"))});
+  Whitted whitted(rt, scene, shading, whittedSettings(*this));
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& ids = ctx.output(*this, "object_id");
   for (const View& v : ctx.views)

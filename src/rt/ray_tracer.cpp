@@ -26,6 +26,7 @@ struct QueryContext {
   RTCIntersectContext ctx;
   const FrameScene* frame;
   Vec3* transmittance;  // non-null: a shadow ray accumulating Listing 8b's attenuation
+  bool texturedShadows = true;  // the occluder's textured diffuse colour (else the base colour)
   // Surfaces already counted by this shadow ray: a ray through a shared edge reports both
   // triangles at the same distance, which must attenuate once.
   struct Counted {
@@ -96,7 +97,23 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
       }
       q->counted[q->countedN++ % 8] = {geom, tHit};  // a ring of the 8 most recent surfaces
       Vec3& t = *qc->transmittance;
-      t = t * (Vec3(1.0f) - vmin(mat.diffuse, Vec3(1.0f))) * (1.0f - mat.opacity);
+      Vec3 diffuse = mat.diffuse;
+      float opacity = mat.opacity;
+      if (qc->texturedShadows && mat.opacity < 1.0f) {
+        // The surface as the G-buffer would hold it (textures, metallic-roughness), from Embree's
+        // own distance and barycentrics.
+        const float tuv[3] = {tHit, RTCHitN_u(hit, args->N, i), RTCHitN_v(hit, args->N, i)};
+        const Vec3 o{RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                     RTCRayN_org_z(ray, args->N, i)};
+        const Vec3 d{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
+                     RTCRayN_dir_z(ray, args->N, i)};
+        const SurfaceSample sh = resolveSurface(*info->frame, int(info->object),
+                                                int(RTCHitN_primID(hit, args->N, i)), o, d,
+                                                RTCRayN_time(ray, args->N, i), tuv);
+        diffuse = sh.diffuse;
+        opacity = sh.opacity;
+      }
+      t = t * (Vec3(1.0f) - vmin(diffuse, Vec3(1.0f))) * (1.0f - opacity);
       if (maxComponent(t) > 0.0f) args->valid[i] = 0;
     }
   }
@@ -241,12 +258,13 @@ bool RayTracer::occluded(const Ray& in) const {
   return r.tfar < 0;
 }
 
-Vec3 RayTracer::transmittance(const Ray& in) const {
+Vec3 RayTracer::transmittance(const Ray& in, bool textured) const {
   Vec3 t(1.0f);
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
   qc.transmittance = &t;
+  qc.texturedShadows = textured;
   RTCRay r;
   setRay(r, in);
   rtcOccluded1(scene_, &qc.ctx, &r);

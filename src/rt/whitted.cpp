@@ -44,7 +44,7 @@ void Whitted::lightVisibility(const SurfaceSample& s, Vec3* vis) const {
     r.dir = ls.wi;
     r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
                                      : ls.distance * (1.0f - 1e-4f);
-    vis[i] = rt_.transmittance(r);
+    vis[i] = rt_.transmittance(r, settings_.texturedShadows);
   }
 }
 
@@ -86,8 +86,9 @@ Vec3 Whitted::traceSecondary(Vec3 origin, Vec3 dir, int depth, float importance)
   if (om < 1.0f && orr < 1.0f) lighting = shadeBlinnPhong(s, -dir, shading_);
   Vec3 refl(0.0f), refr(0.0f);
   if (depth >= settings_.maxDepth) {
-    // Out of depth: the surface's own lighting stands in for further bounces.
-    lighting = shadeBlinnPhong(s, -dir, shading_);
+    // Out of depth: the surface's own lighting stands in for further bounces (Listing 8c: none
+    // on a pure mirror or clear glass, unless shade_at_max_depth asks for Blinn-Phong there).
+    if (settings_.shadeAtMaxDepth) lighting = shadeBlinnPhong(s, -dir, shading_);
     refl = refr = lighting;
   } else {
     if (importance * om > settings_.importanceCutoff)

@@ -18,6 +18,12 @@ namespace tandem {
 struct WhittedSettings {
   int maxDepth = 10;               // [1, 64] recursion depth of secondary rays (paper: 10)
   float importanceCutoff = 0.01f;  // [0, 1] stop when the ray's weight falls below this
+  // Listing 8b: occluders attenuate by their diffuse colour as the G-buffer would hold it
+  // (textures included); false: the material's base diffuse colour.
+  bool texturedShadows = true;
+  // Listing 8c at the maximum depth: a fully reflective or refractive surface has no lighting
+  // (0); true: it is shaded with Blinn-Phong instead (Tandem's earlier behaviour).
+  bool shadeAtMaxDepth = false;
 };
 
 // Eq. 5-6: C_M = OM M + (1 - OM)(OR R + (1 - OR) C), C_R = OR R + (1 - OR)(OM M + (1 - OM) C),
