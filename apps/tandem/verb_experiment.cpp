@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "eval/experiment_heuristic.h"
 #include "eval/experiment_sweep.h"
+#include "eval/experiment_taa.h"
 #include "verbs.h"
 
 #ifndef TANDEM_SOURCE_DIR
@@ -79,8 +80,19 @@ struct ExperimentVerb {
       ho.threads = threads;
       return runHeuristicExperiment(ho);
     }
+    if (runner == "taa") {
+      TaaExperimentOptions to = taaOptionsFromJson(j, file.string());
+      to.out = o.out.empty() ? "out/experiment-" + file.stem().string() : o.out;
+      if (!o.scenes.empty()) to.scenes = o.scenes;
+      if (o.width) to.width = o.width;
+      if (o.height) to.height = o.height;
+      if (o.frames) to.staticFrames = o.frames;
+      if (pathFrames != -1) to.pathFrames = pathFrames;
+      return runTaaExperiment(to);
+    }
     if (runner != "sweep")
-      throw InputError(file.string(), "runner", "'" + runner + "' is not sweep or heuristic");
+      throw InputError(file.string(), "runner",
+                       "'" + runner + "' is not sweep, heuristic or taa");
     if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
       throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
                        "apply to the heuristic runner only");

@@ -143,6 +143,18 @@ void sampleCatmullRom(const Buffer& b, float x, float y, float* out) {
   weights(fx - float(x1), wx);
   weights(fy - float(y1), wy);
   for (int c = 0; c < b.channels; ++c) out[c] = 0.0f;
+  if (x1 >= 1 && y1 >= 1 && x1 + 2 < b.width && y1 + 2 < b.height) {
+    // Inside: four rows of four contiguous texels, no clamping.
+    const int C = b.channels;
+    for (int j = 0; j < 4; ++j) {
+      const float* row = b.at(x1 - 1, y1 - 1 + j);
+      for (int i = 0; i < 4; ++i) {
+        const float w = wx[i] * wy[j];
+        for (int c = 0; c < C; ++c) out[c] += w * row[i * C + c];
+      }
+    }
+    return;
+  }
   for (int j = 0; j < 4; ++j) {
     const int yy = clampi(y1 - 1 + j, 0, b.height - 1);
     for (int i = 0; i < 4; ++i) {

@@ -2,9 +2,18 @@
 
 namespace tandem {
 
+std::string outputSource(const Pipeline& p) {
+  for (const auto& pass : p.passes)
+    for (const BufferSlot& o : pass->outputs())
+      if (pass->bufferName(o.slot) == p.output && pass->inputSlot("hdr"))
+        return pass->bufferName("hdr");
+  return p.output;
+}
+
 Buffer supersample(const Scene& scene, const std::string& pipeline, const CameraDesc& camera,
-                   const RenderSettings& settings, int n, const std::string& buffer) {
+                   const RenderSettings& settings, int n, const std::string& bufferName) {
   Renderer r(scene, Pipeline::load(pipeline), settings);
+  const std::string buffer = bufferName.empty() ? outputSource(r.pipeline()) : bufferName;
   Buffer sum;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {

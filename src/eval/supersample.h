@@ -8,8 +8,12 @@
 
 namespace tandem {
 
-// Mean of buffer `buffer` over n * n jittered renders of one frame (n >= 1).
+// Mean of buffer `buffer` over n * n jittered renders of one frame (n >= 1). Empty `buffer`: the
+// linear colour the pipeline's output is made from (the `hdr` input of the pass writing the
+// output, e.g. `composite` in the hybrid pipelines).
 Buffer supersample(const Scene& scene, const std::string& pipeline, const CameraDesc& camera,
-                   const RenderSettings& settings, int n, const std::string& buffer = "hdr");
+                   const RenderSettings& settings, int n, const std::string& buffer = "");
+// The buffer named above for an empty `buffer`.
+std::string outputSource(const Pipeline& p);
 
 }  // namespace tandem

@@ -59,41 +59,64 @@ void TAAPass::execute(FrameContext& ctx) {
   }
   const float alpha = float(param("alpha"));
   const bool clampHistory = param("clamp") != 0, catmullRom = param("filter") == 1;
-  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        const Vec3 c = cur.rgb(x, y);
-        const float* m = motion.at(x, y);
-        const float px = float(x) + 0.5f - m[0], py = float(y) + 0.5f - m[1];
-        if (px < float(v.x) || py < float(v.y) || px >= float(v.x + v.width()) ||
-            py >= float(v.y + v.height())) {
-          out.setRgb(x, y, c);  // came from outside the view: nothing to reuse
-          continue;
-        }
-        float h[3];
-        if (catmullRom)
-          sampleCatmullRom(*prev, px, py, h);
-        else
-          sampleBilinear(*prev, px, py, h);
-        Vec3 hist(std::max(h[0], 0.0f), std::max(h[1], 0.0f), std::max(h[2], 0.0f));
+  constexpr int kTile = 32, kPad = kTile + 2;
+  parallelViewTiles(
+      ctx.views,
+      [&](const View& v, int x0, int y0, int x1, int y1) {
+        // The tile and a 1-pixel border (clamped to the view) in YCoCg, then the 3-wide minimum
+        // and maximum along rows: the 3x3 box of a pixel is three rows of those.
+        float ycc[kPad][kPad][3], rowLo[kPad][kTile][3], rowHi[kPad][kTile][3];
+        const int w = x1 - x0, h = y1 - y0;
+        const int vx1 = v.x + v.width() - 1, vy1 = v.y + v.height() - 1;
         if (clampHistory) {
-          Vec3 lo(1e30f), hi(-1e30f);
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              const int nx = std::clamp(x + dx, v.x, v.x + v.width() - 1);
-              const int ny = std::clamp(y + dy, v.y, v.y + v.height() - 1);
-              const Vec3 n = toYCoCg(cur.rgb(nx, ny));
-              lo = vmin(lo, n);
-              hi = vmax(hi, n);
+          for (int j = 0; j < h + 2; ++j) {
+            const int sy = std::clamp(y0 + j - 1, v.y, vy1);
+            for (int i = 0; i < w + 2; ++i) {
+              const Vec3 c = toYCoCg(cur.rgb(std::clamp(x0 + i - 1, v.x, vx1), sy));
+              ycc[j][i][0] = c.x;
+              ycc[j][i][1] = c.y;
+              ycc[j][i][2] = c.z;
             }
-          hist = fromYCoCg(vmin(vmax(toYCoCg(hist), lo), hi));
+            for (int i = 0; i < w; ++i)
+              for (int k = 0; k < 3; ++k) {
+                const float a = ycc[j][i][k], b = ycc[j][i + 1][k], c = ycc[j][i + 2][k];
+                rowLo[j][i][k] = std::min(a, std::min(b, c));
+                rowHi[j][i][k] = std::max(a, std::max(b, c));
+              }
+          }
         }
-        // Luma-weighted blend (Karis): 1 / (1 + luma) tames fireflies.
-        const float wc = alpha / (1.0f + toYCoCg(c).x);
-        const float wh = (1.0f - alpha) / (1.0f + std::max(toYCoCg(hist).x, 0.0f));
-        out.setRgb(x, y, (c * wc + hist * wh) * (1.0f / (wc + wh)));
-      }
-  });
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x) {
+            const Vec3 c = cur.rgb(x, y);
+            const float* m = motion.at(x, y);
+            const float px = float(x) + 0.5f - m[0], py = float(y) + 0.5f - m[1];
+            if (px < float(v.x) || py < float(v.y) || px >= float(v.x + v.width()) ||
+                py >= float(v.y + v.height())) {
+              out.setRgb(x, y, c);  // came from outside the view: nothing to reuse
+              continue;
+            }
+            float hs[3];
+            if (catmullRom)
+              sampleCatmullRom(*prev, px, py, hs);
+            else
+              sampleBilinear(*prev, px, py, hs);
+            Vec3 hist(std::max(hs[0], 0.0f), std::max(hs[1], 0.0f), std::max(hs[2], 0.0f));
+            if (clampHistory) {
+              const int i = x - x0, j = y - y0;  // rows j .. j + 2 of the padded tile
+              Vec3 lo, hi;
+              for (int k = 0; k < 3; ++k) {
+                lo[k] = std::min(rowLo[j][i][k], std::min(rowLo[j + 1][i][k], rowLo[j + 2][i][k]));
+                hi[k] = std::max(rowHi[j][i][k], std::max(rowHi[j + 1][i][k], rowHi[j + 2][i][k]));
+              }
+              hist = fromYCoCg(vmin(vmax(toYCoCg(hist), lo), hi));
+            }
+            // Luma-weighted blend (Karis): 1 / (1 + luma) tames fireflies.
+            const float wc = alpha / (1.0f + std::max(toYCoCg(c).x, 0.0f));
+            const float wh = (1.0f - alpha) / (1.0f + std::max(toYCoCg(hist).x, 0.0f));
+            out.setRgb(x, y, (c * wc + hist * wh) * (1.0f / (wc + wh)));
+          }
+      },
+      kTile);
 }
 
 }  // namespace tandem

@@ -30,6 +30,7 @@ Camera Camera::make(const CameraDesc& d, int width, int height, Vec2 jitter, Vec
   c.forward = -Vec3(centreView.m[2][0], centreView.m[2][1], centreView.m[2][2]);
   if (d.projection != Projection::Perspective) lens = {0, 0};
   c.lens = lens;
+  c.lensSlope = {lens.x / d.focusDistance, lens.y / d.focusDistance};
   const Vec3 shift = c.right * lens.x + c.upVec * lens.y;
   c.eye = d.position + shift;
   c.view = lens.x == 0 && lens.y == 0 ? centreView : Mat4::lookAt(c.eye, d.lookAt + shift, d.up);
@@ -75,8 +76,8 @@ void Camera::generateRay(float px, float py, Vec3& origin, Vec3& dir) const {
     float t = tanHalfFov;
     origin = eye;
     // Through the pixel's point of the focus plane (lens 0: the pinhole ray).
-    const float lx = lens.x / desc.focusDistance, ly = lens.y / desc.focusDistance;
-    dir = normalize(forward + right * (sx * t * aspect - lx) + upVec * (sy * t - ly));
+    dir = normalize(forward + right * (sx * t * aspect - lensSlope.x) +
+                    upVec * (sy * t - lensSlope.y));
   } else {
     float hh = desc.orthoHeight * 0.5f;
     origin = desc.position + right * (sx * hh * aspect) + upVec * (sy * hh);

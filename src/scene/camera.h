@@ -51,6 +51,7 @@ struct Camera {
   Mat4 viewProjUnjittered;  // for motion vectors, which must not contain the jitter
   Vec3 forward, right, upVec;
   float tanHalfFov = 1, aspect = 1;  // cached for generateRay
+  Vec2 lensSlope{0, 0};               // lens / focusDistance, cached for generateRay
 
   static Camera make(const CameraDesc& d, int width, int height, Vec2 jitter = {0, 0},
                      Vec2 lens = {0, 0});
