@@ -5,8 +5,8 @@
 
 #include "core/error.h"
 #include "pipeline/renderer.h"
-#include "scene/scene_camera.h"
 #include "scene/loaders.h"
+#include "scene/scene_camera.h"
 
 namespace tandem {
 

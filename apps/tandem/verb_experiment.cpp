@@ -91,8 +91,7 @@ struct ExperimentVerb {
       return runTaaExperiment(to);
     }
     if (runner != "sweep")
-      throw InputError(file.string(), "runner",
-                       "'" + runner + "' is not sweep, heuristic or taa");
+      throw InputError(file.string(), "runner", "'" + runner + "' is not sweep, heuristic or taa");
     if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
       throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
                        "apply to the heuristic runner only");

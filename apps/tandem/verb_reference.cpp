@@ -10,9 +10,9 @@
 #include "cli_options.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "eval/reference_cache.h"
 #include "mpi_cluster.h"
 #include "pipeline/aov.h"
-#include "eval/reference_cache.h"
 #include "verbs.h"
 
 namespace tandem {

@@ -64,7 +64,8 @@ struct RenderVerb {
     if (ctx.counters.count("raster/triangles_in"))
       std::printf("  raster: %.0f triangles, %.0f culled, %.0f clipped, %.0f set up and binned\n",
                   ctx.counters["raster/triangles_in"], ctx.counters["raster/triangles_culled"],
-                  ctx.counters["raster/triangles_clipped"], ctx.counters["raster/triangles_binned"]);
+                  ctx.counters["raster/triangles_clipped"],
+                  ctx.counters["raster/triangles_binned"]);
     const std::string& outName = renderer.pipeline().output;
     if (isFile) {
       writeBuffer(out, ctx.input(outName));

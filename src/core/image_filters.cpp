@@ -31,9 +31,11 @@ Buffer convolve1d(const Buffer& in, const std::vector<float>& k, bool horizontal
               const int xa = std::min(W, std::max(0, -t)), xb = std::max(xa, std::min(W, W - t));
               for (int i = xa * C; i < xb * C; ++i) o[i] += w * row[i + t * C];
               for (int x = 0; x < xa; ++x)
-                for (int c = 0; c < C; ++c) o[x * C + c] += w * row[clampi(x + t, 0, W - 1) * C + c];
+                for (int c = 0; c < C; ++c)
+                  o[x * C + c] += w * row[clampi(x + t, 0, W - 1) * C + c];
               for (int x = xb; x < W; ++x)
-                for (int c = 0; c < C; ++c) o[x * C + c] += w * row[clampi(x + t, 0, W - 1) * C + c];
+                for (int c = 0; c < C; ++c)
+                  o[x * C + c] += w * row[clampi(x + t, 0, W - 1) * C + c];
             } else {
               const float* row = &in.data[size_t(clampi(int(y) + t, 0, H - 1)) * W * C];
               for (int i = 0; i < W * C; ++i) o[i] += w * row[i];
@@ -57,7 +59,8 @@ Buffer gaussianBlur(const Buffer& in, float sigma) {
   const int r = int(std::ceil(3.0f * sigma));
   std::vector<float> k(size_t(2 * r + 1));
   float sum = 0.0f;
-  for (int i = -r; i <= r; ++i) sum += k[size_t(i + r)] = std::exp(-0.5f * float(i * i) / (sigma * sigma));
+  for (int i = -r; i <= r; ++i)
+    sum += k[size_t(i + r)] = std::exp(-0.5f * float(i * i) / (sigma * sigma));
   for (float& w : k) w /= sum;
   return separableFilter(in, k, k);
 }
@@ -101,21 +104,24 @@ Buffer median3x3(const Buffer& in) {
 Buffer downsampleBox(const Buffer& in) {
   const int W = (in.width + 1) / 2, H = (in.height + 1) / 2, C = in.channels;
   Buffer out(W, H, C, 0.0f, in.kind);
-  parallelRange(size_t(H), [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
-      for (int x = 0; x < W; ++x) {
-        const int xa = 2 * x, ya = 2 * y, xb = std::min(xa + 1, in.width - 1),
-                  yb = std::min(ya + 1, in.height - 1);
-        const float n = float((xb - xa + 1) * (yb - ya + 1));
-        for (int c = 0; c < C; ++c) {
-          float s = in.at(xa, ya)[c];
-          if (xb != xa) s += in.at(xb, ya)[c];
-          if (yb != ya) s += in.at(xa, yb)[c];
-          if (xb != xa && yb != ya) s += in.at(xb, yb)[c];
-          out.at(x, y)[c] = s / n;
-        }
-      }
-  }, 8);
+  parallelRange(
+      size_t(H),
+      [&](size_t y0, size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+          for (int x = 0; x < W; ++x) {
+            const int xa = 2 * x, ya = 2 * y, xb = std::min(xa + 1, in.width - 1),
+                      yb = std::min(ya + 1, in.height - 1);
+            const float n = float((xb - xa + 1) * (yb - ya + 1));
+            for (int c = 0; c < C; ++c) {
+              float s = in.at(xa, ya)[c];
+              if (xb != xa) s += in.at(xb, ya)[c];
+              if (yb != ya) s += in.at(xa, yb)[c];
+              if (xb != xa && yb != ya) s += in.at(xb, yb)[c];
+              out.at(x, y)[c] = s / n;
+            }
+          }
+      },
+      8);
   return out;
 }
 
@@ -168,11 +174,14 @@ void sampleCatmullRom(const Buffer& b, float x, float y, float* out) {
 Buffer resizeBilinear(const Buffer& in, int width, int height) {
   Buffer out(width, height, in.channels, 0.0f, in.kind);
   const float sx = float(in.width) / float(width), sy = float(in.height) / float(height);
-  parallelRange(size_t(height), [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
-      for (int x = 0; x < width; ++x)
-        sampleBilinear(in, (float(x) + 0.5f) * sx, (float(y) + 0.5f) * sy, out.at(x, y));
-  }, 8);
+  parallelRange(
+      size_t(height),
+      [&](size_t y0, size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+          for (int x = 0; x < width; ++x)
+            sampleBilinear(in, (float(x) + 0.5f) * sx, (float(y) + 0.5f) * sy, out.at(x, y));
+      },
+      8);
   return out;
 }
 
@@ -181,28 +190,32 @@ Buffer upsampleDepthAware(const Buffer& low, const Buffer& lowDepth, const Buffe
   const int W = highDepth.width, H = highDepth.height, C = low.channels;
   Buffer out(W, H, C, 0.0f, low.kind);
   const float sx = float(low.width) / float(W), sy = float(low.height) / float(H);
-  parallelRange(size_t(H), [&](size_t y0, size_t y1) {
-    for (int y = int(y0); y < int(y1); ++y)
-      for (int x = 0; x < W; ++x) {
-        const float fx = (float(x) + 0.5f) * sx - 0.5f, fy = (float(y) + 0.5f) * sy - 0.5f;
-        const int bx = int(std::floor(fx)), by = int(std::floor(fy));
-        const float tx = fx - float(bx), ty = fy - float(by);
-        const float d = highDepth.at(x, y)[0];
-        float wsum = 0.0f;
-        float* o = out.at(x, y);
-        for (int j = 0; j < 2; ++j)
-          for (int i = 0; i < 2; ++i) {
-            const int lx = clampi(bx + i, 0, low.width - 1), ly = clampi(by + j, 0, low.height - 1);
-            const float wb = (i ? tx : 1 - tx) * (j ? ty : 1 - ty);
-            const float dd = std::abs(lowDepth.at(lx, ly)[0] - d) * depthScale;
-            const float w = wb / (1e-4f + dd * dd) + 1e-12f;
-            wsum += w;
-            const float* p = low.at(lx, ly);
-            for (int c = 0; c < C; ++c) o[c] += w * p[c];
+  parallelRange(
+      size_t(H),
+      [&](size_t y0, size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+          for (int x = 0; x < W; ++x) {
+            const float fx = (float(x) + 0.5f) * sx - 0.5f, fy = (float(y) + 0.5f) * sy - 0.5f;
+            const int bx = int(std::floor(fx)), by = int(std::floor(fy));
+            const float tx = fx - float(bx), ty = fy - float(by);
+            const float d = highDepth.at(x, y)[0];
+            float wsum = 0.0f;
+            float* o = out.at(x, y);
+            for (int j = 0; j < 2; ++j)
+              for (int i = 0; i < 2; ++i) {
+                const int lx = clampi(bx + i, 0, low.width - 1),
+                          ly = clampi(by + j, 0, low.height - 1);
+                const float wb = (i ? tx : 1 - tx) * (j ? ty : 1 - ty);
+                const float dd = std::abs(lowDepth.at(lx, ly)[0] - d) * depthScale;
+                const float w = wb / (1e-4f + dd * dd) + 1e-12f;
+                wsum += w;
+                const float* p = low.at(lx, ly);
+                for (int c = 0; c < C; ++c) o[c] += w * p[c];
+              }
+            for (int c = 0; c < C; ++c) o[c] /= wsum;
           }
-        for (int c = 0; c < C; ++c) o[c] /= wsum;
-      }
-  }, 8);
+      },
+      8);
   return out;
 }
 

@@ -15,7 +15,8 @@ namespace tandem {
 Buffer gaussianBlur(const Buffer& in, float sigma);
 // Convolution with a separable kernel: `kx` along rows, then `ky` along columns (odd lengths,
 // centred, not normalised here).
-Buffer separableFilter(const Buffer& in, const std::vector<float>& kx, const std::vector<float>& ky);
+Buffer separableFilter(const Buffer& in, const std::vector<float>& kx,
+                       const std::vector<float>& ky);
 // 5x5 Sobel gradient of channel `channel`: 2 channels (d/dx, d/dy), x to the right, y down;
 // kernels smooth (1 4 6 4 1) x derive (-1 -2 0 2 1), unnormalised (a unit-slope ramp gives 128).
 Buffer sobel5x5(const Buffer& in, int channel = 0);

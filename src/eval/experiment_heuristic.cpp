@@ -8,14 +8,14 @@
 #include <sstream>
 #include <thread>
 
-#include "scene/loaders.h"
-#include "scene/scene_camera.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/json_fields.h"
-#include "eval/metrics.h"
 #include "eval/experiment_report.h"
+#include "eval/metrics.h"
 #include "pipeline/renderer.h"
+#include "scene/loaders.h"
+#include "scene/scene_camera.h"
 
 #ifndef TANDEM_SOURCE_DIR
 #define TANDEM_SOURCE_DIR "."

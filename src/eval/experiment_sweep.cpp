@@ -6,17 +6,17 @@
 #include <filesystem>
 #include <limits>
 
-#include "scene/loaders.h"
-#include "scene/scene_camera.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/json_fields.h"
+#include "eval/experiment_report.h"
 #include "eval/flip.h"
 #include "eval/metrics.h"
-#include "eval/experiment_report.h"
+#include "eval/reference_cache.h"
 #include "pipeline/aov.h"
 #include "pipeline/renderer.h"
-#include "eval/reference_cache.h"
+#include "scene/loaders.h"
+#include "scene/scene_camera.h"
 
 namespace tandem {
 namespace fs = std::filesystem;

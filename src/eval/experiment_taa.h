@@ -20,10 +20,10 @@ struct TaaExperimentOptions {
   std::vector<std::string> scenes{"atrium"};
   std::vector<std::pair<std::string, std::string>> pairs{{"deferred", "deferred-taa"}};
   int width = 1280, height = 720;
-  int staticFrames = 32;  // frames of the static shot (the last half measured)
-  int supersample = 8;    // n: n x n offsets per supersampled frame
-  int pathFrames = 48;    // frames along the camera path
-  int pathEvery = 12;     // every k-th path frame is compared with its supersampled image
+  int staticFrames = 32;       // frames of the static shot (the last half measured)
+  int supersample = 8;         // n: n x n offsets per supersampled frame
+  int pathFrames = 0;          // frames along the camera path (0: real time at 30 fps)
+  int pathEvery = 12;          // every k-th path frame is compared with its supersampled image
   int crop[4] = {0, 0, 0, 0};  // x, y, w, h of the crop images (w = 0: the centre third)
 };
 

@@ -14,8 +14,8 @@ struct ReferenceJob {
   const Scene* scene = nullptr;
   CameraDesc camera, shutterCamera;  // at shutter open and close (the same: a still camera)
   float time = 0, shutter = 0;       // scene time and shutter length, seconds
-  int width = 640, height = 360;  // one eye in stereo
-  StereoDesc stereo;              // enabled: both eyes side by side
+  int width = 640, height = 360;     // one eye in stereo
+  StereoDesc stereo;                 // enabled: both eyes side by side
   ReferenceSettings settings;
 };
 

@@ -4,8 +4,8 @@
 #include <numeric>
 #include <random>
 
-#include "core/parallel.h"
 #include "core/low_discrepancy.h"
+#include "core/parallel.h"
 #include "pipeline/frame_context.h"
 #include "rt/reference_render.h"
 #include "shading/blinn_phong.h"

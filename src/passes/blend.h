@@ -14,9 +14,12 @@ class BlendPass : public Pass {
     return "Combine lighting with ray-traced effects (eq. 4-6)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"hdr", 3},        {"shadow", 3},
-            {"reflection", 3}, {"refraction", 3},
-            {"optical", 3, BufferKind::Material}, {"heuristic_mask", 3, BufferKind::Mask}};
+    return {{"hdr", 3},
+            {"shadow", 3},
+            {"reflection", 3},
+            {"refraction", 3},
+            {"optical", 3, BufferKind::Material},
+            {"heuristic_mask", 3, BufferKind::Mask}};
   }
   std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
   void execute(FrameContext& ctx) override;

@@ -12,7 +12,9 @@ class RTWhittedPass : public Pass {
   std::string description() const override {
     return "Whitted ray tracing of the whole frame (RAYT ONLY)";
   }
-  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}, {"object_id", 1, BufferKind::Id}}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"hdr", 3}, {"object_id", 1, BufferKind::Id}};
+  }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
 };

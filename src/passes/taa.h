@@ -2,8 +2,9 @@
 // the projection is jittered by the next point of the Halton (2, 3) sequence; the pass
 // reprojects last frame's result through the motion vectors (Catmull-Rom), clamps it to the
 // current 3x3 neighbourhood's box in YCoCg (so disoccluded or changed pixels do not ghost), and
-// blends with the current frame (weight `alpha`; weights divided by 1 + luma so a bright sample
-// does not flicker). After a history reset, or where the reprojected point leaves the view, the
+// blends with the current frame (weight `alpha`, rising to `motion_alpha` for pixels moving
+// `motion_pixels` per frame, since resampled history blurs; weights divided by 1 + luma so a
+// bright sample does not flicker). After a history reset, or where the reprojected point leaves the view, the
 // current frame is taken as is.
 // Inputs: hdr (jittered colour), motion; history input: taa (last frame's result). Output: taa.
 #pragma once

@@ -13,9 +13,7 @@ class TonemapPass : public Pass {
   std::string type() const override { return "tonemap"; }
   std::string description() const override { return "Exposure, tone curve and sRGB encoding"; }
   std::vector<BufferSlot> inputs() const override { return {{"hdr", 3}}; }
-  std::vector<BufferSlot> outputs() const override {
-    return {{"output", 3, BufferKind::Display}};
-  }
+  std::vector<BufferSlot> outputs() const override { return {{"output", 3, BufferKind::Display}}; }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
 };

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/image_io.h"
 #include "core/color.h"
+#include "core/image_io.h"
 
 namespace tandem {
 

@@ -22,13 +22,13 @@ class SampleCluster;
 struct FrameContext {
   const Scene* scene = nullptr;
   FrameScene frame;
-  std::vector<View> views;  // at least one; views[0] is the (left-eye) main camera
+  std::vector<View> views;    // at least one; views[0] is the (left-eye) main camera
   int width = 0, height = 0;  // the frame: every view's viewport fits in it
   int frameIndex = 0;
   int64_t serial = -1;  // counts executed frames (frameIndex may repeat, e.g. a static shot)
   uint64_t seed = 0;
-  Vec2 jitter{0, 0};          // this frame's projection jitter in pixels (every view's camera)
-  bool historyReset = true;   // history inputs are empty this frame (first frame or a reset)
+  Vec2 jitter{0, 0};         // this frame's projection jitter in pixels (every view's camera)
+  bool historyReset = true;  // history inputs are empty this frame (first frame or a reset)
   std::map<std::string, Buffer> buffers;
   std::map<std::string, Buffer> history;  // last frame's values of declared history inputs
   double passRays = 0;                    // a pass adds the rays it traced; the pipeline records it

@@ -9,7 +9,8 @@
 namespace tandem {
 
 inline GBufferView gbufferTargets(FrameContext& ctx, const Pass& pass) {
-  return GBufferView::create([&](const BufferSlot& s) -> Buffer& { return ctx.output(pass, s.slot); });
+  return GBufferView::create(
+      [&](const BufferSlot& s) -> Buffer& { return ctx.output(pass, s.slot); });
 }
 
 inline GBufferReader gbufferSource(const FrameContext& ctx, const Pass& pass) {

@@ -169,9 +169,9 @@ void Pipeline::validate(const std::string& source) const {
                          "input '" + buf + "' has " + std::to_string(out.channels) +
                              " channels, expected " + std::to_string(in.channels));
       if (out.kind != in.kind)
-        throw InputError(source, where,
-                         "input '" + buf + "' is " + kindName(out.kind) + ", expected " +
-                             kindName(in.kind));
+        throw InputError(
+            source, where,
+            "input '" + buf + "' is " + kindName(out.kind) + ", expected " + kindName(in.kind));
       if (in.extent.scale != Extent::Scale::Any && !(out.extent == in.extent))
         throw InputError(source, where,
                          "input '" + buf + "' has extent " + out.extent.name() + ", expected " +
@@ -187,7 +187,8 @@ std::vector<std::string> Pipeline::historyBuffers() const {
   std::vector<std::string> names;
   for (const auto& p : passes)
     for (const BufferSlot& in : p->inputs())
-      if (in.history && std::find(names.begin(), names.end(), p->bufferName(in.slot)) == names.end())
+      if (in.history &&
+          std::find(names.begin(), names.end(), p->bufferName(in.slot)) == names.end())
         names.push_back(p->bufferName(in.slot));
   return names;
 }
@@ -230,8 +231,7 @@ void bypass(const Pass& p, FrameContext& ctx) {
       return !i.history && i.channels == o.channels && ctx.has(p.bufferName(i.slot));
     });
     const Buffer* src = same != ins.end() ? &ctx.input(p.bufferName(same->slot)) : nullptr;
-    const bool fits = src && (o.extent.scale == Extent::Scale::Any ||
-                              (o.extent == same->extent));
+    const bool fits = src && (o.extent.scale == Extent::Scale::Any || (o.extent == same->extent));
     Buffer& out = ctx.output(p, o.slot, src ? src->width : 0, src ? src->height : 0);
     if (fits && src->sameShape(out))
       out.data = src->data;

@@ -72,11 +72,11 @@ FrameTimings Renderer::renderFrameAt(int index, float t, const CameraDesc& camer
   // objects moved during the frame interval, which we take from t - 1/frameRate).
   float tPrev = first_ ? t - 1.0f / settings_.frameRate : lastTime_;
   // A change of lens or field of view is a new picture for every temporal pass.
-  if (!first_ && (camera.vfovDeg != lastCamera_.vfovDeg ||
-                  camera.projection != lastCamera_.projection ||
-                  camera.apertureDiameter != lastCamera_.apertureDiameter ||
-                  camera.focusDistance != lastCamera_.focusDistance ||
-                  camera.apertureBlades != lastCamera_.apertureBlades))
+  if (!first_ &&
+      (camera.vfovDeg != lastCamera_.vfovDeg || camera.projection != lastCamera_.projection ||
+       camera.apertureDiameter != lastCamera_.apertureDiameter ||
+       camera.focusDistance != lastCamera_.focusDistance ||
+       camera.apertureBlades != lastCamera_.apertureBlades))
     resetHistory("lens change");
   auto t0 = Clock::now();
   ctx_.frame.update(*scene_, t, tPrev, settings_.shutter);

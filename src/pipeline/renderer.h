@@ -19,7 +19,6 @@ struct RenderSettings {
   StereoDesc stereo{};      // enabled: two eyes side by side, the frame 2 x width wide
 };
 
-
 class Renderer {
  public:
   Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings);
@@ -39,10 +38,10 @@ class Renderer {
   const RenderSettings& settings() const { return settings_; }
 
   // History resets: each starts every temporal pass over on the next frame.
-  void cut() { resetHistory("camera cut"); }                // the next camera is unrelated
-  void resize(int width, int height);                       // a new frame size
-  void setScene(const Scene& scene);                        // a (re)loaded scene
-  void setPipeline(Pipeline pipeline);                      // a pipeline switch
+  void cut() { resetHistory("camera cut"); }  // the next camera is unrelated
+  void resize(int width, int height);         // a new frame size
+  void setScene(const Scene& scene);          // a (re)loaded scene
+  void setPipeline(Pipeline pipeline);        // a pipeline switch
   void resetHistory(const std::string& reason);
   const std::string& lastResetReason() const { return resetReason_; }
   int resets() const { return resets_; }  // how many resets fired (tests)

@@ -18,8 +18,9 @@ namespace tandem {
 
 const std::vector<std::string>& passTypes() {
   static const std::vector<std::string> types = {
-      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic", "rt_secondary", "blend",
-      "rt_whitted",     "pt_reference", "taa",            "accumulation", "downsample", "tonemap"};
+      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic", "rt_secondary",
+      "blend",          "rt_whitted", "pt_reference",     "taa",       "accumulation",
+      "downsample",     "tonemap"};
   return types;
 }
 

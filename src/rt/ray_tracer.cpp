@@ -25,7 +25,7 @@ namespace {
 struct QueryContext {
   RTCIntersectContext ctx;
   const FrameScene* frame;
-  Vec3* transmittance;  // non-null: a shadow ray accumulating Listing 8b's attenuation
+  Vec3* transmittance;          // non-null: a shadow ray accumulating Listing 8b's attenuation
   bool texturedShadows = true;  // the occluder's textured diffuse colour (else the base colour)
   // Surfaces already counted by this shadow ray: a ray through a shared edge reports both
   // triangles at the same distance, which must attenuate once.
@@ -107,9 +107,9 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
                      RTCRayN_org_z(ray, args->N, i)};
         const Vec3 d{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
                      RTCRayN_dir_z(ray, args->N, i)};
-        const SurfaceSample sh = resolveSurface(*info->frame, int(info->object),
-                                                int(RTCHitN_primID(hit, args->N, i)), o, d,
-                                                RTCRayN_time(ray, args->N, i), tuv);
+        const SurfaceSample sh =
+            resolveSurface(*info->frame, int(info->object), int(RTCHitN_primID(hit, args->N, i)), o,
+                           d, RTCRayN_time(ray, args->N, i), tuv);
         diffuse = sh.diffuse;
         opacity = sh.opacity;
       }

@@ -13,8 +13,8 @@ CameraDesc eyeCamera(const CameraDesc& centre, const StereoDesc& stereo, int eye
   CameraDesc d = centre;
   d.position = centre.position + offset;
   // Parallel: the target moves with the eye. Converged: both eyes aim at the same point.
-  d.lookAt = stereo.converged ? centre.position + forward * stereo.convergence
-                              : centre.lookAt + offset;
+  d.lookAt =
+      stereo.converged ? centre.position + forward * stereo.convergence : centre.lookAt + offset;
   return d;
 }
 

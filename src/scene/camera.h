@@ -29,9 +29,9 @@ struct CameraDesc {
 // along parallel axes, or converged (toed in) on the point `convergence` metres ahead.
 struct StereoDesc {
   bool enabled = false;
-  float ipd = 0.064f;         // interpupillary distance, metres (> 0)
-  bool converged = false;     // false: parallel axes
-  float convergence = 2.0f;   // metres along the view axis where converged axes meet
+  float ipd = 0.064f;        // interpupillary distance, metres (> 0)
+  bool converged = false;    // false: parallel axes
+  float convergence = 2.0f;  // metres along the view axis where converged axes meet
 };
 
 // The camera of one eye: eye 0 is the left, 1 the right.
@@ -51,7 +51,7 @@ struct Camera {
   Mat4 viewProjUnjittered;  // for motion vectors, which must not contain the jitter
   Vec3 forward, right, upVec;
   float tanHalfFov = 1, aspect = 1;  // cached for generateRay
-  Vec2 lensSlope{0, 0};               // lens / focusDistance, cached for generateRay
+  Vec2 lensSlope{0, 0};              // lens / focusDistance, cached for generateRay
 
   static Camera make(const CameraDesc& d, int width, int height, Vec2 jitter = {0, 0},
                      Vec2 lens = {0, 0});

@@ -1,12 +1,11 @@
 #include "shading/gbuffer_sample.h"
 
-
 namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSampleSlots() {
   using K = BufferKind;
   static const std::vector<BufferSlot> slots = {
-      {"position", 3, K::Position}, {"normal", 3, K::Normal},   {"geo_normal", 3, K::Normal},
+      {"position", 3, K::Position}, {"normal", 3, K::Normal},     {"geo_normal", 3, K::Normal},
       {"diffuse", 4, K::Material},  {"specular", 4, K::Material}, {"emission", 3, K::Color},
       {"ambient", 3, K::Material},  {"optical", 3, K::Material},  {"object_id", 1, K::Id},
       {"material_id", 1, K::Id}};

@@ -48,8 +48,9 @@ RenderWorker::~RenderWorker() {
 
 void RenderWorker::setView(const ViewState& v) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (v.width != view_.width || v.height != view_.height || v.stereo.enabled != view_.stereo.enabled ||
-      v.stereo.ipd != view_.stereo.ipd || v.stereo.converged != view_.stereo.converged ||
+  if (v.width != view_.width || v.height != view_.height ||
+      v.stereo.enabled != view_.stereo.enabled || v.stereo.ipd != view_.stereo.ipd ||
+      v.stereo.converged != view_.stereo.converged ||
       v.stereo.convergence != view_.stereo.convergence)
     rebuild_ = true;
   view_ = v;

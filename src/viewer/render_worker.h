@@ -36,9 +36,9 @@ struct ViewState {
   CameraDesc camera;
   int width = 640, height = 360;  // one eye in stereo
   StereoDesc stereo;              // both eyes side by side (the frame is 2 x width wide)
-  float time = 0;            // scene time (seconds)
-  std::string shownBuffer;   // empty: the pipeline's output
-  float varianceScale = 10;  // for the variance view
+  float time = 0;                 // scene time (seconds)
+  std::string shownBuffer;        // empty: the pipeline's output
+  float varianceScale = 10;       // for the variance view
 };
 
 struct FinishedFrame {

@@ -58,9 +58,10 @@ TEST(ImageFilters, Sobel5x5OfARampAndAStep) {
 }
 
 TEST(ImageFilters, Median3x3RemovesAnOutlierAndKeepsAnEdge) {
-  Buffer b = gray(4, 3, {1, 1, 5, 5,  //
-                         1, 99, 5, 5,  //
-                         1, 1, 5, 5});
+  Buffer b = gray(4, 3,
+                  {1, 1, 5, 5,   //
+                   1, 99, 5, 5,  //
+                   1, 1, 5, 5});
   const Buffer m = median3x3(b);
   EXPECT_EQ(m.at(1, 1)[0], 1.0f);  // {1,1,5,1,99,5,1,1,5}: median 1
   EXPECT_EQ(m.at(2, 1)[0], 5.0f);  // {1,5,5,99,5,5,1,5,5}: median 5
@@ -68,8 +69,9 @@ TEST(ImageFilters, Median3x3RemovesAnOutlierAndKeepsAnEdge) {
 }
 
 TEST(ImageFilters, DownAndUpsampling) {
-  Buffer b = gray(3, 2, {1, 2, 3,  //
-                         5, 6, 7});
+  Buffer b = gray(3, 2,
+                  {1, 2, 3,  //
+                   5, 6, 7});
   const Buffer d = downsampleBox(b);
   ASSERT_EQ(d.width, 2);
   ASSERT_EQ(d.height, 1);

@@ -155,8 +155,8 @@ TEST(BufferContract, ValidateChecksKindExtentAndHistory) {
 // Every built-in pipeline is one of pipelines/*.json, byte for byte (one source).
 TEST(BufferContract, BuiltinPipelinesAreTheJsonFiles) {
   std::vector<std::string> files;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(TANDEM_SOURCE_DIR) +
-                                                           "/pipelines")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(TANDEM_SOURCE_DIR) + "/pipelines")) {
     files.push_back(e.path().stem().string());
     std::ifstream in(e.path());
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -183,10 +183,10 @@ TEST(BufferContract, ReducedExtentRoundTripsThroughAovAndViewer) {
   // The half image is the box-filtered frame.
   const Buffer& hdr = r.context().input("hdr");
   for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(half.at(10, 8)[c],
-                0.25f * (hdr.at(20, 16)[c] + hdr.at(21, 16)[c] + hdr.at(20, 17)[c] +
-                         hdr.at(21, 17)[c]),
-                1e-6f);
+    EXPECT_NEAR(
+        half.at(10, 8)[c],
+        0.25f * (hdr.at(20, 16)[c] + hdr.at(21, 16)[c] + hdr.at(20, 17)[c] + hdr.at(21, 17)[c]),
+        1e-6f);
   writeBuffer((dir / "half.png").string(), half);
   writeBuffer((dir / "half.exr").string(), half);
   const Buffer png = loadImage((dir / "half.png").string());
@@ -304,7 +304,7 @@ TEST(TemporalHooks, JitterIsHaltonAndIdenticalInRasterAndRtGBuffers) {
     differ += ia.data[i] != ib.data[i];
     differFromPlain += ia.data[i] != rasterPlain->context().input("object_id").data[i];
   }
-  EXPECT_LE(differ, 3);           // edge pixels at most
+  EXPECT_LE(differ, 3);            // edge pixels at most
   EXPECT_GT(differFromPlain, 10);  // the jitter did move the image
   const Buffer &da = raster->context().input("depth"), &db = rt->context().input("depth");
   for (size_t i = 0; i < da.data.size(); ++i) {

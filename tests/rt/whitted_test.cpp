@@ -3,10 +3,10 @@
 
 #include "eval/metrics.h"
 #include "rt/whitted.h"
-#include "shading/surface_resolve.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loaders.h"
 #include "scene/primitives.h"
+#include "shading/surface_resolve.h"
 #include "test_util.h"
 
 using namespace tandem;
@@ -297,7 +297,8 @@ TEST(Whitted, PaperRulesAtMaxDepthAndOutsideTheMask) {
     return r.context().input("reflection");
   };
   const Buffer paper = render({"rt_secondary.max_depth=1"});
-  const Buffer shaded = render({"rt_secondary.max_depth=1", "rt_secondary.shade_at_max_depth=true"});
+  const Buffer shaded =
+      render({"rt_secondary.max_depth=1", "rt_secondary.shade_at_max_depth=true"});
   // Depth 1 hits mirror b: in the paper's rule its colour is 0 (no bounce left, no lighting).
   EXPECT_EQ(paper.rgb(8, 8).x, 0.0f);
   EXPECT_GT(shaded.rgb(8, 8).x, 0.01f);
