@@ -237,10 +237,11 @@ int runTaaExperiment(const TaaExperimentOptions& o) {
                 "flicker: mean change after motion compensation"},
                pathRows);
   char settings[256];
-  std::snprintf(
-      settings, sizeof settings,
-      "%dx%d, %d static frames, %d x %d supersampling, %d path frames (every %d compared)", o.width,
-      o.height, o.staticFrames, n, n, o.pathFrames, o.pathEvery);
+  const std::string path =
+      o.pathFrames > 0 ? std::to_string(o.pathFrames) + " path frames" : "the path in real time";
+  std::snprintf(settings, sizeof settings,
+                "%dx%d, %d static frames, %d x %d supersampling, %s (every %d-th frame compared)",
+                o.width, o.height, o.staticFrames, n, n, path.c_str(), o.pathEvery);
   report.write(settings);
   return 0;
 }

@@ -104,9 +104,28 @@ if command -v xvfb-run >/dev/null && "$T" view --help >/dev/null 2>&1; then
     check "view $f matches render (SSIM >= 0.99, got $s)" "awk -v s=${s:-0} 'BEGIN{exit !(s >= 0.99)}'"
   done
   check "view reports fps and its own cost" "grep -q 'viewer cost (upload + UI)' $D/view.log"
+  # Stereo in the viewer: both eyes side by side, the same picture as `render --stereo`.
+  xvfb-run -a -s "-screen 0 1024x768x24" "$T" view --scene cornell --width 320 --height 90 \
+    --stereo --frames 3 --screenshot "$D/view/stereo.png" --hide-ui --exit >"$D/view_stereo.log" 2>&1
+  check "view --stereo writes a screenshot" "[ \$? -eq 0 ] && [ -s $D/view/stereo.png ]"
 else
   echo "skip: xvfb-run not installed (scripts/install-deps.sh installs it)"
 fi
+
+# Stereo: --width and --height give one eye; the image holds both side by side.
+"$T" render cornell --stereo --width 96 --height 64 --out "$D/stereo.png" >"$D/stereo.log"
+check "render --stereo writes the dual image" "grep -q '192x64 (stereo)' $D/stereo.log && [ -s $D/stereo.png ]"
+"$T" render cornell --pipeline deferred-taa --frames 4 --width 96 --height 64 --out "$D/taa.png" >/dev/null
+check "deferred-taa renders" "[ -s $D/taa.png ]"
+"$T" render cornell --pipeline accumulation-dof --aperture 0.3 --focus 3.9 --set accumulation.samples=4 --width 96 --height 64 --out "$D/accdof.png" >/dev/null
+check "accumulation-dof renders" "[ -s $D/accdof.png ]"
+"$T" experiment taa --width 64 --height 36 --frames 4 --path-frames 3 --out "$D/taa-exp" >/dev/null
+check "taa experiment writes static and path tables" "[ -s $D/taa-exp/static.csv ] && [ -s $D/taa-exp/path.csv ] && grep -q deferred-taa $D/taa-exp/static.csv"
+expect_error "negative ipd" "--ipd" "$T" render --ipd -1 --out "$D/err/x.png"
+expect_error "bad blades on render" "--blades" "$T" render --blades 2 --out "$D/err/x.png"
+expect_error "negative shutter on render" "--shutter" "$T" render --shutter -1 --out "$D/err/x.png"
+echo '{"runner": "taa", "pairs": [["deferred"]]}' > "$D/badtaa.json"
+expect_error "taa experiment bad pair" "pairs" "$T" experiment "$D/badtaa.json" --out "$D/err/exp"
 
 mkdir -p "$D/err"
 out=$(env -u DISPLAY -u WAYLAND_DISPLAY "$T" view --scene cornell 2>&1); rc=$?
