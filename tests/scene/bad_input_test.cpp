@@ -52,6 +52,25 @@ TEST(BadInput, UnknownJsonField) {
                   {"objects[0].positon", "unknown field"});
 }
 
+TEST(BadInput, StereoFields) {
+  expectLoadError("st1.json", R"({"objects": [{"shape": "cube"}], "stereo": {"ipd": -0.1}})",
+                  {"stereo.ipd"});
+  expectLoadError("st2.json", R"({"objects": [{"shape": "cube"}], "stereo": {"ipb": 0.1}})",
+                  {"stereo.ipb", "unknown field"});
+  expectLoadError("st3.json", R"({"objects": [{"shape": "cube"}], "stereo": {"converged": 1}})",
+                  {"stereo.converged"});
+  // A good one loads with its values.
+  auto dir = scratchDir("good_stereo");
+  writeText(
+      dir / "s.json",
+      R"({"objects": [{"shape": "cube"}], "stereo": {"ipd": 0.07, "converged": true, "convergence": 3}})");
+  const Scene s = loadSceneByExtension((dir / "s.json").string());
+  EXPECT_TRUE(s.stereo.enabled);
+  EXPECT_FLOAT_EQ(s.stereo.ipd, 0.07f);
+  EXPECT_TRUE(s.stereo.converged);
+  EXPECT_FLOAT_EQ(s.stereo.convergence, 3.0f);
+}
+
 TEST(BadInput, WrongJsonType) {
   expectLoadError("c.json", R"({"objects": [{"shape": "cube", "position": "up"}]})",
                   {"objects[0].position", "array of 3"});
