@@ -139,15 +139,9 @@ void sampleBilinear(const Buffer& b, float x, float y, float* out) {
 void sampleCatmullRom(const Buffer& b, float x, float y, float* out) {
   const float fx = x - 0.5f, fy = y - 0.5f;
   const int x1 = int(std::floor(fx)), y1 = int(std::floor(fy));
-  auto weights = [](float t, float w[4]) {
-    w[0] = t * (-0.5f + t * (1.0f - 0.5f * t));
-    w[1] = 1.0f + t * t * (-2.5f + 1.5f * t);
-    w[2] = t * (0.5f + t * (2.0f - 1.5f * t));
-    w[3] = t * t * (-0.5f + 0.5f * t);
-  };
   float wx[4], wy[4];
-  weights(fx - float(x1), wx);
-  weights(fy - float(y1), wy);
+  catmullRomWeights(fx - float(x1), wx);
+  catmullRomWeights(fy - float(y1), wy);
   for (int c = 0; c < b.channels; ++c) out[c] = 0.0f;
   if (x1 >= 1 && y1 >= 1 && x1 + 2 < b.width && y1 + 2 < b.height) {
     // Inside: four rows of four contiguous texels, no clamping.

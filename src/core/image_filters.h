@@ -4,6 +4,7 @@
 // borders; separable filters run row by row over the flat float array (one contiguous inner
 // loop the compiler vectorises), and rows are spread over threads.
 #pragma once
+#include <cmath>
 #include <vector>
 
 #include "core/buffer.h"
@@ -41,5 +42,38 @@ std::vector<Buffer> mipChain(const Buffer& in);
 void sampleBilinear(const Buffer& b, float x, float y, float* out);
 // Catmull-Rom (bicubic, 4x4 taps) sample; sharper than bilinear for reprojection (TAA).
 void sampleCatmullRom(const Buffer& b, float x, float y, float* out);
+
+// The 1-D Catmull-Rom weights of the four taps around a fractional position t in [0, 1).
+inline void catmullRomWeights(float t, float w[4]) {
+  w[0] = t * (-0.5f + t * (1.0f - 0.5f * t));
+  w[1] = 1.0f + t * t * (-2.5f + 1.5f * t);
+  w[2] = t * (0.5f + t * (2.0f - 1.5f * t));
+  w[3] = t * t * (-0.5f + 0.5f * t);
+}
+
+// sampleCatmullRom of a 3-channel buffer where all 16 taps lie inside (the common case, inlined
+// for per-pixel use); returns false near the border, where the caller uses sampleCatmullRom.
+inline bool sampleCatmullRomRgbInside(const Buffer& b, float x, float y, float out[3]) {
+  const float fx = x - 0.5f, fy = y - 0.5f;
+  const int x1 = int(std::floor(fx)), y1 = int(std::floor(fy));
+  if (x1 < 1 || y1 < 1 || x1 + 2 >= b.width || y1 + 2 >= b.height) return false;
+  float wx[4], wy[4];
+  catmullRomWeights(fx - float(x1), wx);
+  catmullRomWeights(fy - float(y1), wy);
+  float r = 0, g = 0, bl = 0;
+  for (int j = 0; j < 4; ++j) {
+    const float* row = &b.data[(size_t(y1 - 1 + j) * size_t(b.width) + size_t(x1 - 1)) * 3];
+    const float rr = wx[0] * row[0] + wx[1] * row[3] + wx[2] * row[6] + wx[3] * row[9];
+    const float gg = wx[0] * row[1] + wx[1] * row[4] + wx[2] * row[7] + wx[3] * row[10];
+    const float bb = wx[0] * row[2] + wx[1] * row[5] + wx[2] * row[8] + wx[3] * row[11];
+    r += wy[j] * rr;
+    g += wy[j] * gg;
+    bl += wy[j] * bb;
+  }
+  out[0] = r;
+  out[1] = g;
+  out[2] = bl;
+  return true;
+}
 
 }  // namespace tandem

@@ -99,10 +99,11 @@ void TAAPass::execute(FrameContext& ctx) {
           continue;
         }
         float hs[3];
-        if (catmullRom)
-          sampleCatmullRom(*prev, px, py, hs);
-        else
+        if (catmullRom) {
+          if (!sampleCatmullRomRgbInside(*prev, px, py, hs)) sampleCatmullRom(*prev, px, py, hs);
+        } else {
           sampleBilinear(*prev, px, py, hs);
+        }
         Vec3 hist(std::max(hs[0], 0.0f), std::max(hs[1], 0.0f), std::max(hs[2], 0.0f));
         if (clampHistory) {
           const int i = x - x0, j = y - y0;  // rows j .. j + 2 of the padded tile
