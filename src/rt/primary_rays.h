@@ -11,8 +11,10 @@
 namespace tandem {
 
 // body(x, y, ray, hit) is called once per pixel from worker threads. Returns the rays traced.
+// `tau`: the shutter fraction the rays see moving objects at (the camera may also look through a
+// lens point: Camera::make's `lens`).
 template <class Body>
-uint64_t tracePrimaryRays(const Camera& cam, const RayTracer& rt, Body&& body) {
+uint64_t tracePrimaryRays(const Camera& cam, const RayTracer& rt, Body&& body, float tau = 0.0f) {
   std::atomic<uint64_t> rays{0};
   parallelTiles(cam.width, cam.height, [&](int x0, int y0, int x1, int y1) {
     uint64_t local = 0;
@@ -29,6 +31,7 @@ uint64_t tracePrimaryRays(const Camera& cam, const RayTracer& rt, Body&& body) {
             rs[n].tnear = cam.desc.projection == Projection::Perspective
                               ? cam.desc.nearPlane / std::max(cosAxis, 1e-6f)
                               : cam.desc.nearPlane;
+            rs[n].time = tau;
             px[n] = x;
             py[n] = y;
             ++n;

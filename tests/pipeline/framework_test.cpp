@@ -3,6 +3,7 @@
 // (stereo), cameras through lens points and the rasterizer at shutter times.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "pipeline/aov.h"
 #include "pipeline/renderer.h"
 #include "raster/rasterizer.h"
+#include "rt/primary_rays.h"
 #include "scene/builtin_scenes.h"
 #include "scene/primitives.h"
 #include "test_util.h"
@@ -456,6 +458,19 @@ TEST(TimeAndLens, RasterizerAtShutterTimeAndLensPoint) {
       }
     EXPECT_GT(inside, 50) << tau;
     EXPECT_EQ(wrong, 0) << tau;
+    // Primary rays at the same tau see the same square (Embree's motion blur at the ray time).
+    RayTracer rt;
+    rt.update(fs);
+    std::atomic<int> disagree{0};  // the body runs on worker threads
+    tracePrimaryRays(
+        cam, rt,
+        [&](int x, int y, const Ray&, const Hit& h) {
+          const bool rayHit = h.object == 0,
+                     rasterHit = vis.object[size_t(y) * 160 + size_t(x)] == 0;
+          if (rayHit != rasterHit) ++disagree;  // edge pixels only
+        },
+        tau);
+    EXPECT_LE(disagree.load(), 8) << tau;
   }
   // Lens point 40 cm to the right, focus at 4 m: the square at 4 m (object 0) stays, the one at
   // 8 m (object 2) moves by l f_px (1/focus - 1/z) pixels (the sheared projection).
