@@ -4,6 +4,7 @@
 #include <string>
 
 #include "pipeline/renderer.h"
+#include "scene/primitives.h"
 
 namespace tandem::test {
 
@@ -32,6 +33,28 @@ inline std::unique_ptr<Renderer> renderOnce(const Scene& scene, const std::strin
                                       RenderSettings{.width = w, .height = h});
   r->renderFrame(0, cam, jitter);
   return r;
+}
+
+// Unlit emissive squares (radiance (1, 0.8, 0.6), 1 x 1 m) at 4, 6 and 8 m in front of a camera at
+// z = 2 looking down -z, over a black sky: rasterized emission and path-traced emission are the
+// same light transport whatever the shading model, so images differ only by how visibility,
+// depth of field and motion blur are sampled. Object i is at x = i - 1, y = 0.3 (i - 1).
+inline Scene emissiveSquares() {
+  Scene s;
+  Material m;
+  m.diffuse = m.specular = {0, 0, 0};
+  m.emission = {1, 0.8f, 0.6f};
+  m.doubleSided = true;
+  const int mat = s.addMaterial(m), mesh = s.addMesh(makePlane());
+  for (int i = 0; i < 3; ++i) {
+    Transform xf;
+    xf.position = {-1.0f + 1.0f * float(i), 0.3f * float(i - 1), -2.0f - 2.0f * float(i)};
+    xf.rotationDeg = {90, 0, 0};  // facing the camera (+z)
+    xf.scale = {0.5f, 1, 0.5f};
+    s.addObject("square" + std::to_string(i), mesh, mat, xf);
+  }
+  s.skybox.color = {0, 0, 0};
+  return s;
 }
 
 }  // namespace tandem::test

@@ -4,9 +4,9 @@
 // current 3x3 neighbourhood's box in YCoCg (so disoccluded or changed pixels do not ghost), and
 // blends with the current frame (weight `alpha`, rising to `motion_alpha` for pixels moving
 // `motion_pixels` per frame, since resampled history blurs; weights divided by 1 + luma so a
-// bright sample does not flicker). After a history reset, or where the reprojected point leaves the view, the
-// current frame is taken as is.
-// Inputs: hdr (jittered colour), motion; history input: taa (last frame's result). Output: taa.
+// bright sample does not flicker). After a history reset, or where the reprojected point leaves the
+// view, the current frame is taken as is. Inputs: hdr (jittered colour), motion; history input: taa
+// (last frame's result). Output: taa.
 #pragma once
 #include "pipeline/pass.h"
 

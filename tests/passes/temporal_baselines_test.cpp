@@ -21,27 +21,6 @@ double meanAbsDiff(const Buffer& a, const Buffer& b) {
   return s / double(a.data.size());
 }
 
-// Unlit emissive squares at 4, 6 and 8 m over a black sky: rasterized emission and path-traced
-// emission are the same light transport whatever the shading model, so the images differ only
-// by how depth of field and motion blur are sampled.
-Scene emissiveSquares() {
-  Scene s;
-  Material m;
-  m.diffuse = m.specular = {0, 0, 0};
-  m.emission = {1, 0.8f, 0.6f};
-  m.doubleSided = true;
-  const int mat = s.addMaterial(m), mesh = s.addMesh(makePlane());
-  for (int i = 0; i < 3; ++i) {
-    Transform xf;
-    xf.position = {-1.0f + 1.0f * float(i), 0.3f * float(i - 1), -2.0f - 2.0f * float(i)};
-    xf.rotationDeg = {90, 0, 0};
-    xf.scale = {0.5f, 1, 0.5f};
-    s.addObject("square" + std::to_string(i), mesh, mat, xf);
-  }
-  s.skybox.color = {0, 0, 0};
-  return s;
-}
-
 CameraDesc lensCamera() {
   CameraDesc c;
   c.position = {0, 0, 2};
@@ -102,7 +81,7 @@ TEST(TAA, ConvergesToTheSupersampledImageAndStaysStill) {
 // With many samples, accumulated depth of field approaches the reference renderer's thin lens
 // (the same lens: aperture, focus distance), and accumulated motion blur its shutter.
 TEST(Accumulation, ApproachesTheReferenceThinLensAndMotionBlur) {
-  Scene s = emissiveSquares();
+  Scene s = test::emissiveSquares();
   const CameraDesc cam = lensCamera();
   const Buffer acc = render(s, "accumulation-dof", cam, {"accumulation.samples=256"});
   const Buffer ref =
@@ -122,7 +101,7 @@ TEST(Accumulation, ApproachesTheReferenceThinLensAndMotionBlur) {
   EXPECT_NEAR(ma / mr, 1.0, 0.01);
 
   // Motion blur: the near square slides 1 m to the right while the shutter is open.
-  Scene moving = emissiveSquares();
+  Scene moving = test::emissiveSquares();
   Transform a, b;
   b.position.x = 1.0f;
   moving.objects[0].animation = {{0.0f, a}, {1.0f, b}};
