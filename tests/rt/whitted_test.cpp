@@ -21,6 +21,15 @@ CameraDesc frontCamera(Vec3 pos, Vec3 at, float vfov = 40) {
   return c;
 }
 
+// A shadow ray straight up from `origin` to y = 5 (through the test sheets at y = 1).
+Ray upRay(Vec3 origin) {
+  Ray r;
+  r.origin = origin;
+  r.dir = {0, 1, 0};
+  r.tfar = 5;
+  return r;
+}
+
 Material diffuse(Vec3 c) {
   Material m;
   m.diffuse = c;
@@ -149,10 +158,7 @@ TEST(Whitted, PartialTransparencyAttenuatesShadow) {
   fs.update(s, 0, 0);
   RayTracer rt;
   rt.update(fs);
-  Ray r;
-  r.origin = {0, 0, 0};
-  r.dir = {0, 1, 0};
-  r.tfar = 5;
+  const Ray r = upRay({0, 0, 0});
   Vec3 t = rt.transmittance(r);
   EXPECT_NEAR(t.x, 0.6f * 0.8f, 1e-6f);
   EXPECT_NEAR(t.y, 0.6f * 0.5f, 1e-6f);
@@ -253,10 +259,7 @@ TEST(Whitted, ShadowAttenuationUsesTheTexturedDiffuse) {
   fs.update(s, 0, 0);
   RayTracer rt;
   rt.update(fs);
-  Ray r;
-  r.origin = {0.1f, 0, 0.2f};
-  r.dir = {0, 1, 0};
-  r.tfar = 5;
+  const Ray r = upRay({0.1f, 0, 0.2f});
   // Texel values go through the texture's decoding: compare with what resolveSurface gives.
   Vec3 o = r.origin, d = r.dir;
   const SurfaceSample sh = resolveSurface(fs, 0, 0, o, d);
