@@ -1,5 +1,6 @@
 #include "core/image_io.h"
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -93,7 +94,7 @@ void writePng(const std::string& path, const Buffer& img) {
   commit(tmp, path);
 }
 
-void writeExr(const std::string& path, const Buffer& img) {
+void writeExr(const std::string& path, const Buffer& img, bool half) {
   checkWritable(path, img);
   static const char* kRgba[] = {"R", "G", "B", "A"};
   int c = std::min(img.channels, 4);
@@ -101,12 +102,17 @@ void writeExr(const std::string& path, const Buffer& img) {
   try {
     Imf::Header header(img.width, img.height);
     Imf::FrameBuffer fb;
+    // OpenEXR converts on read but not on write: half channels need half pixels.
+    std::vector<Imath::half> halves(half ? img.data.size() : 0);
+    for (size_t i = 0; i < halves.size(); ++i) halves[i] = Imath::half(img.data[i]);
+    const size_t bytes = half ? sizeof(Imath::half) : sizeof(float);
+    const char* base = half ? (const char*)halves.data() : (const char*)img.data.data();
     for (int k = 0; k < c; ++k) {
       const char* name = c == 1 ? "Y" : kRgba[k];
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      fb.insert(name,
-                Imf::Slice(Imf::FLOAT, (char*)(img.data.data() + k), sizeof(float) * img.channels,
-                           sizeof(float) * img.channels * img.width));
+      const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
+      header.channels().insert(name, Imf::Channel(type));
+      fb.insert(name, Imf::Slice(type, (char*)(base + k * bytes), bytes * img.channels,
+                                 bytes * img.channels * img.width));
     }
     Imf::OutputFile file(tmp.c_str(), header);
     file.setFrameBuffer(fb);

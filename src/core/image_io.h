@@ -10,8 +10,9 @@ namespace tandem {
 
 // Writes 1-4 channel values already in [0,1] display space as an 8-bit PNG.
 void writePng(const std::string& path, const Buffer& img);
-// Writes a float EXR with channels R,G,B(,A) or Y for one channel.
-void writeExr(const std::string& path, const Buffer& img);
+// Writes a float EXR with channels R,G,B(,A) or Y for one channel; `half` stores 16-bit floats
+// (relative error < 5e-4: small golden images).
+void writeExr(const std::string& path, const Buffer& img, bool half = false);
 // Loads PNG/JPEG (values in [0,1], display encoded) or EXR (linear float); RGB output.
 Buffer loadImage(const std::string& path);
 // Loads an 8-bit image file for texturing: RGBA in [0,1], not yet linearised.
