@@ -2,7 +2,7 @@
 
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
-#include "shading/blinn_phong.h"
+#include "shading/shade_batch.h"
 
 namespace tandem {
 
@@ -16,14 +16,32 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
-    for (int y = y0; y < y1; ++y)
+    const Camera& cam = v.camera;
+    const bool perspective = cam.desc.projection == Projection::Perspective;
+    ShadeBatch b;
+    int xs[ShadeBatch::kMax];
+    auto flush = [&](int y) {
+      shadeBatch(b, shading);
+      for (int k = 0; k < b.count; ++k) hdr.setRgb(xs[k], y, b.result(k));
+      b.count = 0;
+    };
+    for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
-        Vec3 o, d;
-        v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
         SurfaceSample s;
-        Vec3 c = g.read(x, y, s) ? shadeBlinnPhong(s, -d, shading) : scene.skyRadiance(d);
-        hdr.setRgb(x, y, c);
+        if (!g.read(x, y, s)) {
+          Vec3 o, d;
+          cam.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+          hdr.setRgb(x, y, scene.skyRadiance(d));
+          continue;
+        }
+        // The G-buffer point lies on the pixel's camera ray: the eye direction needs no ray.
+        const Vec3 wo = perspective ? normalize(cam.eye - s.position) : -cam.forward;
+        xs[b.count] = x;
+        b.set(b.count++, s, wo);
+        if (b.count == ShadeBatch::kMax) flush(y);
       }
+      if (b.count) flush(y);
+    }
   });
 }
 

@@ -17,8 +17,10 @@ void TonemapPass::execute(FrameContext& ctx) {
   const float ev = float(param("exposure"));
   const auto op = ToneOperator(int(param("operator")));
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) out.setRgb(x, y, tonemapPixel(hdr.rgb(x, y), ev, op));
+    for (int y = y0; y < y1; ++y) {
+      const size_t i = (size_t(y) * size_t(ctx.width) + size_t(x0)) * 3;
+      tonemapSpan(hdr.data.data() + i, out.data.data() + i, size_t(x1 - x0) * 3, ev, op);
+    }
   });
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "scene/scene.h"
+#include "shading/shade_batch.h"
 
 namespace tandem {
 
@@ -71,26 +72,12 @@ LightSample sampleLight(const PreparedLight& l, Vec3 p) {
 
 Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const ShadingContext& ctx,
                      const Vec3* lightVisibility) {
-  Vec3 color = s.emission + ctx.ambient * s.ambient;
-  const Vec3 n = s.normal;
-  const bool hasSpecular = maxComponent(s.specular) > 0.0f;
-  const float specNorm = (s.specularExponent + 8.0f) / (8.0f * kPi);
-  const Vec3 diffuseBrdf = s.diffuse * kInvPi;
-  for (size_t i = 0; i < ctx.lights.size(); ++i) {
-    Vec3 vis = lightVisibility ? lightVisibility[i] : Vec3(1.0f);
-    if (maxComponent(vis) <= 0.0f) continue;
-    LightSample ls = sampleLight(ctx.lights[i], s.position);
-    float nDotL = dot(n, ls.wi);
-    if (nDotL <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
-    Vec3 f = diffuseBrdf;
-    if (hasSpecular) {
-      Vec3 h = normalize(ls.wi + wo);
-      float nDotH = std::max(dot(n, h), 0.0f);
-      f += s.specular * (specNorm * std::pow(nDotH, s.specularExponent));
-    }
-    color += f * ls.radiance * vis * nDotL;
-  }
-  return color;
+  // A batch of one: the kernel deferred shading runs 8 lanes at a time.
+  ShadeBatch b;
+  b.count = 1;
+  b.set(0, s, wo);
+  shadeBatch(b, ctx, lightVisibility ? &lightVisibility[0].x : nullptr, 1);
+  return b.result(0);
 }
 
 Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const Scene& scene,

@@ -1,0 +1,147 @@
+// Highway kernel of shade_batch.h, compiled for each x86 target and dispatched at run time.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "shading/shade_batch.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+//
+#include <hwy/contrib/math/math-inl.h>
+#include <hwy/highway.h>
+
+#include "shading/shade_batch.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace tandem {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<float>;
+using V = hn::Vec<D>;
+
+// 1/sqrt(x) from the hardware estimate and one Newton step (relative error ~1e-7).
+HWY_INLINE V Rsqrt(D d, V x) {
+  const V r = hn::ApproximateReciprocalSqrt(x);
+  const V half_x_r2 = hn::Mul(hn::Mul(hn::Set(d, 0.5f), x), hn::Mul(r, r));
+  return hn::Mul(r, hn::Sub(hn::Set(d, 1.5f), half_x_r2));
+}
+
+// x^e for x in [0, 1] and e >= 0 (0^e = 0 for e > 0, x^0 = 1), inline and branch-free.
+HWY_INLINE V Pow01(D d, V x, V e) {
+  const V lx = hn::Log(d, hn::Max(x, hn::Set(d, 1e-30f)));
+  return hn::Exp(d, hn::Mul(e, lx));
+}
+
+HWY_INLINE V Dot(V ax, V ay, V az, V bx, V by, V bz) {
+  return hn::MulAdd(ax, bx, hn::MulAdd(ay, by, hn::Mul(az, bz)));
+}
+
+void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride) {
+  using F = ShadeBatch;
+  const D d;
+  const size_t n = hn::Lanes(d);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  for (size_t i = 0; i < size_t(b.count); i += n) {
+    const auto live = hn::FirstN(d, size_t(b.count) - i);
+    auto load = [&](int field) { return hn::MaskedLoad(live, d, b.f[field] + i); };
+    const V px = load(F::PX), py = load(F::PY), pz = load(F::PZ);
+    const V nx = load(F::NX), ny = load(F::NY), nz = load(F::NZ);
+    const V wx = load(F::WX), wy = load(F::WY), wz = load(F::WZ);
+    const V invPi = hn::Set(d, kInvPi);
+    const V dr = hn::Mul(load(F::DR), invPi), dg = hn::Mul(load(F::DG), invPi),
+            db = hn::Mul(load(F::DB), invPi);
+    const V ex = load(F::EXP);
+    // Normalised Blinn-Phong: (n + 8) / (8 pi).
+    const V specNorm = hn::Mul(hn::Add(ex, hn::Set(d, 8.0f)), hn::Set(d, 1.0f / (8.0f * kPi)));
+    const V sr = hn::Mul(load(F::SR), specNorm), sg = hn::Mul(load(F::SG), specNorm),
+            sb = hn::Mul(load(F::SB), specNorm);
+    V cr = hn::MulAdd(hn::Set(d, ctx.ambient.x), load(F::AR), load(F::ER));
+    V cg = hn::MulAdd(hn::Set(d, ctx.ambient.y), load(F::AG), load(F::EG));
+    V cb = hn::MulAdd(hn::Set(d, ctx.ambient.z), load(F::AB), load(F::EB));
+    for (size_t li = 0; li < ctx.lights.size(); ++li) {
+      const PreparedLight& l = ctx.lights[li];
+      V lx, ly, lz, att;  // unit direction towards the light, attenuation
+      if (l.type == LightType::Directional) {
+        lx = hn::Set(d, -l.direction.x), ly = hn::Set(d, -l.direction.y);
+        lz = hn::Set(d, -l.direction.z);
+        att = one;
+      } else {
+        const V dx = hn::Sub(hn::Set(d, l.position.x), px);
+        const V dy = hn::Sub(hn::Set(d, l.position.y), py);
+        const V dz = hn::Sub(hn::Set(d, l.position.z), pz);
+        const V dist2 = hn::Max(Dot(dx, dy, dz, dx, dy, dz), hn::Set(d, 1e-30f));
+        const V inv = Rsqrt(d, dist2);
+        const V dist = hn::Mul(dist2, inv);
+        lx = hn::Mul(dx, inv), ly = hn::Mul(dy, inv), lz = hn::Mul(dz, inv);
+        const V denom =
+            hn::MulAdd(hn::Set(d, l.attQuadratic), dist2,
+                       hn::MulAdd(hn::Set(d, l.attLinear), dist, hn::Set(d, l.attConstant)));
+        att = hn::Div(one, hn::Max(denom, hn::Set(d, 1e-8f)));
+        if (l.range > 0) att = hn::IfThenZeroElse(hn::Gt(dist, hn::Set(d, l.range)), att);
+        if (l.type == LightType::Spot) {
+          const V cosT = hn::Neg(Dot(lx, ly, lz, hn::Set(d, l.direction.x),
+                                     hn::Set(d, l.direction.y), hn::Set(d, l.direction.z)));
+          V cone;
+          if (l.hemisphere) {
+            cone = hn::IfThenElseZero(hn::Gt(cosT, zero), one);
+          } else if (l.cosInner <= l.cosOuter) {
+            cone = hn::IfThenElseZero(hn::Ge(cosT, hn::Set(d, l.cosOuter)), one);
+          } else {  // smoothstep(cosOuter, cosInner, cosT)
+            const V t = hn::Min(hn::Max(hn::Mul(hn::Sub(cosT, hn::Set(d, l.cosOuter)),
+                                                hn::Set(d, 1.0f / (l.cosInner - l.cosOuter))),
+                                        zero),
+                                one);
+            cone = hn::Mul(hn::Mul(t, t), hn::NegMulAdd(hn::Set(d, 2.0f), t, hn::Set(d, 3.0f)));
+          }
+          if (l.cosinePower > 0)
+            cone = hn::Mul(cone, Pow01(d, hn::Max(cosT, zero), hn::Set(d, l.cosinePower)));
+          att = hn::Mul(att, cone);
+        }
+      }
+      const V nDotL = Dot(nx, ny, nz, lx, ly, lz);
+      const V k = hn::IfThenElseZero(hn::Gt(nDotL, zero), hn::Mul(att, nDotL));
+      // Half vector (a zero sum stays zero, as normalize() leaves it).
+      const V hx = hn::Add(lx, wx), hy = hn::Add(ly, wy), hz = hn::Add(lz, wz);
+      const V hInv = Rsqrt(d, hn::Max(Dot(hx, hy, hz, hx, hy, hz), hn::Set(d, 1e-30f)));
+      const V nDotH = hn::Max(hn::Mul(Dot(nx, ny, nz, hx, hy, hz), hInv), zero);
+      const V lobe = Pow01(d, nDotH, ex);
+      V kr = hn::Mul(k, hn::Set(d, l.power.x)), kg = hn::Mul(k, hn::Set(d, l.power.y)),
+        kb = hn::Mul(k, hn::Set(d, l.power.z));
+      if (vis) {
+        const float* row = vis + 3 * li * visStride + i;
+        kr = hn::Mul(kr, hn::MaskedLoad(live, d, row));
+        kg = hn::Mul(kg, hn::MaskedLoad(live, d, row + visStride));
+        kb = hn::Mul(kb, hn::MaskedLoad(live, d, row + 2 * visStride));
+      }
+      cr = hn::MulAdd(hn::MulAdd(sr, lobe, dr), kr, cr);
+      cg = hn::MulAdd(hn::MulAdd(sg, lobe, dg), kg, cg);
+      cb = hn::MulAdd(hn::MulAdd(sb, lobe, db), kb, cb);
+    }
+    hn::BlendedStore(cr, live, d, b.f[F::OR] + i);
+    hn::BlendedStore(cg, live, d, b.f[F::OG] + i);
+    hn::BlendedStore(cb, live, d, b.f[F::OB] + i);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace tandem
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace tandem {
+
+HWY_EXPORT(ShadeBatchImpl);
+
+void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisibility,
+                size_t visStride) {
+  HWY_DYNAMIC_DISPATCH(ShadeBatchImpl)(b, ctx, lightVisibility, visStride);
+}
+
+void ShadeBatch::set(int lane, const SurfaceSample& s, Vec3 wo) {
+  const float v[kFields - 3] = {
+      s.position.x, s.position.y, s.position.z, s.normal.x,         s.normal.y,   s.normal.z,
+      wo.x,         wo.y,         wo.z,         s.diffuse.x,        s.diffuse.y,  s.diffuse.z,
+      s.specular.x, s.specular.y, s.specular.z, s.specularExponent, s.emission.x, s.emission.y,
+      s.emission.z, s.ambient.x,  s.ambient.y,  s.ambient.z};
+  for (int k = 0; k < kFields - 3; ++k) f[k][lane] = v[k];
+}
+
+}  // namespace tandem
+#endif

@@ -1,0 +1,54 @@
+// The one shading function in structure-of-arrays form: up to kMax surfaces shaded together by a
+// Highway kernel (8 lanes on AVX2), the lights' loop outside the lanes. Deferred shading fills
+// whole batches from the G-buffer; a single ray hit is a batch of one (shadeBlinnPhong), so
+// raster pixels and ray hits run the same instructions.
+#pragma once
+#include <cstddef>
+
+#include "shading/blinn_phong.h"
+
+namespace tandem {
+
+struct ShadeBatch {
+  static constexpr int kMax = 16;
+  enum Field {
+    PX,
+    PY,
+    PZ,  // world position
+    NX,
+    NY,
+    NZ,  // shading normal (unit)
+    WX,
+    WY,
+    WZ,  // unit direction surface -> viewer
+    DR,
+    DG,
+    DB,  // diffuse albedo
+    SR,
+    SG,
+    SB,   // specular colour
+    EXP,  // specular exponent
+    ER,
+    EG,
+    EB,  // emission
+    AR,
+    AG,
+    AB,  // ambient colour
+    OR,
+    OG,
+    OB,  // output: reflected radiance
+    kFields
+  };
+  int count = 0;  // surfaces in lanes [0, count); later lanes are never read
+  alignas(64) float f[kFields][kMax];
+
+  void set(int lane, const SurfaceSample& s, Vec3 wo);
+  Vec3 result(int lane) const { return {f[OR][lane], f[OG][lane], f[OB][lane]}; }
+};
+
+// Shades lanes [0, b.count). lightVisibility: null (all visible) or an RGB transmittance per
+// light and lane at lightVisibility[(3 * light + channel) * visStride + lane].
+void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisibility = nullptr,
+                size_t visStride = ShadeBatch::kMax);
+
+}  // namespace tandem
