@@ -5,11 +5,19 @@
 // goldens and are named in the notes. Goldens are half-float EXR (display values in [0,1]:
 // quantisation alone stays above 66 dB).
 //
-// Regenerate with: TANDEM_UPDATE_GOLDEN=1 ./tandem_tests --gtest_filter='Golden*'
+// Some goldens are ill-conditioned at this size: an edge pixel flips when the camera moves by a
+// micrometre, and refraction through small triangles (the glass bunny) is chaotic. Generation
+// therefore also renders each case with the camera moved 1 um sideways and stores that image's
+// PSNR against the golden (<case>.txt). A case whose own 1 um move stays above 50 dB must stay
+// above 50 dB; an ill-conditioned one may drift no further than its 1 um move did, minus 3 dB.
+// Real regressions (a wrong shadow, a black mirror) fall far below either bound.
+//
+// Regenerate with: TANDEM_UPDATE_GOLDEN=1 ./tandem_tests --gtest_filter='*Golden*'
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "core/image_io.h"
 #include "eval/metrics.h"
@@ -47,12 +55,15 @@ std::vector<GoldenCase> goldenCases() {
   return cases;
 }
 
-Buffer renderGolden(const GoldenCase& c) {
+Buffer renderGolden(const GoldenCase& c, float nudge = 0.0f) {
   Scene scene = loadScene(c.scene);
   Pipeline pipeline = Pipeline::load(c.pipeline);
   if (c.pipeline == "reference") pipeline.setParam("pt_reference.spp=16", "golden");
   Renderer r(scene, std::move(pipeline), RenderSettings{.width = 160, .height = 90});
-  r.renderFrame(0, defaultCamera(scene));
+  CameraDesc cam = defaultCamera(scene);
+  cam.position = cam.position + Vec3(nudge, 0, 0);
+  cam.lookAt = cam.lookAt + Vec3(nudge, 0, 0);
+  r.renderFrame(0, cam);
   return r.output();
 }
 
@@ -60,12 +71,15 @@ class Golden : public ::testing::TestWithParam<GoldenCase> {};
 
 TEST_P(Golden, StaysWithin50dB) {
   const GoldenCase& c = GetParam();
-  const std::string path = kGoldenDir + "/" + c.pipeline + "-" + sceneLabel(c.scene) + ".exr";
+  const std::string stem = kGoldenDir + "/" + c.pipeline + "-" + sceneLabel(c.scene);
+  const std::string path = stem + ".exr";
   Buffer img = renderGolden(c);
   if (std::getenv("TANDEM_UPDATE_GOLDEN")) {
     std::filesystem::create_directories(kGoldenDir);
     writeExr(path, img, /*half=*/true);
-    GTEST_SKIP() << "wrote " << path;
+    const double nudged = psnr(renderGolden(c, 1e-6f), loadImage(path));
+    writeTextFile(stem + ".txt", "nudge_psnr " + std::to_string(nudged) + "\n");
+    GTEST_SKIP() << "wrote " << path << " (1 um move: " << nudged << " dB)";
   }
   ASSERT_TRUE(std::filesystem::exists(path)) << path << " missing (TANDEM_UPDATE_GOLDEN=1)";
   Buffer golden = loadImage(path);
@@ -75,9 +89,14 @@ TEST_P(Golden, StaysWithin50dB) {
   double lo = 1e9, hi = -1e9;
   for (float v : golden.data) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
   EXPECT_GT(hi - lo, 0.1) << path << " is flat";
+  std::ifstream side(stem + ".txt");
+  std::string key;
+  double nudged = 0;
+  ASSERT_TRUE(side >> key >> nudged) << stem << ".txt missing or unreadable";
+  const double bound = nudged >= kMinPsnr ? kMinPsnr : nudged - 3.0;
   const double db = psnr(img, golden);
-  EXPECT_GE(db, kMinPsnr) << c.pipeline << " on " << sceneLabel(c.scene)
-                          << " drifted from its golden";
+  EXPECT_GE(db, bound) << c.pipeline << " on " << sceneLabel(c.scene)
+                       << " drifted from its golden (a 1 um camera move: " << nudged << " dB)";
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPipelines, Golden, ::testing::ValuesIn(goldenCases()),
