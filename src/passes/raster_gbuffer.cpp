@@ -2,6 +2,7 @@
 
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
+#include "raster/triangle_planes.h"
 #include "shading/surface_resolve.h"
 
 namespace tandem {
@@ -29,23 +30,50 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
   ctx.passParts.push_back({"visibility", msSince(t0), 0});
   auto t1 = Clock::now();
   GBufferView g = gbufferTargets(ctx, *this);
+  const FrameScene& fs = ctx.frame;
+  const Scene& scene = *fs.scene;
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     const VisibilityBuffer& vis = visibility_[size_t(&v - ctx.views.data())];
-    for (int y = y0; y < y1; ++y)
+    const Camera& cam = v.camera;
+    const bool perspective = cam.desc.projection == Projection::Perspective;
+    TrianglePlaneCache cache;
+    for (int y = y0; y < y1; ++y) {
+      const int ly = y - v.y;
+      // The pixel ray (unnormalised): the row's part once, the column's a multiply-add.
+      Vec3 o, dRow;
+      cam.generateRayUnnormalized(-cam.jitter.x, float(ly) + 0.5f, o, dRow);  // NDC x = -1
+      dRow = dRow + cam.right * cam.tanHalfFov * cam.aspect;                  // NDC x = 0
+      const float ndcPerPixel = 2.0f / float(cam.width) * cam.tanHalfFov * cam.aspect;
       for (int x = x0; x < x1; ++x) {
-        const int lx = x - v.x, ly = y - v.y;
+        const int lx = x - v.x;
         size_t i = size_t(ly) * size_t(vis.width) + size_t(lx);
-        // Barycentrics come from the pixel's camera ray against the visible triangle, which is
-        // exact and perspective-correct (and identical to what a primary ray would compute).
-        Vec3 o, d;
-        v.camera.generateRay(float(lx) + 0.5f, float(ly) + 0.5f, o, d);
+        Vec3 d = dRow + cam.right * ((float(lx) + 0.5f + cam.jitter.x) * ndcPerPixel -
+                                     cam.tanHalfFov * cam.aspect);
+        if (!perspective) cam.generateRay(float(lx) + 0.5f, float(ly) + 0.5f, o, d);
         if (vis.object[i] == kNoObject) {
-          g.writeBackground(x, y, backgroundMotion(v, d));
+          g.writeBackground(x, y, backgroundMotion(v, normalize(d)));
           continue;
         }
-        SurfaceSample s = resolveSurface(ctx.frame, int(vis.object[i]), int(vis.prim[i]), o, d);
-        g.write(x, y, s, vis.depth[i], motionVector(ctx.frame, v, s.object, s.position));
+        const uint32_t object = vis.object[i], prim = vis.prim[i];
+        // Barycentrics of the pixel's camera ray against the visible triangle: exact and
+        // perspective-correct, what a primary ray would compute.
+        float tuv[3] = {0, 0, 0};
+        bool planar = perspective && fs.objects[object].stepPositions.empty();
+        if (planar) {
+          if (cache.object != object || cache.prim != prim) {
+            const FrameObject& fo = fs.objects[object];
+            const uint32_t* idx = &scene.meshes[scene.objects[object].mesh].indices[3 * prim];
+            cache = {object, prim,
+                     TrianglePlanes::make(o, fo.positions[idx[0]], fo.positions[idx[1]],
+                                          fo.positions[idx[2]])};
+          }
+          planar = cache.planes.barycentrics(d, tuv[1], tuv[2]);
+        }
+        SurfaceSample s = resolveSurface(fs, int(object), int(prim), o, d, 0.0f,
+                                         planar ? tuv : nullptr);
+        g.write(x, y, s, vis.depth[i], motionVector(fs, v, s.object, s.position));
       }
+    }
   });
   ctx.passParts.push_back({"resolve", msSince(t1), 0});
 }

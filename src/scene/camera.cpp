@@ -70,14 +70,18 @@ Camera Camera::make(const CameraDesc& d, int width, int height, Vec2 jitter, Vec
 }
 
 void Camera::generateRay(float px, float py, Vec3& origin, Vec3& dir) const {
+  generateRayUnnormalized(px, py, origin, dir);
+  if (desc.projection == Projection::Perspective) dir = normalize(dir);
+}
+
+void Camera::generateRayUnnormalized(float px, float py, Vec3& origin, Vec3& dir) const {
   float sx = (px + jitter.x) / width * 2.0f - 1.0f;   // NDC x
   float sy = 1.0f - (py + jitter.y) / height * 2.0f;  // NDC y
   if (desc.projection == Projection::Perspective) {
     float t = tanHalfFov;
     origin = eye;
     // Through the pixel's point of the focus plane (lens 0: the pinhole ray).
-    dir = normalize(forward + right * (sx * t * aspect - lensSlope.x) +
-                    upVec * (sy * t - lensSlope.y));
+    dir = forward + right * (sx * t * aspect - lensSlope.x) + upVec * (sy * t - lensSlope.y);
   } else {
     float hh = desc.orthoHeight * 0.5f;
     origin = desc.position + right * (sx * hh * aspect) + upVec * (sy * hh);

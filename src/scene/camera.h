@@ -59,6 +59,9 @@ struct Camera {
   // Primary ray through pixel coordinate (px, py) (pixel centres at +0.5), jitter applied; from
   // the lens point through the focus-plane point of the pixel when `lens` is set.
   void generateRay(float px, float py, Vec3& origin, Vec3& dir) const;
+  // The same ray with a direction not normalised (perspective: forward + offsets, so affine in
+  // px and py; the raster resolve steps it across a row).
+  void generateRayUnnormalized(float px, float py, Vec3& origin, Vec3& dir) const;
   // Thin-lens ray (seed 000 §3.2.2): from a point of the aperture disk (diameter
   // apertureDiameter, picked by u1, u2 in [0,1)) through the point of the focus plane
   // (focusDistance along the view axis) that the pinhole ray of (px, py) meets. A point on the
