@@ -69,8 +69,8 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
           }
           planar = cache.planes.barycentrics(d, tuv[1], tuv[2]);
         }
-        SurfaceSample s = resolveSurface(fs, int(object), int(prim), o, d, 0.0f,
-                                         planar ? tuv : nullptr);
+        SurfaceSample s =
+            resolveSurface(fs, int(object), int(prim), o, d, 0.0f, planar ? tuv : nullptr);
         g.write(x, y, s, vis.depth[i], motionVector(fs, v, s.object, s.position));
       }
     }

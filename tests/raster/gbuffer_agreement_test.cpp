@@ -47,12 +47,15 @@ Agreement compareGBuffers(const Scene& scene, const CameraDesc& cam, int w, int 
       float rel = std::abs(za - zb) / std::max(za, zb);
       a.maxRel = std::max(a.maxRel, rel);
       if (rel > 1e-4f) ++a.depthBad;
-      // Same triangle, same resolve code: attributes agree up to the ray/raster hit-point drift.
+      // Same triangle, same resolve code: attributes agree up to the rounding of the two ways
+      // to get barycentrics (raster: per-triangle planes; rays: Moller-Trumbore), both of which
+      // cancel terms |eye - vertex| / |edge| times larger than the result: ~1e-5 in u for 1 cm
+      // triangles 10 m away, so 1e-3 in a normal or a texel-blended colour.
       Vec3 nA = raster->context().input("normal").rgb(x, y),
            nB = rt->context().input("normal").rgb(x, y);
       Vec3 cA = raster->context().input("diffuse").rgb(x, y),
            cB = rt->context().input("diffuse").rgb(x, y);
-      if (length(nA - nB) > 1e-4f || length(cA - cB) > 1e-4f) ++a.attrBad;
+      if (length(nA - nB) > 1e-3f || length(cA - cB) > 1e-3f) ++a.attrBad;
     }
   return a;
 }
@@ -64,7 +67,7 @@ void expectAgreement(const Agreement& a, size_t pixels) {
   EXPECT_LE(a.idMismatch, pixels / 100) << a.idMismatch << " id mismatches";
   EXPECT_EQ(a.idMismatchInterior, 0u);
   // Attributes: the two may pick neighbouring triangles of one object on a crease (a cube's edge),
-  // so allow 0.2% of pixels; everywhere else normal and diffuse match to 1e-4.
+  // so allow 0.2% of pixels; everywhere else normal and diffuse match to 1e-3.
   EXPECT_LE(a.attrBad, a.depthChecked / 500 + 1)
       << a.attrBad << " of " << a.depthChecked
       << " pixels with the same id differ in normal or diffuse";
