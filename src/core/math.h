@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace tandem {
 
@@ -127,6 +128,11 @@ struct Mat4 {
   // Matrix for normals: inverse transpose of the upper 3x3.
   Mat4 normalMatrix() const { return inverse().transposed(); }
 };
+
+// Bit-for-bit equality (a matrix recomputed from the same inputs compares equal).
+inline bool sameMatrix(const Mat4& a, const Mat4& b) {
+  return std::memcmp(&a, &b, sizeof(Mat4)) == 0;
+}
 
 struct Bounds3 {
   Vec3 lo{1e30f, 1e30f, 1e30f};

@@ -68,6 +68,26 @@ int clipPolygon(Vec4* poly, int n, unsigned mask) {
   return n;
 }
 
+// True when the world box lies entirely outside one plane of the view frustum (the real one,
+// not the clipper's guard band): none of its triangles can cover a pixel.
+bool outsideFrustum(const Mat4& vp, const Bounds3& b) {
+  if (!(b.lo.x <= b.hi.x)) return true;  // empty object
+  unsigned andCode = 0x3f;
+  for (int k = 0; k < 8; ++k) {
+    Vec3 p{k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y, k & 4 ? b.hi.z : b.lo.z};
+    Vec4 c = vp * Vec4(p, 1.0f);
+    unsigned code = 0;
+    if (!(c.w - c.z >= 0)) code |= 1;
+    if (!(c.z >= 0)) code |= 2;
+    if (!(c.x + c.w >= 0)) code |= 4;
+    if (!(c.w - c.x >= 0)) code |= 8;
+    if (!(c.y + c.w >= 0)) code |= 16;
+    if (!(c.w - c.y >= 0)) code |= 32;
+    andCode &= code;
+  }
+  return andCode != 0;
+}
+
 }  // namespace
 
 void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
@@ -79,14 +99,26 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
   const int tileCount = tilesX * tilesY;
   const Mat4 vp = cam.viewProj;
 
-  // 1. Vertices to clip space.
+  // 1. Vertices to clip space, for objects whose bounds reach into the view frustum, and only
+  // when the camera or the geometry changed since they were last transformed.
   clip_.resize(fs.objects.size());
+  clipKeys_.resize(fs.objects.size());
+  objectCulled_.assign(fs.objects.size(), 0);
   for (size_t o = 0; o < fs.objects.size(); ++o) {
     const FrameObject& fo = fs.objects[o];
     const auto& pos = fo.positions;
-    auto& c = clip_[o];
-    c.resize(pos.size());
+    if (outsideFrustum(vp, fo.bounds)) {
+      objectCulled_[o] = 1;
+      continue;
+    }
     const bool atTau = tau >= 0.0f && !fo.stepPositions.empty();
+    ClipKey& key = clipKeys_[o];
+    auto& c = clip_[o];
+    if (c.size() == pos.size() && key.geometryVersion == fs.geometryVersion &&
+        key.tau == (atTau ? tau : -1.0f) && sameMatrix(key.viewProj, vp))
+      continue;
+    key = {vp, fs.geometryVersion, atTau ? tau : -1.0f};
+    c.resize(pos.size());
     parallelRange(
         pos.size(),
         [&](size_t b, size_t e) {
@@ -120,6 +152,12 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
     size_t localCulled = 0, localClipped = 0;
     for (size_t g = t0; g < t1; ++g) {
       while (g >= firstTri[o + 1]) ++o;
+      if (objectCulled_[o]) {  // the whole object lies outside: skip to the next one
+        const size_t next = std::min(firstTri[o + 1], t1);
+        localCulled += next - g;
+        g = next - 1;
+        continue;
+      }
       const Object& obj = scene.objects[o];
       const Material& mat = scene.materials[obj.material];
       const Mesh& mesh = scene.meshes[obj.mesh];

@@ -38,7 +38,15 @@ class Rasterizer {
   };
 
  private:
-  std::vector<std::vector<Vec4>> clip_;                   // per object, clip-space vertices
+  std::vector<std::vector<Vec4>> clip_;  // per object, clip-space vertices
+  std::vector<char> objectCulled_;       // per object: outside the frustum
+  // What clip_[o] was computed for: skipped when neither the camera nor the geometry changed.
+  struct ClipKey {
+    Mat4 viewProj;
+    uint64_t geometryVersion = ~0ull;
+    float tau = -2.0f;
+  };
+  std::vector<ClipKey> clipKeys_;
   std::vector<std::vector<SetupTriangle>> chunkTris_;     // per chunk
   std::vector<std::vector<std::vector<uint32_t>>> bins_;  // [chunk][tile] -> triangle index
 };

@@ -8,12 +8,6 @@
 namespace tandem {
 
 namespace {
-bool sameMatrix(const Mat4& a, const Mat4& b) {
-  return std::memcmp(&a, &b, sizeof(Mat4)) == 0;
-}
-}  // namespace
-
-namespace {
 
 void transformMesh(const Mesh& m, const Mat4& w, std::vector<Vec3>& positions,
                    std::vector<Vec3>& normals) {
@@ -89,6 +83,10 @@ void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
         transformMesh(m, o.worldMatrix(t + (close - t) * float(k) / float(n - 1)),
                       f.stepPositions[size_t(k)], f.stepNormals[size_t(k)]);
     }
+    f.bounds = Bounds3{};
+    for (const Vec3& p : f.positions) f.bounds.extend(p);
+    for (const auto& step : f.stepPositions)
+      for (const Vec3& p : step) f.bounds.extend(p);
   }
   if (changed) ++geometryVersion;
 }

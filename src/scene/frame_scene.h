@@ -19,6 +19,7 @@ struct FrameObject {
   // the shutter [time, shutterClose] (step 0 = positions); empty when the object stands still
   // while the shutter is open. Between steps vertices move linearly, as Embree interpolates them.
   std::vector<std::vector<Vec3>> stepPositions, stepNormals;
+  Bounds3 bounds;  // of positions and every motion step: per-object culling
 };
 
 struct FrameScene {

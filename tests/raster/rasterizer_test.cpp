@@ -147,3 +147,49 @@ TEST(Rasterizer, DeterministicAcrossRuns) {
   EXPECT_EQ(a.prim, b.prim);
   EXPECT_EQ(a.depth, b.depth);
 }
+
+// Per-object frustum culling: an object wholly behind the camera or beside the view is skipped
+// before its vertices are transformed (counted as culled), and the picture is unchanged.
+TEST(Rasterizer, ObjectsOutsideTheFrustumAreCulledWhole) {
+  const std::array<Vec3, 3> inView = {Vec3{-4, -4, 0}, Vec3{4, -4, 0}, Vec3{0, 4, 0}};
+  const std::array<Vec3, 3> behind = {Vec3{-4, -4, 9}, Vec3{4, -4, 9}, Vec3{0, 4, 9}};
+  const std::array<Vec3, 3> beside = {Vec3{20, -4, 0}, Vec3{28, -4, 0}, Vec3{24, 4, 0}};
+  Scene alone = trianglesScene({inView}), crowd = trianglesScene({inView, behind, beside});
+  FrameScene fs;
+  fs.update(crowd, 0, 0);
+  Camera cam = Camera::make(orthoCamera(), 16, 16);
+  Rasterizer r;
+  VisibilityBuffer vb;
+  RasterStats stats;
+  r.render(fs, cam, vb, &stats);
+  EXPECT_EQ(stats.trianglesIn, 3u);
+  EXPECT_EQ(stats.trianglesCulled, 2u);
+  EXPECT_EQ(stats.trianglesBinned, 1u);
+  VisibilityBuffer ref = rasterize(alone, orthoCamera(), 16, 16);
+  EXPECT_EQ(vb.object, ref.object);
+  EXPECT_EQ(vb.depth, ref.depth);
+}
+
+// Clip-space vertices are reused while neither camera nor geometry changes, and recomputed when
+// either does: a static camera must still see an object that moved.
+TEST(Rasterizer, CachedVerticesFollowMovingObjectsAndCameras) {
+  Scene s = trianglesScene({{Vec3{-4, -4, 0}, Vec3{4, -4, 0}, Vec3{0, 4, 0}}});
+  FrameScene fs;
+  fs.update(s, 0, 0);
+  Camera cam = Camera::make(orthoCamera(), 16, 16);
+  Rasterizer r;
+  VisibilityBuffer first, again, moved, panned;
+  r.render(fs, cam, first);
+  r.render(fs, cam, again);
+  EXPECT_EQ(first.object, again.object);
+  s.objects[0].local.position = {3, 0, 0};
+  fs.update(s, 1, 0);
+  r.render(fs, cam, moved);
+  EXPECT_NE(first.object, moved.object);
+  EXPECT_EQ(moved.object, rasterize(s, orthoCamera(), 16, 16).object);
+  CameraDesc side = orthoCamera();
+  side.position.x = side.lookAt.x = -3;
+  r.render(fs, Camera::make(side, 16, 16), panned);
+  EXPECT_EQ(panned.object, rasterize(s, side, 16, 16).object);
+  EXPECT_NE(panned.object, moved.object);
+}
