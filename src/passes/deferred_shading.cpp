@@ -27,17 +27,19 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
     };
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
-        SurfaceSample s;
-        if (!g.read(x, y, s)) {
+        const int lane = b.count;
+        if (!g.read(x, y, b, lane)) {
           Vec3 o, d;
           cam.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
           hdr.setRgb(x, y, scene.skyRadiance(d));
           continue;
         }
         // The G-buffer point lies on the pixel's camera ray: the eye direction needs no ray.
-        const Vec3 wo = perspective ? normalize(cam.eye - s.position) : -cam.forward;
-        xs[b.count] = x;
-        b.set(b.count++, s, wo);
+        using F = ShadeBatch;
+        const Vec3 p{b.f[F::PX][lane], b.f[F::PY][lane], b.f[F::PZ][lane]};
+        const Vec3 wo = perspective ? normalize(cam.eye - p) : -cam.forward;
+        b.f[F::WX][lane] = wo.x, b.f[F::WY][lane] = wo.y, b.f[F::WZ][lane] = wo.z;
+        xs[b.count++] = x;
         if (b.count == ShadeBatch::kMax) flush(y);
       }
       if (b.count) flush(y);

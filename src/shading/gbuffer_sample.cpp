@@ -1,5 +1,7 @@
 #include "shading/gbuffer_sample.h"
 
+#include "shading/shade_batch.h"
+
 namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSampleSlots() {
@@ -50,6 +52,25 @@ bool GBufferReader::read(int x, int y, SurfaceSample& s) const {
   s.opacity = optical_[3 * i + 2];
   s.object = int(objectId_[i]);
   s.material = int(materialId_[i]);
+  return true;
+}
+
+bool GBufferReader::read(int x, int y, ShadeBatch& b, int lane) const {
+  const size_t i = size_t(y) * width_ + x;
+  if (objectId_[i] < 0) return false;
+  using F = ShadeBatch;
+  auto put = [&](int field, const float* p) {
+    b.f[field][lane] = p[0];
+    b.f[field + 1][lane] = p[1];
+    b.f[field + 2][lane] = p[2];
+  };
+  put(F::PX, position_ + 3 * i);
+  put(F::NX, normal_ + 3 * i);
+  put(F::DR, diffuse_ + 4 * i);
+  put(F::SR, specular_ + 4 * i);
+  b.f[F::EXP][lane] = specular_[4 * i + 3];
+  put(F::ER, emission_ + 3 * i);
+  put(F::AR, ambient_ + 3 * i);
   return true;
 }
 
