@@ -1,7 +1,9 @@
 // blend: seed 002 §3.4 (Listing 10). Outside the heuristic mask the lighting L is kept; inside,
 // C = L - (1 - S) (eq. 4) and the result is the average of C_M and C_R (eq. 5-6). With the
-// per-effect mask, an effect not traced for a pixel counts as absent (O_M or O_R = 0).
-// Inputs: hdr (L), shadow, reflection, refraction, optical, heuristic_mask. Output: composite.
+// per-effect mask, an effect not traced for a pixel counts as absent (O_M or O_R = 0) unless
+// the optional `fallback` (ss_fallback) has a screen-space or sky colour for it.
+// Inputs: hdr (L), shadow, reflection, refraction, optical, heuristic_mask, fallback (optional).
+// Output: composite.
 #pragma once
 #include "pipeline/pass.h"
 
@@ -19,7 +21,8 @@ class BlendPass : public Pass {
             {"reflection", 3},
             {"refraction", 3},
             {"optical", 3, BufferKind::Material},
-            {"heuristic_mask", 3, BufferKind::Mask}};
+            {"heuristic_mask", 3, BufferKind::Mask},
+            {"fallback", 11, BufferKind::Color, Extent::frame(), false, true}};
   }
   std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
   void execute(FrameContext& ctx) override;

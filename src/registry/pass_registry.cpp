@@ -10,6 +10,7 @@
 #include "passes/rt_gbuffer.h"
 #include "passes/rt_secondary.h"
 #include "passes/rt_whitted.h"
+#include "passes/ss_fallback.h"
 #include "passes/taa.h"
 #include "passes/tonemap.h"
 #include "pipeline/pipeline.h"
@@ -18,9 +19,9 @@ namespace tandem {
 
 const std::vector<std::string>& passTypes() {
   static const std::vector<std::string> types = {
-      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic", "rt_secondary",
-      "blend",          "rt_whitted", "pt_reference",     "taa",       "accumulation",
-      "downsample",     "tonemap"};
+      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic",    "rt_secondary",
+      "ss_fallback",    "blend",      "rt_whitted",       "pt_reference", "taa",
+      "accumulation",   "downsample", "tonemap"};
   return types;
 }
 
@@ -30,6 +31,7 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "deferred_shading") return std::make_unique<DeferredShadingPass>();
   if (type == "heuristic") return std::make_unique<HeuristicPass>();
   if (type == "rt_secondary") return std::make_unique<RTSecondaryPass>();
+  if (type == "ss_fallback") return std::make_unique<ScreenSpaceFallbackPass>();
   if (type == "blend") return std::make_unique<BlendPass>();
   if (type == "rt_whitted") return std::make_unique<RTWhittedPass>();
   if (type == "pt_reference") return std::make_unique<PTReferencePass>();

@@ -13,10 +13,8 @@ namespace tandem {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-using D = hn::ScalableTag<float>;
-using V = hn::Vec<D>;
-
 // 1/sqrt(x) from the hardware estimate and one Newton step (relative error ~1e-7).
+template <class D, class V = hn::Vec<D>>
 HWY_INLINE V Rsqrt(D d, V x) {
   const V r = hn::ApproximateReciprocalSqrt(x);
   const V half_x_r2 = hn::Mul(hn::Mul(hn::Set(d, 0.5f), x), hn::Mul(r, r));
@@ -24,18 +22,22 @@ HWY_INLINE V Rsqrt(D d, V x) {
 }
 
 // x^e for x in [0, 1] and e >= 0 (0^e = 0 for e > 0, x^0 = 1), inline and branch-free.
+template <class D, class V = hn::Vec<D>>
 HWY_INLINE V Pow01(D d, V x, V e) {
   const V lx = hn::Log(d, hn::Max(x, hn::Set(d, 1e-30f)));
   return hn::Exp(d, hn::Mul(e, lx));
 }
 
+template <class V>
 HWY_INLINE V Dot(V ax, V ay, V az, V bx, V by, V bz) {
   return hn::MulAdd(ax, bx, hn::MulAdd(ay, by, hn::Mul(az, bz)));
 }
 
-void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride) {
+// Over whole vectors of D; a batch of one runs on a one-lane tag (scalar cost, same code).
+template <class D>
+void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride) {
   using F = ShadeBatch;
-  const D d;
+  using V = hn::Vec<D>;
   const size_t n = hn::Lanes(d);
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   for (size_t i = 0; i < size_t(b.count); i += n) {
@@ -118,6 +120,13 @@ void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, 
     hn::BlendedStore(cg, live, d, b.f[F::OG] + i);
     hn::BlendedStore(cb, live, d, b.f[F::OB] + i);
   }
+}
+
+void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride) {
+  if (b.count == 1)
+    ShadeLanes(hn::CappedTag<float, 1>(), b, ctx, vis, visStride);
+  else
+    ShadeLanes(hn::ScalableTag<float>(), b, ctx, vis, visStride);
 }
 
 }  // namespace HWY_NAMESPACE

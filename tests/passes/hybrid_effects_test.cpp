@@ -4,8 +4,10 @@
 
 #include <tbb/task_arena.h>
 
+#include "eval/metrics.h"
 #include "passes/blend.h"
 #include "passes/heuristic.h"
+#include "passes/shadow_maps.h"
 #include "pipeline/frame_context.h"
 #include "rt/whitted.h"
 #include "scene/builtin_scenes.h"
@@ -90,7 +92,8 @@ TEST(HybridEffects, RtStatsCountMaskedPixels) {
 }
 
 // Per-effect selection with everything selected is the paper's hybrid-all, pixel for pixel; a
-// zero budget ray traces nothing and leaves the deferred image.
+// zero budget with the fallbacks off (the paper's rule) ray traces nothing and leaves the
+// deferred image.
 TEST(HybridEffects, ModesAgreeAtTheExtremes) {
   Scene s = makeSpheresScene();
   auto all = test::renderOnce(s, "hybrid-all", 96, 54, s.camera);
@@ -98,7 +101,9 @@ TEST(HybridEffects, ModesAgreeAtTheExtremes) {
                                 {"heuristic.select_all=1", "heuristic.per_effect=1"}, 96, 54);
   perEffect->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(all->output(), perEffect->output()));
-  auto none = makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0"}, 96, 54);
+  auto none = makeRenderer(
+      s, "hybrid-heuristic",
+      {"heuristic.budget=0", "ss_fallback.mode=off", "ss_fallback.shadows=off"}, 96, 54);
   none->renderFrame(0, s.camera);
   auto deferred = test::renderOnce(s, "deferred", 96, 54, s.camera);
   EXPECT_TRUE(sameBuffer(none->output(), deferred->output()));
@@ -133,4 +138,65 @@ TEST(HybridEffects, MsBudgetCalibratesFromTheLastRtPass) {
       else
         EXPECT_EQ(st.cpuMs[o][e], 0.0) << o << " " << e;
     }
+}
+
+// Raster shadow maps: under an occluder a point is in shadow, beside it lit, for a directional
+// (orthographic map), a spot (its cone) and a point light (cube faces); lights that cast no
+// shadows are always visible.
+TEST(ShadowMaps, OccluderShadowsThePointBelowIt) {
+  Scene s;
+  Material m;
+  m.doubleSided = true;
+  const int mat = s.addMaterial(m), plane = s.addMesh(makePlane());
+  Transform ground, roof;
+  ground.scale = {10, 1, 10};
+  roof.position = {0, 2, 0};
+  s.addObject("ground", plane, mat, ground);
+  s.addObject("roof", plane, mat, roof);  // [-1, 1]^2 at y = 2
+  Light sun, spot, bulb, unshadowed;
+  sun.type = LightType::Directional;
+  sun.direction = {0, -1, 0};
+  spot.type = LightType::Spot;
+  spot.position = {0, 6, 0};
+  spot.direction = {0, -1, 0};
+  spot.outerConeDeg = 60;
+  bulb.type = LightType::Point;
+  bulb.position = {0, 5, 0};
+  unshadowed = bulb;
+  unshadowed.castsShadows = false;
+  s.lights = {sun, spot, bulb, unshadowed};
+  FrameScene fs;
+  fs.update(s, 0, 0);
+  ShadowMaps maps;
+  maps.update(fs, 512);
+  const Vec3 up{0, 1, 0};
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(maps.visibility(i, {0.2f, 0, -0.3f}, up), 0.0f) << "light " << i;
+    EXPECT_EQ(maps.visibility(i, {3.0f, 0, 2.0f}, up), 1.0f) << "light " << i;
+    EXPECT_EQ(maps.visibility(i, {0.0f, 2, 0.0f}, up), 1.0f) << "light " << i << " (the roof)";
+  }
+  EXPECT_EQ(maps.visibility(3, {0.2f, 0, -0.3f}, up), 1.0f);
+  // Drawn once; a second update with nothing changed reuses them.
+  maps.update(fs, 512);
+  EXPECT_EQ(maps.redraws(), 1);
+}
+
+// With nothing ray traced, the fallbacks (shadow maps, screen-space reflection and refraction)
+// bring the image much closer to hybrid-all than the paper's rule (unshadowed, black mirrors).
+TEST(HybridEffects, FallbacksStandInForUnselectedEffects) {
+  Scene s = makeSpheresScene();
+  const int w = 160, h = 90;
+  auto all = test::renderOnce(s, "hybrid-all", w, h, s.camera);
+  auto paper =
+      makeRenderer(s, "hybrid-heuristic",
+                   {"heuristic.budget=0", "ss_fallback.mode=off", "ss_fallback.shadows=off"}, w, h);
+  auto fallback = makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0"}, w, h);
+  paper->renderFrame(0, s.camera);
+  fallback->renderFrame(0, s.camera);
+  EXPECT_TRUE(heuristicOf(*fallback).lastSelection().empty());
+  const double paperErr = rmse(paper->output(), all->output());
+  const double fallbackErr = rmse(fallback->output(), all->output());
+  std::printf("RMSE vs hybrid-all: paper's rule %.4f, fallbacks %.4f\n", paperErr, fallbackErr);
+  EXPECT_LT(fallbackErr, 0.8 * paperErr);
+  EXPECT_GT(ssim(fallback->output(), all->output()), ssim(paper->output(), all->output()));
 }

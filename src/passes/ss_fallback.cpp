@@ -1,0 +1,180 @@
+#include "passes/ss_fallback.h"
+
+#include "passes/rt_stats.h"
+#include "pipeline/frame_context.h"
+#include "pipeline/gbuffer_io.h"
+#include "pipeline/view_tiles.h"
+#include "rt/whitted.h"
+#include "shading/shade_batch.h"
+
+namespace tandem {
+
+namespace {
+enum class FallbackMode { Off = 0, Environment = 1, ScreenSpace = 2 };
+}
+
+std::vector<ParamDesc> ScreenSpaceFallbackPass::params() const {
+  return {{"mode",
+           ParamType::Enum,
+           2,
+           0,
+           2,
+           "unselected reflections/refractions: off (seed 002: black), sky, screen space",
+           {"off", "environment", "screen_space"}},
+          {"shadows",
+           ParamType::Enum,
+           1,
+           0,
+           1,
+           "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
+           {"off", "shadow_map"}},
+          {"shadow_map_size", ParamType::Int, 2048, 64, 8192, "shadow map resolution", {}},
+          {"steps", ParamType::Int, 48, 1, 512, "march steps along the reflected ray", {}},
+          {"thickness",
+           ParamType::Float,
+           0.05,
+           0,
+           100,
+           "depth a surface is taken to have, as a fraction of the distance marched",
+           {}}};
+}
+
+std::vector<BufferSlot> ScreenSpaceFallbackPass::inputs() const {
+  std::vector<BufferSlot> in = gbufferSampleSlots();
+  in.push_back({"hdr", 3});
+  in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
+  return in;
+}
+
+namespace {
+
+struct Frame {
+  const Buffer &hdr, &position, &objectId;
+  const Scene& scene;
+  float reach;  // longest march: the scene's diagonal
+};
+
+// Colour seen from p along unit direction r in view v: the first frame pixel whose surface the
+// march passes just behind (skipping `self` for refraction), else the sky.
+// A refraction march (self >= 0) takes the first surface it passes behind, however far: the
+// front faces hide where the ray would leave the object.
+Vec3 marchScreen(const Frame& f, const View& v, Vec3 p, Vec3 r, int steps, float thickness,
+                 int self) {
+  const Camera& cam = v.camera;
+  const auto viewDepth = [&](Vec3 q) { return dot(q - cam.eye, cam.forward); };
+  // Geometric steps: fine near the surface, coarse far away.
+  const float growth = std::pow(f.reach / 0.01f, 1.0f / float(std::max(steps - 1, 1)));
+  float t = 0.01f;
+  for (int i = 0; i < steps; ++i, t *= growth) {
+    const Vec3 q = p + r * t;
+    Vec2 px;
+    if (!cam.project(q, px)) break;
+    const int x = int(px.x), y = int(px.y);
+    if (px.x < 0 || px.y < 0 || x >= cam.width || y >= cam.height) break;  // left the screen
+    const int fx = x + v.x, fy = y + v.y;
+    const int id = int(f.objectId.at(fx, fy)[0]);
+    if (id < 0 || id == self) continue;
+    const float surface = viewDepth(f.position.rgb(fx, fy));
+    const float behind = viewDepth(q) - surface;
+    if (behind > 0 && (self >= 0 || behind < thickness * t + 0.02f)) return f.hdr.rgb(fx, fy);
+  }
+  return f.scene.skyRadiance(r);
+}
+
+}  // namespace
+
+void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
+  const auto mode = FallbackMode(int(param("mode")));
+  const bool shadows = param("shadows") != 0;
+  const GBufferReader g = gbufferSource(ctx, *this);
+  const Buffer& hdr = ctx.input(*this, "hdr");
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer& optical = ctx.input(*this, "optical");
+  const Buffer& objectId = ctx.input(*this, "object_id");
+  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  Buffer& out = ctx.output(*this, "fallback");
+  std::fill(out.data.begin(), out.data.end(), 0.0f);
+  if (mode == FallbackMode::Off && !shadows) return;
+  const Scene& scene = *ctx.scene;
+  if (shadows) shadowMaps_.update(ctx.frame, int(param("shadow_map_size")));
+  const ShadingContext shading = ShadingContext::from(scene);
+  const Bounds3 b = scene.bounds(ctx.frame.time);
+  const Frame f{hdr, position, objectId, scene, std::max(length(b.hi - b.lo), 0.1f)};
+  const int steps = int(param("steps"));
+  const float thickness = float(param("thickness"));
+  const size_t lights = scene.lights.size();
+  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
+    // Shadow pixels are shaded in batches: per light and channel a row of lanes holding the
+    // occluded fraction (rt_secondary's Listing 8a sum, 8 pixels at a time).
+    ShadeBatch batch;
+    std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
+    float* targets[ShadeBatch::kMax];
+    Vec3 base[ShadeBatch::kMax];
+    auto flush = [&] {
+      shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
+      for (int k = 0; k < batch.count; ++k) {
+        const Vec3 lost = batch.result(k) - base[k];
+        float* px = targets[k];
+        px[6] = 1.0f - lost.x, px[7] = 1.0f - lost.y, px[8] = 1.0f - lost.z;
+        px[10] = 1.0f;
+      }
+      batch.count = 0;
+    };
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const int id = int(objectId.at(x, y)[0]);
+        if (id < 0) continue;
+        const float* op = optical.at(x, y);
+        const float* m = mask.at(x, y);
+        const bool reflect = mode != FallbackMode::Off && op[0] > 0 && m[kReflection] < 0.5f;
+        const bool refract = mode != FallbackMode::Off && op[2] < 1 && m[kRefraction] < 0.5f;
+        const bool shadow = shadows && m[kShadow] < 0.5f;
+        if (!reflect && !refract && !shadow) continue;
+        const Vec3 p = position.rgb(x, y);
+        Vec3 o, d;
+        v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+        Vec3 n = normal.rgb(x, y);
+        if (dot(n, d) > 0) n = -n;
+        auto look = [&](Vec3 r, int self) {
+          return mode == FallbackMode::Environment
+                     ? scene.skyRadiance(r)
+                     : marchScreen(f, v, p, r, steps, thickness, self);
+        };
+        float* px = out.at(x, y);
+        if (reflect) {
+          const Vec3 c = look(normalize(reflectDir(d, n)), -1);
+          px[0] = c.x, px[1] = c.y, px[2] = c.z;
+        }
+        if (refract) {
+          // Entering the object (the G-buffer holds front faces): the refracted direction, the
+          // object itself not counted as what lies behind it.
+          Vec3 t;
+          if (!refractDir(d, n, 1.0f / std::max(op[1], 1e-3f), t)) t = reflectDir(d, n);
+          const Vec3 c = look(t, id);
+          px[3] = c.x, px[4] = c.y, px[5] = c.z;
+        }
+        if (reflect || refract) px[9] = 1.0f;
+        if (shadow) {
+          // As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one
+          // shading call weighted by each light's occluded fraction.
+          SurfaceSample s;
+          g.read(x, y, s);
+          const int lane = batch.count++;
+          batch.set(lane, s, -d);
+          for (size_t i = 0; i < lights; ++i) {
+            const float occluded = 1.0f - shadowMaps_.visibility(i, p, s.geoNormal);
+            for (size_t c = 0; c < 3; ++c)
+              blocked[(3 * i + c) * ShadeBatch::kMax + size_t(lane)] = occluded;
+          }
+          targets[lane] = px;
+          base[lane] = s.emission + shading.ambient * s.ambient;
+          if (batch.count == ShadeBatch::kMax) flush();
+        }
+      }
+    if (batch.count) flush();
+  });
+  ctx.counters["ss_fallback/shadow_map_redraws"] = shadowMaps_.redraws();
+}
+
+}  // namespace tandem
