@@ -38,10 +38,14 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
   const Bounds3 b = scene.bounds(fs.time);
   const Vec3 centre = (b.lo + b.hi) * 0.5f;
   const float radius = std::max(0.5f * length(b.hi - b.lo), 0.01f);
-  faces_.assign(scene.lights.size(), {});
+  // Maps keep their memory from one redraw to the next (animated scenes redraw every frame).
+  faces_.resize(scene.lights.size());
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
-    if (!l.castsShadows) continue;
+    if (!l.castsShadows) {
+      faces_[i].clear();
+      continue;
+    }
     std::vector<CameraDesc> views;
     if (l.type == LightType::Directional) {
       CameraDesc c;
@@ -68,10 +72,13 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
         views.push_back(c);
       }
     }
-    for (const CameraDesc& c : views) {
-      Face face{Camera::make(c, resolution, resolution), {}};
+    // Cube faces at half the size: six of them cover what one map does for a spot.
+    const int size = views.size() == 6 ? std::max(resolution / 2, 16) : resolution;
+    faces_[i].resize(views.size());
+    for (size_t k = 0; k < views.size(); ++k) {
+      Face& face = faces_[i][k];
+      face.camera = Camera::make(views[k], size, size);
       raster_.render(fs, face.camera, face.map);
-      faces_[i].push_back(std::move(face));
     }
   }
 }

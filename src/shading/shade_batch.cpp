@@ -57,8 +57,19 @@ void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis,
     V cr = hn::MulAdd(hn::Set(d, ctx.ambient.x), load(F::AR), load(F::ER));
     V cg = hn::MulAdd(hn::Set(d, ctx.ambient.y), load(F::AG), load(F::EG));
     V cb = hn::MulAdd(hn::Set(d, ctx.ambient.z), load(F::AB), load(F::EB));
+    // Early outs taken only when every lane agrees (a single ray hit always does): no specular
+    // lobe, a light fully occluded, or facing away.
+    const bool anySpecular = !hn::AllTrue(d, hn::Eq(hn::Add(hn::Add(sr, sg), sb), zero));
     for (size_t li = 0; li < ctx.lights.size(); ++li) {
       const PreparedLight& l = ctx.lights[li];
+      V visR = one, visG = one, visB = one;
+      if (vis) {
+        const float* row = vis + 3 * li * visStride + i;
+        visR = hn::MaskedLoad(live, d, row);
+        visG = hn::MaskedLoad(live, d, row + visStride);
+        visB = hn::MaskedLoad(live, d, row + 2 * visStride);
+        if (hn::AllTrue(d, hn::Le(hn::Max(hn::Max(visR, visG), visB), zero))) continue;
+      }
       V lx, ly, lz, att;  // unit direction towards the light, attenuation
       if (l.type == LightType::Directional) {
         lx = hn::Set(d, -l.direction.x), ly = hn::Set(d, -l.direction.y);
@@ -99,19 +110,18 @@ void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis,
       }
       const V nDotL = Dot(nx, ny, nz, lx, ly, lz);
       const V k = hn::IfThenElseZero(hn::Gt(nDotL, zero), hn::Mul(att, nDotL));
-      // Half vector (a zero sum stays zero, as normalize() leaves it).
-      const V hx = hn::Add(lx, wx), hy = hn::Add(ly, wy), hz = hn::Add(lz, wz);
-      const V hInv = Rsqrt(d, hn::Max(Dot(hx, hy, hz, hx, hy, hz), hn::Set(d, 1e-30f)));
-      const V nDotH = hn::Max(hn::Mul(Dot(nx, ny, nz, hx, hy, hz), hInv), zero);
-      const V lobe = Pow01(d, nDotH, ex);
-      V kr = hn::Mul(k, hn::Set(d, l.power.x)), kg = hn::Mul(k, hn::Set(d, l.power.y)),
-        kb = hn::Mul(k, hn::Set(d, l.power.z));
-      if (vis) {
-        const float* row = vis + 3 * li * visStride + i;
-        kr = hn::Mul(kr, hn::MaskedLoad(live, d, row));
-        kg = hn::Mul(kg, hn::MaskedLoad(live, d, row + visStride));
-        kb = hn::Mul(kb, hn::MaskedLoad(live, d, row + 2 * visStride));
+      if (hn::AllTrue(d, hn::Le(k, zero))) continue;
+      V lobe = zero;
+      if (anySpecular) {
+        // Half vector (a zero sum stays zero, as normalize() leaves it).
+        const V hx = hn::Add(lx, wx), hy = hn::Add(ly, wy), hz = hn::Add(lz, wz);
+        const V hInv = Rsqrt(d, hn::Max(Dot(hx, hy, hz, hx, hy, hz), hn::Set(d, 1e-30f)));
+        const V nDotH = hn::Max(hn::Mul(Dot(nx, ny, nz, hx, hy, hz), hInv), zero);
+        lobe = Pow01(d, nDotH, ex);
       }
+      const V kr = hn::Mul(hn::Mul(k, hn::Set(d, l.power.x)), visR);
+      const V kg = hn::Mul(hn::Mul(k, hn::Set(d, l.power.y)), visG);
+      const V kb = hn::Mul(hn::Mul(k, hn::Set(d, l.power.z)), visB);
       cr = hn::MulAdd(hn::MulAdd(sr, lobe, dr), kr, cr);
       cg = hn::MulAdd(hn::MulAdd(sg, lobe, dg), kg, cg);
       cb = hn::MulAdd(hn::MulAdd(sb, lobe, db), kb, cb);
