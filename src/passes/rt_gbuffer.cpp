@@ -20,7 +20,10 @@ void RTGBufferPass::execute(FrameContext& ctx) {
             g.writeBackground(x + v.x, y + v.y, backgroundMotion(v, r.dir));
             return;
           }
-          SurfaceSample s = resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir);
+          // Embree's own distance and barycentrics: no second intersection.
+          const float tuv[3] = {h.t, h.u, h.v};
+          SurfaceSample s =
+              resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir, r.time, tuv);
           float depth = v.camera.depthOf(r.origin + r.dir * h.t);
           g.write(x + v.x, y + v.y, s, depth, motionVector(ctx.frame, v, s.object, s.position));
         }));

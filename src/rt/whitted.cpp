@@ -79,7 +79,8 @@ Vec3 Whitted::traceSecondary(Vec3 origin, Vec3 dir, int depth, float importance)
   r.dir = dir;
   Hit h = rt_.intersect(r);
   if (!h.valid()) return scene_.skyRadiance(dir);  // Listing 8d
-  SurfaceSample s = resolveSurface(*rt_.frame(), h.object, h.prim, origin, dir);
+  const float tuv[3] = {h.t, h.u, h.v};            // Embree's own hit: no second intersection
+  SurfaceSample s = resolveSurface(*rt_.frame(), h.object, h.prim, origin, dir, 0.0f, tuv);
   const float om = s.reflectivity, orr = 1.0f - s.opacity;
   // Listing 8c: lighting only where the surface is not purely a mirror or clear glass.
   Vec3 lighting(0.0f);

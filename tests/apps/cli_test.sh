@@ -55,7 +55,9 @@ check "experiment records machine, build and commit" "grep -q 'hardware threads;
 check "experiment CSVs have a row per scene / frame" \
   "[ \$(wc -l < $D/exp/table5.csv) -eq 3 ] && [ \$(wc -l < $D/exp/table6.csv) -eq 3 ] && [ \$(wc -l < $D/exp/budget_frames.csv) -eq 7 ]"
 check "experiment writes images" \
-  "[ -s $D/exp/spheres_hybrid-heuristic.png ] && [ -s $D/exp/cornell_spheres_rt-only.png ] && [ -s $D/exp/spheres_heuristic_mask.png ]"
+  "[ -s $D/exp/spheres_hybrid-heuristic.png ] && [ -s $D/exp/cornell_spheres_rt-only.png ] && [ -s $D/exp/spheres_heuristic_mask.png ] && [ -s $D/exp/spheres_hybrid-heuristic-fallbacks.png ]"
+check "heuristic experiment reports the fallbacks against rt-only" \
+  "grep -q 'SSIM with fallbacks vs rt-only' $D/exp/results.md && [ \$(head -1 $D/exp/table5.csv | tr ',' '\\n' | grep -c fallbacks) -eq 3 ]"
 check "experiment: hybrid-all agrees with rt-only" \
   "awk -F, 'NR>1 && \$14 < 0.97 {bad=1} END {exit bad}' $D/exp/table5.csv"
 check "heuristic experiment has an index page" "grep -q budget_tracking $D/exp/results.md && [ -s $D/exp/index.html ]"
