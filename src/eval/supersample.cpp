@@ -12,7 +12,9 @@ std::string outputSource(const Pipeline& p) {
 
 Buffer supersample(const Scene& scene, const std::string& pipeline, const CameraDesc& camera,
                    const RenderSettings& settings, int n, const std::string& bufferName) {
-  Renderer r(scene, Pipeline::load(pipeline), settings);
+  RenderSettings fine = settings;
+  fine.textureFootprint = settings.textureFootprint / float(std::max(n, 1));
+  Renderer r(scene, Pipeline::load(pipeline), fine);
   const std::string buffer = bufferName.empty() ? outputSource(r.pipeline()) : bufferName;
   Buffer sum;
   for (int j = 0; j < n; ++j)

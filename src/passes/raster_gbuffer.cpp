@@ -37,6 +37,7 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
     const Camera& cam = v.camera;
     const bool perspective = cam.desc.projection == Projection::Perspective;
     TrianglePlaneCache cache;
+    const float spread = ctx.pixelSpread(v);  // texture level of detail: the pixel's cone
     for (int y = y0; y < y1; ++y) {
       const int ly = y - v.y;
       // The pixel ray (unnormalised): the row's part once, the column's a multiply-add.
@@ -70,7 +71,7 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
           planar = cache.planes.barycentrics(d, tuv[1], tuv[2]);
         }
         SurfaceSample s =
-            resolveSurface(fs, int(object), int(prim), o, d, 0.0f, planar ? tuv : nullptr);
+            resolveSurface(fs, int(object), int(prim), o, d, 0.0f, planar ? tuv : nullptr, spread);
         g.write(x, y, s, vis.depth[i], motionVector(fs, v, s.object, s.position));
       }
     }

@@ -29,7 +29,9 @@ void RTWhittedPass::execute(FrameContext& ctx) {
         ids.at(x, y)[0] = -1;
         return;
       }
-      SurfaceSample s = resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir);
+      const float tuv[3] = {h.t, h.u, h.v};  // Embree's hit; the pixel's cone picks texture LOD
+      SurfaceSample s = resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir, r.time, tuv,
+                                       ctx.pixelSpread(v));
       hdr.setRgb(x, y, whitted.shadePrimary(s, r.dir));
       ids.at(x, y)[0] = float(h.object);
     });

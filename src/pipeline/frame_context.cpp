@@ -1,5 +1,7 @@
 #include "pipeline/frame_context.h"
 
+#include "shading/surface_resolve.h"
+
 #include "pipeline/pass.h"
 
 namespace tandem {
@@ -44,6 +46,10 @@ const Buffer& FrameContext::input(const std::string& name) const {
   auto it = buffers.find(name);
   TANDEM_ASSERT(it != buffers.end());  // wiring was checked when the pipeline loaded
   return it->second;
+}
+
+float FrameContext::pixelSpread(const View& view) const {
+  return pixelSpreadAngle(view.camera) * textureFootprint;
 }
 
 }  // namespace tandem

@@ -27,8 +27,9 @@ struct FrameContext {
   int frameIndex = 0;
   int64_t serial = -1;  // counts executed frames (frameIndex may repeat, e.g. a static shot)
   uint64_t seed = 0;
-  Vec2 jitter{0, 0};         // this frame's projection jitter in pixels (every view's camera)
-  bool historyReset = true;  // history inputs are empty this frame (first frame or a reset)
+  Vec2 jitter{0, 0};              // this frame's projection jitter in pixels (every view's camera)
+  float textureFootprint = 1.0f;  // RenderSettings::textureFootprint
+  bool historyReset = true;       // history inputs are empty this frame (first frame or a reset)
   std::map<std::string, Buffer> buffers;
   std::map<std::string, Buffer> history;  // last frame's values of declared history inputs
   double passRays = 0;                    // a pass adds the rays it traced; the pipeline records it
@@ -38,6 +39,8 @@ struct FrameContext {
   SampleCluster* cluster = nullptr;  // distributed (MPI) reference rendering; null: one process
 
   const Camera& camera() const { return views.front().camera; }
+  // The angle a pixel of `view` subtends, times textureFootprint: primary hits' texture LOD.
+  float pixelSpread(const View& view) const;
   bool anyCameraMoved() const;
 
   // The ray tracer, (re)built for the current frame's geometry on first use in a frame.

@@ -8,6 +8,7 @@ Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings setting
     : scene_(&scene), pipeline_(std::move(pipeline)), settings_(settings) {
   ctx_.scene = scene_;
   ctx_.seed = settings.seed;
+  ctx_.textureFootprint = settings.textureFootprint;
   applySize();
   resetHistory("first frame");
 }

@@ -17,6 +17,9 @@ struct RenderSettings {
   float frameRate = 30.0f;  // frame index -> scene time (seconds) = index / frameRate
   float shutter = 0.0f;     // seconds the shutter stays open from the frame time (motion blur)
   StereoDesc stereo{};      // enabled: two eyes side by side, the frame 2 x width wide
+  // Scales the pixel cone that picks texture levels of detail: a supersampled render of n x n
+  // samples per pixel uses 1 / n, so each sample filters only its share of the pixel.
+  float textureFootprint = 1.0f;
 };
 
 class Renderer {

@@ -39,6 +39,10 @@ struct Material {
   float metallic = 0.0f, roughness = 1.0f;
 
   // Maps a mesh UV to texture space: offset + R(rotation) * (uv * tiling).
+  bool hasTexture() const {
+    return diffuseTexture >= 0 || emissionTexture >= 0 || specularTexture >= 0 ||
+           metallicRoughnessTexture >= 0 || normalTexture >= 0;
+  }
   Vec2 transformUv(Vec2 uv) const;
 };
 

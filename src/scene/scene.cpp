@@ -24,7 +24,10 @@ Bounds3 Scene::bounds(float t) const {
 size_t Scene::memoryBytes() const {
   size_t n = 0;
   for (const Mesh& m : meshes) n += m.memoryBytes();
-  for (const Texture& t : textures) n += t.texels.data.size() * sizeof(float);
+  for (const Texture& t : textures) {
+    n += t.texels.data.size() * sizeof(float);
+    for (const Texture::Level& l : t.levels) n += l.rgba.size();
+  }
   n += materials.size() * sizeof(Material) + objects.size() * sizeof(Object) +
        lights.size() * sizeof(Light);
   return n;
@@ -63,6 +66,7 @@ int Scene::addMaterial(const Material& m) {
 }
 
 int Scene::addTexture(Texture t) {
+  if (t.levels.empty()) t.buildLevels();  // a texture made by hand has only its float texels
   textures.push_back(std::move(t));
   return int(textures.size()) - 1;
 }

@@ -41,7 +41,7 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
 }
 
 SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
-                             float time, const float* knownTuv) {
+                             float time, const float* knownTuv, float pixelSpread) {
   const Scene& scene = *fs.scene;
   const Object& obj = scene.objects[object];
   const FrameObject& fo = fs.objects[object];
@@ -76,28 +76,44 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
   }
   Vec2 uvMesh = mesh.uvs[idx[0]] * w + mesh.uvs[idx[1]] * u + mesh.uvs[idx[2]] * v;
   s.uv = mat.transformUv(uvMesh);
+  // Each texture at the level of detail of the pixel's cone: its width at the hit, across the
+  // surface (1 / cos), in UV units through the triangle's UV / world scale (and the tiling).
+  float footprint = 0.0f;
+  if (pixelSpread > 0.0f && mat.hasTexture() && !mesh.uvs.empty()) {
+    const Vec3 worldCross = cross(b - a, c - a);
+    const Vec2 e1 = mesh.uvs[idx[1]] - mesh.uvs[idx[0]], e2 = mesh.uvs[idx[2]] - mesh.uvs[idx[0]];
+    const float uvArea = std::abs(e1.x * e2.y - e1.y * e2.x), worldArea = length(worldCross);
+    const float dirLength = length(dir);
+    if (worldArea > 0.0f && dirLength > 0.0f) {
+      const float cosine = std::abs(dot(s.geoNormal, dir)) / dirLength;
+      const float width = pixelSpread * length(s.position - origin) / std::max(cosine, 0.05f);
+      footprint = width * std::sqrt(uvArea / worldArea) *
+                  std::max(std::abs(mat.tiling.x), std::abs(mat.tiling.y));
+    }
+  }
+  auto sampleTex = [&](int i) {
+    const Texture& t = scene.textures[size_t(i)];
+    return t.sample(s.uv, t.lodFor(footprint));
+  };
 
   s.diffuse = mat.diffuse;
   s.diffuseOpacity = mat.diffuseOpacity;
   if (mat.diffuseTexture >= 0) {
-    Vec4 tex = scene.textures[mat.diffuseTexture].sample(s.uv);
+    Vec4 tex = sampleTex(mat.diffuseTexture);
     s.diffuse = s.diffuse * tex.xyz();
     s.diffuseOpacity *= tex.w;
   }
   s.ambient = mat.ambient;
   s.emission = mat.emission;
-  if (mat.emissionTexture >= 0)
-    s.emission = s.emission * scene.textures[mat.emissionTexture].sample(s.uv).xyz();
+  if (mat.emissionTexture >= 0) s.emission = s.emission * sampleTex(mat.emissionTexture).xyz();
   s.specular = mat.specular;
-  if (mat.specularTexture >= 0)
-    s.specular = s.specular * scene.textures[mat.specularTexture].sample(s.uv).xyz();
+  if (mat.specularTexture >= 0) s.specular = s.specular * sampleTex(mat.specularTexture).xyz();
   s.specularExponent = mat.specularExponent;
   s.reflectivity = mat.reflectivity;
   if (mat.metallicRoughnessTexture >= 0) {
-    Vec4 mr = scene.textures[mat.metallicRoughnessTexture].sample(s.uv);
+    Vec4 mr = sampleTex(mat.metallicRoughnessTexture);
     Vec3 base = mat.baseColor;
-    if (mat.diffuseTexture >= 0)
-      base = base * scene.textures[mat.diffuseTexture].sample(s.uv).xyz();
+    if (mat.diffuseTexture >= 0) base = base * sampleTex(mat.diffuseTexture).xyz();
     BlinnPhongTerms bp = fromMetallicRoughness(base, mat.metallic * mr.z, mat.roughness * mr.y);
     s.diffuse = bp.diffuse;
     s.ambient = bp.diffuse;
@@ -113,13 +129,18 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
     Vec4 tg = fo.tangents[idx[0]] * w + fo.tangents[idx[1]] * u + fo.tangents[idx[2]] * v;
     Vec3 tangent = normalize(tg.xyz() - n * dot(n, tg.xyz()));
     Vec3 bitangent = cross(n, tangent) * (fo.tangents[idx[0]].w < 0 ? -1.0f : 1.0f);
-    Vec4 tex = scene.textures[mat.normalTexture].sample(s.uv);
+    Vec4 tex = sampleTex(mat.normalTexture);
     Vec3 tn{(tex.x * 2 - 1) * mat.normalScale, (tex.y * 2 - 1) * mat.normalScale, tex.z * 2 - 1};
     Vec3 mapped = normalize(tangent * tn.x + bitangent * tn.y + n * tn.z);
     if (isFinite(mapped) && length(mapped) > 0.5f) n = mapped;
   }
   s.normal = n;
   return s;
+}
+
+float pixelSpreadAngle(const Camera& camera) {
+  if (camera.desc.projection != Projection::Perspective) return 0.0f;
+  return 2.0f * camera.tanHalfFov / float(std::max(camera.height, 1));
 }
 
 }  // namespace tandem

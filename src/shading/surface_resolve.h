@@ -15,8 +15,16 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
                              float time = 0.0f);
 // The same, given the ray tracer's distance and barycentrics `knownTuv` = {t, u, v} (u: vertex 1,
 // v: vertex 2) instead of intersecting the triangle again; null: intersect from origin and dir.
+// `pixelSpread`: the angle (radians) one pixel subtends at the eye, for primary hits: the pixel's
+// cone (Akenine-Moller et al. 2019, ray cones) is `pixelSpread x distance` wide at the hit, and
+// textures are filtered trilinearly at the level that width covers on this triangle (its UV to
+// world area ratio, widened by 1 / cos of the incidence). Raster pixels and primary rays use
+// the same estimate, so their G-buffers agree; 0 samples full resolution (secondary rays).
 SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
-                             float time, const float* knownTuv);
+                             float time, const float* knownTuv, float pixelSpread = 0.0f);
+
+// The pixel spread angle of a camera (0 for orthographic: no level of detail).
+float pixelSpreadAngle(const Camera& camera);
 
 // Alpha of the material's diffuse texture at the hit (alpha-mask tests).
 float surfaceAlpha(const FrameScene& fs, int object, int prim, float u, float v);
