@@ -20,7 +20,9 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
     const bool perspective = cam.desc.projection == Projection::Perspective;
     ShadeBatch b;
     int xs[ShadeBatch::kMax];
+    std::vector<uint32_t> lights;  // per batch: the lights that can reach it (tiled deferred)
     auto flush = [&](int y) {
+      cullLights(b, shading, lights);
       shadeBatch(b, shading);
       for (int k = 0; k < b.count; ++k) hdr.setRgb(xs[k], y, b.result(k));
       b.count = 0;

@@ -60,7 +60,9 @@ void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis,
     // Early outs taken only when every lane agrees (a single ray hit always does): no specular
     // lobe, a light fully occluded, or facing away.
     const bool anySpecular = !hn::AllTrue(d, hn::Eq(hn::Add(hn::Add(sr, sg), sb), zero));
-    for (size_t li = 0; li < ctx.lights.size(); ++li) {
+    const size_t lightCount = b.lights ? b.lightCount : ctx.lights.size();
+    for (size_t n = 0; n < lightCount; ++n) {
+      const size_t li = b.lights ? b.lights[n] : n;
       const PreparedLight& l = ctx.lights[li];
       V visR = one, visG = one, visB = one;
       if (vis) {
@@ -144,6 +146,9 @@ void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, 
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <algorithm>
+#include <cmath>
+
 namespace tandem {
 
 HWY_EXPORT(ShadeBatchImpl);
@@ -151,6 +156,33 @@ HWY_EXPORT(ShadeBatchImpl);
 void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisibility,
                 size_t visStride) {
   HWY_DYNAMIC_DISPATCH(ShadeBatchImpl)(b, ctx, lightVisibility, visStride);
+}
+
+void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out) {
+  out.clear();
+  Bounds3 box;
+  using F = ShadeBatch;
+  for (int k = 0; k < b.count; ++k) box.extend(Vec3(b.f[F::PX][k], b.f[F::PY][k], b.f[F::PZ][k]));
+  const Vec3 centre = (box.lo + box.hi) * 0.5f;
+  const float radius = 0.5f * length(box.hi - box.lo);
+  for (size_t i = 0; i < ctx.lights.size(); ++i) {
+    const PreparedLight& l = ctx.lights[i];
+    bool reaches = true;
+    if (l.type != LightType::Directional) {
+      const Vec3 v = centre - l.position;
+      const float dist = length(v);
+      if (l.range > 0 && dist > l.range + radius) reaches = false;
+      // Spot: the lanes' bounding sphere must overlap the outer cone (smoothstep is 0 outside).
+      if (reaches && l.type == LightType::Spot && !l.hemisphere && dist > radius) {
+        const float angle = std::acos(std::clamp(dot(v, l.direction) / dist, -1.0f, 1.0f));
+        const float outer = std::acos(std::clamp(l.cosOuter, -1.0f, 1.0f));
+        reaches = angle <= outer + std::asin(std::min(radius / dist, 1.0f)) + 1e-4f;
+      }
+    }
+    if (reaches) out.push_back(uint32_t(i));
+  }
+  b.lights = out.data();
+  b.lightCount = out.size();
 }
 
 void ShadeBatch::set(int lane, const SurfaceSample& s, Vec3 wo) {

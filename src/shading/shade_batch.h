@@ -4,6 +4,8 @@
 // raster pixels and ray hits run the same instructions.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "shading/blinn_phong.h"
 
@@ -40,11 +42,20 @@ struct ShadeBatch {
     kFields
   };
   int count = 0;  // surfaces in lanes [0, count); later lanes are never read
+  // The lights to evaluate (indices into ShadingContext::lights); null: all of them. Deferred
+  // shading leaves out lights that cannot reach any lane (cullLights).
+  const uint32_t* lights = nullptr;
+  size_t lightCount = 0;
   alignas(64) float f[kFields][kMax];
 
   void set(int lane, const SurfaceSample& s, Vec3 wo);
   Vec3 result(int lane) const { return {f[OR][lane], f[OG][lane], f[OB][lane]}; }
 };
+
+// Lists in `out` the lights of `ctx` that may light a point within `radius` of `centre`
+// (range and spot cone; directional and hemisphere lights always) and points b.lights at it.
+// Exact: a light left out contributes exactly 0 to every lane.
+void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out);
 
 // Shades lanes [0, b.count). lightVisibility: null (all visible) or an RGB transmittance per
 // light and lane at lightVisibility[(3 * light + channel) * visStride + lane].

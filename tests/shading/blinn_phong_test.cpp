@@ -1,8 +1,10 @@
 // The deferred image of a Lambertian plane under one light against analytic radiance.
 #include <gtest/gtest.h>
 
+#include "scene/builtin_scenes.h"
 #include "scene/primitives.h"
 #include "shading/blinn_phong.h"
+#include "shading/shade_batch.h"
 #include "test_util.h"
 
 using namespace tandem;
@@ -118,4 +120,103 @@ TEST(BlinnPhong, SpecularPeakMatchesNormalisedLobe) {
   // Mirror configuration: H = N, so f = (n + 8) / (8 pi).
   Vec3 c = shadeBlinnPhong(ss, {0, 1, 0}, s);
   EXPECT_NEAR(c.x, (32.0f + 8.0f) / (8.0f * kPi), 1e-5f);
+}
+
+// Tiled deferred's light culling is exact: a batch shaded with only the lights cullLights keeps
+// equals the batch shaded with all of them, bit for bit, and the spot and the ranged light are
+// left out of batches they cannot reach.
+TEST(ShadeBatch, CulledLightsContributeNothing) {
+  ShadingContext ctx;
+  Light spot, ranged, sun;
+  spot.type = LightType::Spot;
+  spot.position = {0, 5, 0};
+  spot.direction = {0, -1, 0};
+  spot.innerConeDeg = 10;
+  spot.outerConeDeg = 20;
+  ranged.position = {6, 1, 0};
+  ranged.range = 2;
+  sun.type = LightType::Directional;
+  sun.direction = normalize(Vec3(0.3f, -1, 0.2f));
+  for (const Light& l : {spot, ranged, sun}) ctx.lights.push_back(PreparedLight::from(l));
+  uint32_t rng = 7;
+  auto uniform = [&] {
+    rng = rng * 1664525u + 1013904223u;
+    return float(rng >> 8) / 16777216.0f;
+  };
+  int spotCulled = 0, rangedCulled = 0;
+  for (int batch = 0; batch < 200; ++batch) {
+    ShadeBatch all, culled;
+    const Vec3 base{uniform() * 16 - 8, 0, uniform() * 16 - 8};
+    for (int k = 0; k < ShadeBatch::kMax; ++k) {
+      SurfaceSample s;
+      s.position = base + Vec3(uniform(), 0, uniform()) * 0.5f;
+      s.normal = {0, 1, 0};
+      s.diffuse = {0.5f, 0.4f, 0.3f};
+      s.specular = {0.2f, 0.2f, 0.2f};
+      s.specularExponent = 32;
+      all.set(k, s, normalize(Vec3(0.1f, 1, 0.3f)));
+    }
+    all.count = ShadeBatch::kMax;
+    culled = all;
+    std::vector<uint32_t> list;
+    cullLights(culled, ctx, list);
+    spotCulled += std::find(list.begin(), list.end(), 0u) == list.end();
+    rangedCulled += std::find(list.begin(), list.end(), 1u) == list.end();
+    EXPECT_NE(std::find(list.begin(), list.end(), 2u), list.end());  // the sun always
+    shadeBatch(all, ctx);
+    shadeBatch(culled, ctx);
+    for (int k = 0; k < ShadeBatch::kMax; ++k)
+      for (int c = ShadeBatch::OR; c <= ShadeBatch::OB; ++c)
+        ASSERT_EQ(all.f[c][k], culled.f[c][k]) << "batch " << batch << " lane " << k;
+  }
+  EXPECT_GT(spotCulled, 100);  // the cone covers a disc of radius ~1.8 m out of 16 x 16 m
+  EXPECT_GT(rangedCulled, 100);
+}
+
+// One shading function: a 16-lane batch (deferred shading) and batches of one (ray hits through
+// shadeBlinnPhong) give the same radiance for the same surfaces, with and without visibility.
+TEST(ShadeBatch, WideBatchesMatchSingleHits) {
+  Scene scene = makeAtriumScene();
+  const ShadingContext ctx = ShadingContext::from(scene);
+  uint32_t rng = 11;
+  auto uniform = [&] {
+    rng = rng * 1664525u + 1013904223u;
+    return float(rng >> 8) / 16777216.0f;
+  };
+  ShadeBatch wide;
+  SurfaceSample samples[ShadeBatch::kMax];
+  Vec3 wos[ShadeBatch::kMax];
+  std::vector<float> vis(3 * ctx.lights.size() * ShadeBatch::kMax);
+  std::vector<Vec3> visOne(ctx.lights.size() * ShadeBatch::kMax);
+  for (int k = 0; k < ShadeBatch::kMax; ++k) {
+    SurfaceSample& s = samples[k];
+    s.position = {uniform() * 20 - 10, uniform() * 4, uniform() * 10 - 5};
+    s.normal = normalize(Vec3(uniform() - 0.5f, 1.0f, uniform() - 0.5f));
+    s.diffuse = {uniform(), uniform(), uniform()};
+    s.specular = k % 3 ? Vec3(uniform(), uniform(), uniform()) : Vec3(0.0f);
+    s.specularExponent = 1 + 200 * uniform();
+    s.emission = {0.01f * uniform(), 0, 0};
+    s.ambient = s.diffuse;
+    wos[k] = normalize(Vec3(uniform() - 0.5f, 1.0f, uniform() - 0.5f));
+    wide.set(k, s, wos[k]);
+    for (size_t i = 0; i < ctx.lights.size(); ++i) {
+      const Vec3 v = k % 2 ? Vec3(uniform(), uniform(), uniform()) : Vec3(1.0f);
+      visOne[size_t(k) * ctx.lights.size() + i] = v;
+      for (int c = 0; c < 3; ++c) vis[(3 * i + size_t(c)) * ShadeBatch::kMax + size_t(k)] = v[c];
+    }
+  }
+  wide.count = ShadeBatch::kMax;
+  ShadeBatch wideVis = wide;
+  shadeBatch(wide, ctx);
+  shadeBatch(wideVis, ctx, vis.data());
+  for (int k = 0; k < ShadeBatch::kMax; ++k) {
+    const Vec3 one = shadeBlinnPhong(samples[k], wos[k], ctx);
+    const Vec3 oneVis =
+        shadeBlinnPhong(samples[k], wos[k], ctx, &visOne[size_t(k) * ctx.lights.size()]);
+    EXPECT_GT(maxComponent(one), 0.0f);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(wide.result(k)[c], one[c], 1e-5f * (1 + std::abs(one[c]))) << k;
+      EXPECT_NEAR(wideVis.result(k)[c], oneVis[c], 1e-5f * (1 + std::abs(oneVis[c]))) << k;
+    }
+  }
 }
