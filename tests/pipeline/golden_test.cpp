@@ -13,7 +13,10 @@
 // Real regressions (a wrong shadow, a black mirror) fall far below either bound.
 //
 // Regenerate with: TANDEM_UPDATE_GOLDEN=1 ./tandem_tests --gtest_filter='*Golden*'
+// TANDEM_SIMD_TARGET=avx2 (or sse4) runs the comparison with the SIMD kernels of that instruction
+// set, as a machine without AVX-512 would.
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -55,7 +58,15 @@ std::vector<GoldenCase> goldenCases() {
   return cases;
 }
 
+void selectSimdTarget() {
+  const char* t = std::getenv("TANDEM_SIMD_TARGET");
+  if (!t) return;
+  const std::string name = t;
+  hwy::SetSupportedTargetsForTest(name == "avx2" ? HWY_AVX2 : name == "sse4" ? HWY_SSE4 : 0);
+}
+
 Buffer renderGolden(const GoldenCase& c, float nudge = 0.0f) {
+  selectSimdTarget();
   Scene scene = loadScene(c.scene);
   Pipeline pipeline = Pipeline::load(c.pipeline);
   if (c.pipeline == "reference") pipeline.setParam("pt_reference.spp=16", "golden");
