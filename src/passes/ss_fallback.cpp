@@ -174,7 +174,9 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
           const int lane = batch.count++;
           batch.set(lane, s, -d);
           for (size_t i = 0; i < lights; ++i) {
-            const float occluded = 1.0f - shadowMaps_.visibility(i, p, s.geoNormal);
+            // A light the surface faces away from adds nothing whatever its map says: no lookup.
+            const bool faces = dot(s.normal, sampleLight(shading.lights[i], p).wi) > 0.0f;
+            const float occluded = faces ? 1.0f - shadowMaps_.visibility(i, p, s.geoNormal) : 0.0f;
             for (size_t c = 0; c < 3; ++c)
               blocked[(3 * i + c) * ShadeBatch::kMax + size_t(lane)] = occluded;
           }
