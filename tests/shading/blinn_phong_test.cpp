@@ -25,6 +25,15 @@ Scene litPlane(const Light& light, Vec3 albedo) {
   return s;
 }
 
+// A small deterministic generator of uniforms in [0, 1) for the batch tests.
+struct Lcg {
+  uint32_t state;
+  float operator()() {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / 16777216.0f;
+  }
+};
+
 CameraDesc topCamera() {
   CameraDesc c;
   c.position = {0, 6, 0.001f};
@@ -140,11 +149,7 @@ TEST(ShadeBatch, CulledLightsContributeNothing) {
   sun.type = LightType::Directional;
   sun.direction = normalize(Vec3(0.3f, -1, 0.2f));
   for (const Light& l : {spot, ranged, sun}) ctx.lights.push_back(PreparedLight::from(l));
-  uint32_t rng = 7;
-  auto uniform = [&] {
-    rng = rng * 1664525u + 1013904223u;
-    return float(rng >> 8) / 16777216.0f;
-  };
+  Lcg uniform{7};
   int spotCulled = 0, rangedCulled = 0;
   for (int batch = 0; batch < 200; ++batch) {
     ShadeBatch all, culled;
@@ -180,11 +185,7 @@ TEST(ShadeBatch, CulledLightsContributeNothing) {
 TEST(ShadeBatch, WideBatchesMatchSingleHits) {
   Scene scene = makeAtriumScene();
   const ShadingContext ctx = ShadingContext::from(scene);
-  uint32_t rng = 11;
-  auto uniform = [&] {
-    rng = rng * 1664525u + 1013904223u;
-    return float(rng >> 8) / 16777216.0f;
-  };
+  Lcg uniform{11};
   ShadeBatch wide;
   SurfaceSample samples[ShadeBatch::kMax];
   Vec3 wos[ShadeBatch::kMax];
