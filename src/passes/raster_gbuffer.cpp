@@ -72,7 +72,8 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
         }
         SurfaceSample s =
             resolveSurface(fs, int(object), int(prim), o, d, 0.0f, planar ? tuv : nullptr, spread);
-        g.write(x, y, s, vis.depth[i], motionVector(fs, v, s.object, s.position));
+        const Vec2 pixel{float(lx) + 0.5f, float(ly) + 0.5f};
+        g.write(x, y, s, vis.depth[i], motionVectorAtPixel(fs, v, s.object, s.position, pixel));
       }
     }
   });

@@ -92,6 +92,16 @@ Vec2 motionVector(const FrameScene& fs, const View& view, int object, Vec3 p) {
   return screenMotion(view, Vec4(p, 1.0f), Vec4(prev, 1.0f));
 }
 
+Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 p, Vec2 pixel) {
+  const FrameObject& fo = fs.objects[size_t(object)];
+  if (!fo.moved && !view.cameraMoved) return {0, 0};
+  Vec3 prev = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
+  Vec2 before;
+  if (!toPixel(view.prevCamera.viewProjUnjittered, view.prevCamera, Vec4(prev, 1.0f), before))
+    return {0, 0};
+  return pixel + view.camera.jitter - before;
+}
+
 Vec2 backgroundMotion(const View& view, Vec3 dir) {
   if (!view.cameraMoved || view.camera.desc.projection != Projection::Perspective) return {0, 0};
   return screenMotion(view, Vec4(dir, 0.0f), Vec4(dir, 0.0f));

@@ -42,6 +42,11 @@ struct GBufferView {
 // Screen-space motion of a surface point of `object` in `view`: where it is now minus where it was
 // (unjittered cameras).
 Vec2 motionVector(const FrameScene& fs, const View& view, int object, Vec3 worldPos);
+// The same for a point known to lie on the camera ray of pixel centre `pixel` (view-local pixel
+// coordinates, centres at +0.5): where it is now needs no projection (the unjittered camera
+// sees it at pixel + jitter), only where it was.
+Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 worldPos,
+                         Vec2 pixel);
 // Motion of the background seen along `dir` (a point at infinity: only camera rotation moves it).
 Vec2 backgroundMotion(const View& view, Vec3 dir);
 
