@@ -67,7 +67,8 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
   s.material = obj.material;
   s.t = t;
   s.position = a * w + b * u + c * v;
-  s.geoNormal = normalize(cross(b - a, c - a));
+  const Vec3 worldCross = cross(b - a, c - a);  // twice the triangle's area, along its normal
+  s.geoNormal = normalize(worldCross);
   auto normal = [&](uint32_t i) { return moving ? normalAt(fo, i, time) : fo.normals[i]; };
   Vec3 n = normalize(normal(idx[0]) * w + normal(idx[1]) * u + normal(idx[2]) * v);
   if (mat.doubleSided && dot(s.geoNormal, dir) > 0) {
@@ -80,7 +81,6 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
   // surface (1 / cos), in UV units through the triangle's UV / world scale (and the tiling).
   float footprint = 0.0f;
   if (pixelSpread > 0.0f && mat.hasTexture() && !mesh.uvs.empty()) {
-    const Vec3 worldCross = cross(b - a, c - a);
     const Vec2 e1 = mesh.uvs[idx[1]] - mesh.uvs[idx[0]], e2 = mesh.uvs[idx[2]] - mesh.uvs[idx[0]];
     const float uvArea = std::abs(e1.x * e2.y - e1.y * e2.x), worldArea = length(worldCross);
     const float dirLength = length(dir);
