@@ -7,6 +7,7 @@
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
 #include "rt/whitted.h"
+#include "shading/shade_batch.h"
 
 namespace tandem {
 
@@ -94,56 +95,94 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   const float outsideShadow = float(param("outside_mask_shadow"));
   tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
-    std::vector<Vec3> vis(scene.lights.size());
+    LightVisibility8 vis(scene.lights.size());
     EffectTallies& tally = tallies.local();
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        const float* m = mask.at(x, y);
-        const bool want[kEffectCount] = {m[kShadow] > 0.5f, m[kReflection] > 0.5f,
-                                         m[kRefraction] > 0.5f};
-        SurfaceSample s;
+    // 4x2 pixel blocks: a block's shadow rays go as 8-wide packets, its shadow shading as one
+    // batch; reflections and refractions recurse pixel by pixel.
+    for (int by = y0; by < y1; by += 2)
+      for (int bx = x0; bx < x1; bx += 4) {
+        SurfaceSample s[8];
+        Vec3 d[8];
+        int px[8], py[8], n = 0;
+        bool want[8][kEffectCount], hit[8];
+        for (int j = 0; j < 2; ++j)
+          for (int i = 0; i < 4; ++i) {
+            const int x = bx + i, y = by + j;
+            if (x >= x1 || y >= y1) continue;
+            const float* m = mask.at(x, y);
+            for (int e = 0; e < kEffectCount; ++e) want[n][e] = m[e] > 0.5f;
+            hit[n] = (want[n][0] || want[n][1] || want[n][2]) && g.read(x, y, s[n]);
+            Vec3 origin;
+            if (hit[n])
+              v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, origin, d[n]);
+            px[n] = x;
+            py[n] = y;
+            ++n;
+          }
         // Listing 8a: 0 in all three outside the mask (`outside_mask_shadow` = 1 keeps the
         // shadow buffer neutral there instead; blend never reads it outside the mask).
-        Vec3 shadowRgb(outsideShadow), reflectionRgb(0.0f), refractionRgb(0.0f);
-        if ((want[0] || want[1] || want[2]) && g.read(x, y, s)) {
-          shadowRgb = Vec3(1.0f);
-          EffectTally& t = tally[size_t(s.object)];
-          Vec3 o, d;
-          v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
-          // What each effect costs this object, in rays and in time (the heuristic's ms budget
-          // and recursion-aware costs are built from these).
-          uint64_t r0 = rt.raysOnThisThread(), c0 = timed ? cycleNow() : 0;
-          auto account = [&](int e) {
-            uint64_t r1 = rt.raysOnThisThread(), c1 = timed ? cycleNow() : 0;
-            t.pixels[size_t(e)] += 1;
-            t.rays[size_t(e)] += r1 - r0;
-            t.ticks[size_t(e)] += c1 - c0;
-            r0 = r1;
-            c0 = c1;
-          };
-          if (want[kShadow]) {
-            // Listing 8a: the shadow buffer starts at 1 and loses the light each occluder
-            // blocks. One shading call weighted by (1 - visibility) sums exactly the blocked
-            // light; subtracting the light-independent terms leaves only the lights' share.
-            whitted.lightVisibility(s, vis.data());
-            for (Vec3& v : vis) v = Vec3(1.0f) - v;
-            Vec3 blocked = shadeBlinnPhong(s, -d, shading, vis.data()) -
-                           (s.emission + shading.ambient * s.ambient);
-            shadowRgb = Vec3(1.0f) - blocked;
-            account(kShadow);
-          }
-          if (want[kReflection] && s.reflectivity > 0) {
-            reflectionRgb = whitted.primaryReflection(s, d);
-            account(kReflection);
-          }
-          if (want[kRefraction] && s.opacity < 1) {
-            refractionRgb = whitted.primaryRefraction(s, d);
-            account(kRefraction);
+        Vec3 shadowRgb[8], reflectionRgb[8], refractionRgb[8];
+        int lane[8], m = 0;
+        SurfaceSample shadowed[8];
+        for (int k = 0; k < n; ++k) {
+          shadowRgb[k] = Vec3(hit[k] ? 1.0f : outsideShadow);
+          reflectionRgb[k] = refractionRgb[k] = Vec3(0.0f);
+          if (hit[k] && want[k][kShadow]) {
+            shadowed[m] = s[k];
+            lane[m++] = k;
           }
         }
-        shadow.setRgb(x, y, shadowRgb);
-        reflection.setRgb(x, y, reflectionRgb);
-        refraction.setRgb(x, y, refractionRgb);
+        if (m > 0) {
+          // Listing 8a: the shadow buffer starts at 1 and loses the light each occluder
+          // blocks. One shading call weighted by (1 - visibility) sums exactly the blocked
+          // light; subtracting the light-independent terms leaves only the lights' share.
+          const uint64_t c0 = timed ? cycleNow() : 0;
+          int rays[8];
+          whitted.lightVisibility8(shadowed, m, vis.data(), rays);
+          for (size_t i = 0; i < 3 * 8 * scene.lights.size(); ++i)
+            vis.data()[i] = 1.0f - vis.data()[i];
+          ShadeBatch b;
+          b.count = m;
+          for (int j = 0; j < m; ++j) b.set(j, shadowed[j], -d[lane[j]]);
+          shadeBatch(b, shading, vis.data(), 8);
+          const uint64_t ticks = timed ? cycleNow() - c0 : 0;
+          for (int j = 0; j < m; ++j) {
+            const SurfaceSample& sj = shadowed[j];
+            shadowRgb[lane[j]] =
+                Vec3(1.0f) - (b.result(j) - (sj.emission + shading.ambient * sj.ambient));
+            // What shadows cost this object, in rays and time (the heuristic's ms budget is
+            // built from these); the block's time is shared by its lanes.
+            EffectTally& t = tally[size_t(sj.object)];
+            t.pixels[kShadow] += 1;
+            t.rays[kShadow] += uint64_t(rays[j]);
+            t.ticks[kShadow] += ticks / uint64_t(m) + (uint64_t(j) < ticks % uint64_t(m) ? 1 : 0);
+          }
+        }
+        for (int k = 0; k < n; ++k) {
+          if (hit[k]) {
+            EffectTally& t = tally[size_t(s[k].object)];
+            uint64_t r0 = rt.raysOnThisThread(), c0 = timed ? cycleNow() : 0;
+            auto account = [&](int e) {
+              uint64_t r1 = rt.raysOnThisThread(), c1 = timed ? cycleNow() : 0;
+              t.pixels[size_t(e)] += 1;
+              t.rays[size_t(e)] += r1 - r0;
+              t.ticks[size_t(e)] += c1 - c0;
+              r0 = r1;
+              c0 = c1;
+            };
+            if (want[k][kReflection] && s[k].reflectivity > 0) {
+              reflectionRgb[k] = whitted.primaryReflection(s[k], d[k]);
+              account(kReflection);
+            }
+            if (want[k][kRefraction] && s[k].opacity < 1) {
+              refractionRgb[k] = whitted.primaryRefraction(s[k], d[k]);
+              account(kRefraction);
+            }
+          }
+          shadow.setRgb(px[k], py[k], shadowRgb[k]);
+          reflection.setRgb(px[k], py[k], reflectionRgb[k]);
+          refraction.setRgb(px[k], py[k], refractionRgb[k]);
+        }
       }
   });
   RtStats stats;

@@ -20,21 +20,32 @@ void RTWhittedPass::execute(FrameContext& ctx) {
   Whitted whitted(rt, scene, shading, whittedSettings(*this));
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& ids = ctx.output(*this, "object_id");
-  for (const View& v : ctx.views)
-    tracePrimaryRays(v.camera, rt, [&](int x, int y, const Ray& r, const Hit& h) {
-      x += v.x;
-      y += v.y;
-      if (!h.valid()) {
-        hdr.setRgb(x, y, scene.skyRadiance(r.dir));
-        ids.at(x, y)[0] = -1;
-        return;
-      }
-      const float tuv[3] = {h.t, h.u, h.v};  // Embree's hit; the pixel's cone picks texture LOD
-      SurfaceSample s = resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir, r.time, tuv,
-                                       ctx.pixelSpread(v));
-      hdr.setRgb(x, y, whitted.shadePrimary(s, r.dir));
-      ids.at(x, y)[0] = float(h.object);
-    });
+  for (const View& v : ctx.views) {
+    const float spread = ctx.pixelSpread(v);  // the pixel's cone picks texture LOD
+    tracePrimaryBlocks(
+        v.camera, rt, [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
+          // The block's surfaces are shaded together: shadow rays as packets, one batch.
+          SurfaceSample s[8];
+          Vec3 d[8], rgb[8];
+          int at[8], m = 0;
+          for (int k = 0; k < n; ++k) {
+            const int x = px[k] + v.x, y = py[k] + v.y;
+            const Hit& h = hits[k];
+            ids.at(x, y)[0] = h.valid() ? float(h.object) : -1.0f;
+            if (!h.valid()) {
+              hdr.setRgb(x, y, scene.skyRadiance(rs[k].dir));
+              continue;
+            }
+            const float tuv[3] = {h.t, h.u, h.v};  // Embree's hit: no second intersection
+            s[m] = resolveSurface(ctx.frame, h.object, h.prim, rs[k].origin, rs[k].dir, rs[k].time,
+                                  tuv, spread);
+            d[m] = rs[k].dir;
+            at[m++] = k;
+          }
+          whitted.shadePrimary8(s, d, m, rgb);
+          for (int j = 0; j < m; ++j) hdr.setRgb(px[at[j]] + v.x, py[at[j]] + v.y, rgb[j]);
+        });
+  }
   // Primary rays are counted by the tracer too, so the delta covers every ray of the pass.
   ctx.passRays += double(rt.raysTraced() - before);
 }

@@ -10,11 +10,12 @@
 
 namespace tandem {
 
-// body(x, y, ray, hit) is called once per pixel from worker threads. Returns the rays traced.
-// `tau`: the shutter fraction the rays see moving objects at (the camera may also look through a
-// lens point: Camera::make's `lens`).
+// body(n, px, py, rays, hits) is called once per block of n <= 8 pixels from worker threads (what
+// secondary work wants to keep packeted). Returns the rays traced. `tau`: the shutter fraction
+// the rays see moving objects at (the camera may also look through a lens point: Camera::make's
+// `lens`).
 template <class Body>
-uint64_t tracePrimaryRays(const Camera& cam, const RayTracer& rt, Body&& body, float tau = 0.0f) {
+uint64_t tracePrimaryBlocks(const Camera& cam, const RayTracer& rt, Body&& body, float tau = 0.0f) {
   std::atomic<uint64_t> rays{0};
   parallelTiles(cam.width, cam.height, [&](int x0, int y0, int x1, int y1) {
     uint64_t local = 0;
@@ -39,11 +40,22 @@ uint64_t tracePrimaryRays(const Camera& cam, const RayTracer& rt, Body&& body, f
         Hit hits[8];
         rt.intersect8(rs, n, hits, /*cullBackfaces=*/true);
         local += uint64_t(n);
-        for (int k = 0; k < n; ++k) body(px[k], py[k], rs[k], hits[k]);
+        body(n, px, py, rs, hits);
       }
     rays += local;
   });
   return rays.load();
+}
+
+// body(x, y, ray, hit) once per pixel.
+template <class Body>
+uint64_t tracePrimaryRays(const Camera& cam, const RayTracer& rt, Body&& body, float tau = 0.0f) {
+  return tracePrimaryBlocks(
+      cam, rt,
+      [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
+        for (int k = 0; k < n; ++k) body(px[k], py[k], rs[k], hits[k]);
+      },
+      tau);
 }
 
 }  // namespace tandem

@@ -21,19 +21,26 @@ struct GeometryInfo {
 
 namespace {
 
-// Context passed to filter callbacks (Embree's documented pattern of extending the context).
-struct QueryContext {
-  RTCIntersectContext ctx;
-  const FrameScene* frame;
-  Vec3* transmittance;          // non-null: a shadow ray accumulating Listing 8b's attenuation
-  bool texturedShadows = true;  // the occluder's textured diffuse colour (else the base colour)
-  // Surfaces already counted by this shadow ray: a ray through a shared edge reports both
-  // triangles at the same distance, which must attenuate once.
+// One shadow ray's Listing 8b state: its attenuation so far, and the surfaces already counted (a
+// ray through a shared edge reports both triangles at the same distance, which must attenuate
+// once).
+struct ShadowLane {
+  Vec3 transmittance{1.0f};
   struct Counted {
     unsigned geom;
     float t;
   } counted[8];
   int countedN = 0;
+};
+
+// Context passed to filter callbacks (Embree's documented pattern of extending the context).
+struct QueryContext {
+  RTCIntersectContext ctx;
+  const FrameScene* frame;
+  // Non-null: shadow rays accumulating Listing 8b's attenuation, indexed by the ray's id (its
+  // lane: Embree may call the filter with single rays out of a packet).
+  ShadowLane* shadow = nullptr;
+  bool texturedShadows = true;  // the occluder's textured diffuse colour (else the base colour)
 };
 
 void errorCallback(void*, RTCError code, const char* str) {
@@ -76,7 +83,7 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
         continue;
       }
     }
-    if (qc->transmittance) {
+    if (qc->shadow) {
       // Listing 8b: occluders that cast shadows attenuate by transparency x (1 - diffuse); the
       // ray ends once nothing passes, otherwise the hit is ignored and traversal goes on.
       // (The BVH is built without spatial splits, so each triangle is reported once.)
@@ -84,19 +91,19 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
         args->valid[i] = 0;
         continue;
       }
-      auto* q = const_cast<QueryContext*>(qc);
+      ShadowLane& q = qc->shadow[RTCRayN_id(ray, args->N, i)];
       unsigned geom = RTCHitN_geomID(hit, args->N, i);
       float tHit = RTCRayN_tfar(ray, args->N, i);
       bool duplicate = false;
-      for (int k = 0; k < std::min(q->countedN, 8); ++k)
-        duplicate |= q->counted[k].geom == geom &&
-                     std::abs(q->counted[k].t - tHit) <= 1e-5f * std::max(1.0f, tHit);
+      for (int k = 0; k < std::min(q.countedN, 8); ++k)
+        duplicate |= q.counted[k].geom == geom &&
+                     std::abs(q.counted[k].t - tHit) <= 1e-5f * std::max(1.0f, tHit);
       if (duplicate) {
         args->valid[i] = 0;
         continue;
       }
-      q->counted[q->countedN++ % 8] = {geom, tHit};  // a ring of the 8 most recent surfaces
-      Vec3& t = *qc->transmittance;
+      q.counted[q.countedN++ % 8] = {geom, tHit};  // a ring of the 8 most recent surfaces
+      Vec3& t = q.transmittance;
       Vec3 diffuse = mat.diffuse;
       float opacity = mat.opacity;
       if (qc->texturedShadows && mat.opacity < 1.0f) {
@@ -221,6 +228,20 @@ void setRay(RTCRay& r, const Ray& in) {
   r.id = 0;
   r.flags = 0;
 }
+
+void setRayLane(RTCRay8& r, int i, const Ray& in) {
+  r.org_x[i] = in.origin.x;
+  r.org_y[i] = in.origin.y;
+  r.org_z[i] = in.origin.z;
+  r.dir_x[i] = in.dir.x;
+  r.dir_y[i] = in.dir.y;
+  r.dir_z[i] = in.dir.z;
+  r.tnear[i] = in.tnear;
+  r.tfar[i] = in.tfar;
+  r.time[i] = in.time;
+  r.mask[i] = ~0u;
+  r.flags[i] = 0;
+}
 }  // namespace
 
 Hit RayTracer::intersect(const Ray& in, bool cullBackfaces) const {
@@ -228,7 +249,6 @@ Hit RayTracer::intersect(const Ray& in, bool cullBackfaces) const {
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
   if (cullBackfaces) qc.ctx.filter = cullBackfaceHit;
-  qc.transmittance = nullptr;
   RTCRayHit rh;
   setRay(rh.ray, in);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -250,7 +270,6 @@ bool RayTracer::occluded(const Ray& in) const {
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
-  qc.transmittance = nullptr;
   RTCRay r;
   setRay(r, in);
   rtcOccluded1(scene_, &qc.ctx, &r);
@@ -259,17 +278,42 @@ bool RayTracer::occluded(const Ray& in) const {
 }
 
 Vec3 RayTracer::transmittance(const Ray& in, bool textured) const {
-  Vec3 t(1.0f);
+  ShadowLane lane;
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
   qc.frame = frame_;
-  qc.transmittance = &t;
+  qc.shadow = &lane;
   qc.texturedShadows = textured;
   RTCRay r;
   setRay(r, in);
   rtcOccluded1(scene_, &qc.ctx, &r);
   countRays(1);
-  return r.tfar < 0 ? Vec3(0.0f) : t;
+  return r.tfar < 0 ? Vec3(0.0f) : lane.transmittance;
+}
+
+void RayTracer::transmittance8(const Ray* rays, const bool* active, Vec3* out,
+                               bool textured) const {
+  ShadowLane lanes[8];
+  QueryContext qc;
+  rtcInitIntersectContext(&qc.ctx);
+  qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  qc.frame = frame_;
+  qc.shadow = lanes;
+  qc.texturedShadows = textured;
+  alignas(32) int valid[8];
+  alignas(32) RTCRay8 r;
+  int count = 0;
+  for (int i = 0; i < 8; ++i) {
+    valid[i] = active[i] ? -1 : 0;
+    count += active[i] ? 1 : 0;
+    setRayLane(r, i, rays[active[i] ? i : 0]);
+    r.id[i] = unsigned(i);
+  }
+  if (count == 0) return;
+  rtcOccluded8(valid, scene_, &qc.ctx, &r);
+  countRays(uint64_t(count));
+  for (int i = 0; i < 8; ++i)
+    if (active[i]) out[i] = r.tfar[i] < 0 ? Vec3(0.0f) : lanes[i].transmittance;
 }
 
 void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackfaces) const {
@@ -278,24 +322,12 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits, bool cullBackf
   qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   qc.frame = frame_;
   if (cullBackfaces) qc.ctx.filter = cullBackfaceHit;
-  qc.transmittance = nullptr;
   alignas(32) int valid[8];
   alignas(32) RTCRayHit8 rh;
   for (int i = 0; i < 8; ++i) {
-    const Ray& r = rays[i < count ? i : 0];
     valid[i] = i < count ? -1 : 0;
-    rh.ray.org_x[i] = r.origin.x;
-    rh.ray.org_y[i] = r.origin.y;
-    rh.ray.org_z[i] = r.origin.z;
-    rh.ray.dir_x[i] = r.dir.x;
-    rh.ray.dir_y[i] = r.dir.y;
-    rh.ray.dir_z[i] = r.dir.z;
-    rh.ray.tnear[i] = r.tnear;
-    rh.ray.tfar[i] = r.tfar;
-    rh.ray.time[i] = r.time;
-    rh.ray.mask[i] = ~0u;
+    setRayLane(rh.ray, i, rays[i < count ? i : 0]);
     rh.ray.id[i] = unsigned(i);
-    rh.ray.flags[i] = 0;
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }

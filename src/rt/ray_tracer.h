@@ -46,6 +46,9 @@ class RayTracer {
   // the occluder's diffuse colour at the hit, textures included (what the G-buffer would hold);
   // otherwise the material's base diffuse colour.
   Vec3 transmittance(const Ray& r, bool textured = true) const;
+  // Up to 8 shadow rays in one coherent Embree packet: out[i] = transmittance(rays[i]) for the
+  // lanes with active[i] (others untouched). Each lane attenuates on its own (Listing 8b).
+  void transmittance8(const Ray* rays, const bool* active, Vec3* out, bool textured = true) const;
   // Up to 8 rays in one Embree packet; `count` active lanes.
   void intersect8(const Ray* rays, int count, Hit* hits, bool cullBackfaces = false) const;
 

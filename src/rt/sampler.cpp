@@ -21,6 +21,26 @@ constexpr std::array<std::array<uint32_t, 256>, 4> kSobol1Bytes = [] {
   return t;
 }();
 
+// The same map in the reversed-bit domain, y -> reverse(sobolDim1(reverse(y))): still linear, so
+// still four byte tables. The scramblers work on reversed bits, so the index never needs turning
+// back before dimension 1 is looked up.
+constexpr std::array<std::array<uint32_t, 256>, 4> kSobol1ReversedBytes = [] {
+  std::array<std::array<uint32_t, 256>, 4> t{};
+  for (int b = 0; b < 4; ++b)
+    for (int x = 0; x < 256; ++x) {
+      const uint32_t i = reverseBits32(uint32_t(x) << (8 * b));
+      uint32_t d = 0;
+      for (int k = 0; k < 4; ++k) d ^= kSobol1Bytes[size_t(k)][(i >> (8 * k)) & 255u];
+      t[size_t(b)][size_t(x)] = reverseBits32(d);
+    }
+  return t;
+}();
+
+uint32_t sobolDim1Reversed(uint32_t y) {
+  return kSobol1ReversedBytes[0][y & 255u] ^ kSobol1ReversedBytes[1][(y >> 8) & 255u] ^
+         kSobol1ReversedBytes[2][(y >> 16) & 255u] ^ kSobol1ReversedBytes[3][y >> 24];
+}
+
 // A 64 -> 32 bit mix (splitmix64 finaliser) to seed each pixel's stream.
 uint32_t mix64(uint64_t z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
@@ -41,28 +61,31 @@ uint32_t sobolDim1(uint32_t i) {
 
 SobolSampler::SobolSampler(uint64_t seed, uint64_t pixelKey, uint32_t index)
     : seed_(mix64(seed * 0x9E3779B97F4A7C15ull ^ mix64(pixelKey + 0x632BE59BD9B4E019ull))),
-      index_(index) {}
+      reversedIndex_(reverseBits32(index)) {}
 
 // Each pair gets its own seed and its own shuffle of the sample index. The shuffle is itself an
 // Owen scramble, so every aligned power-of-two block of indices maps to a permuted block:
 // stratification survives while the pairs decorrelate.
+// nestedUniformScramble(index, .) without its final reversal.
 uint32_t SobolSampler::nextPair(uint32_t& pairSeed) {
   pairSeed = hashCombine(seed_, pair_++);
-  return nestedUniformScramble(index_, hashCombine(pairSeed, 0x68bc21ebu));
+  return laineKarras(reversedIndex_, hashCombine(pairSeed, 0x68bc21ebu));
 }
 
+// With i = reverse(y) the shuffled index: dimension 0 is nestedUniformScramble(sobolDim0(i)) =
+// reverse(laineKarras(i)), dimension 1 nestedUniformScramble(sobolDim1(i)) =
+// reverse(laineKarras(sobolDim1Reversed(y))).
 float SobolSampler::uniform() {
   uint32_t s;
-  const uint32_t i = nextPair(s);
-  return toUnit(reverseBits32(laineKarras(i, hashCombine(s, 0x02e5be93u))));
+  const uint32_t y = nextPair(s);
+  return toUnit(reverseBits32(laineKarras(reverseBits32(y), hashCombine(s, 0x02e5be93u))));
 }
 
 Vec2 SobolSampler::get2D() {
   uint32_t s;
-  const uint32_t i = nextPair(s);
-  // Dimension 0 is the reversed index, so its scramble needs no second reversal.
-  return {toUnit(reverseBits32(laineKarras(i, hashCombine(s, 0x02e5be93u)))),
-          toUnit(nestedUniformScramble(sobolDim1(i), hashCombine(s, 0x967a889bu)))};
+  const uint32_t y = nextPair(s);
+  return {toUnit(reverseBits32(laineKarras(reverseBits32(y), hashCombine(s, 0x02e5be93u)))),
+          toUnit(reverseBits32(laineKarras(sobolDim1Reversed(y), hashCombine(s, 0x967a889bu))))};
 }
 
 }  // namespace tandem

@@ -11,7 +11,7 @@
 
 namespace tandem {
 
-inline uint32_t reverseBits32(uint32_t x) {
+constexpr uint32_t reverseBits32(uint32_t x) {
   x = __builtin_bswap32(x);  // bytes, then bits within bytes
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
@@ -20,7 +20,7 @@ inline uint32_t reverseBits32(uint32_t x) {
 
 // Owen scrambling of a 32-bit fixed-point value: each bit is flipped by a hash of the bits above
 // it (the Laine-Karras permutation, applied to the reversed bits).
-inline uint32_t laineKarras(uint32_t x, uint32_t seed) {
+constexpr uint32_t laineKarras(uint32_t x, uint32_t seed) {
   x += seed;
   x ^= x * 0x6c50b47cu;
   x ^= x * 0xb82f1e52u;
@@ -28,16 +28,16 @@ inline uint32_t laineKarras(uint32_t x, uint32_t seed) {
   x ^= x * 0x8d22f6e6u;
   return x;
 }
-inline uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
+constexpr uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
   return reverseBits32(laineKarras(reverseBits32(x), seed));
 }
 
 // The first two Sobol dimensions of index i as 32-bit fixed point (MSB = 1/2).
-inline uint32_t sobolDim0(uint32_t i) {
+constexpr uint32_t sobolDim0(uint32_t i) {
   return reverseBits32(i);
 }
 uint32_t sobolDim1(uint32_t i);
-inline uint32_t hashCombine(uint32_t seed, uint32_t v) {
+constexpr uint32_t hashCombine(uint32_t seed, uint32_t v) {
   return seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2));
 }
 
@@ -49,8 +49,11 @@ class SobolSampler {
   float uniform();  // a fresh pair's first coordinate (still stratified)
 
  private:
-  uint32_t nextPair(uint32_t& pairSeed);  // the shuffled index of the next pair
-  uint32_t seed_, index_, pair_ = 0;
+  // The next pair's shuffled index in the reversed-bit domain (the Laine-Karras output before
+  // its final reversal), and the pair's seed. The sequence is the one the comment above defines;
+  // it is computed where it needs the fewest bit reversals (the index is reversed once).
+  uint32_t nextPair(uint32_t& pairSeed);
+  uint32_t seed_, reversedIndex_, pair_ = 0;
 };
 
 }  // namespace tandem

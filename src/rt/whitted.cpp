@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "scene/scene.h"
+#include "shading/shade_batch.h"
 #include "shading/surface_resolve.h"
 
 namespace tandem {
@@ -31,20 +32,23 @@ Vec3 offsetRayOrigin(const SurfaceSample& s, Vec3 dir) {
   return s.position + s.geoNormal * (dot(dir, s.geoNormal) > 0 ? eps : -eps);
 }
 
+bool Whitted::shadowRay(const SurfaceSample& s, size_t light, Ray& r) const {
+  if (!scene_.lights[light].castsShadows) return false;
+  LightSample ls = sampleLight(shading_.lights[light], s.position);
+  if (dot(s.normal, ls.wi) <= 0.0f || maxComponent(ls.radiance) <= 0.0f)
+    return false;  // unlit anyway
+  r.origin = offsetRayOrigin(s, ls.wi);
+  r.dir = ls.wi;
+  r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
+                                   : ls.distance * (1.0f - 1e-4f);
+  return true;
+}
+
 void Whitted::lightVisibility(const SurfaceSample& s, Vec3* vis) const {
   for (size_t i = 0; i < scene_.lights.size(); ++i) {
     vis[i] = Vec3(1.0f);
-    const Light& l = scene_.lights[i];
-    if (!l.castsShadows) continue;
-    LightSample ls = sampleLight(shading_.lights[i], s.position);
-    if (dot(s.normal, ls.wi) <= 0.0f || maxComponent(ls.radiance) <= 0.0f)
-      continue;  // unlit anyway
     Ray r;
-    r.origin = offsetRayOrigin(s, ls.wi);
-    r.dir = ls.wi;
-    r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
-                                     : ls.distance * (1.0f - 1e-4f);
-    vis[i] = rt_.transmittance(r, settings_.texturedShadows);
+    if (shadowRay(s, i, r)) vis[i] = rt_.transmittance(r, settings_.texturedShadows);
   }
 }
 
@@ -101,18 +105,45 @@ Vec3 Whitted::traceSecondary(Vec3 origin, Vec3 dir, int depth, float importance)
 }
 
 Vec3 Whitted::shadePrimary(const SurfaceSample& s, Vec3 d) const {
-  // No allocation per pixel for the usual light counts.
-  Vec3 stackVis[32];
-  std::vector<Vec3> heapVis;
-  Vec3* vis = stackVis;
-  if (scene_.lights.size() > 32) {
-    heapVis.resize(scene_.lights.size());
-    vis = heapVis.data();
+  Vec3 out;
+  shadePrimary8(&s, &d, 1, &out);
+  return out;
+}
+
+void Whitted::lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays) const {
+  constexpr int W = 8;
+  for (int k = 0; k < W; ++k)
+    if (rays) rays[k] = 0;
+  for (size_t i = 0; i < scene_.lights.size(); ++i) {
+    Ray r[W];
+    bool active[W] = {};
+    Vec3 t[W];
+    for (int k = 0; k < W; ++k) t[k] = Vec3(1.0f);
+    bool any = false;
+    for (int k = 0; k < n; ++k) {
+      any |= active[k] = shadowRay(s[k], i, r[k]);
+      if (rays && active[k]) ++rays[k];
+    }
+    if (any) rt_.transmittance8(r, active, t, settings_.texturedShadows);
+    for (int k = 0; k < W; ++k) {
+      vis[(3 * i + 0) * W + size_t(k)] = t[k].x;
+      vis[(3 * i + 1) * W + size_t(k)] = t[k].y;
+      vis[(3 * i + 2) * W + size_t(k)] = t[k].z;
+    }
   }
-  lightVisibility(s, vis);
-  Vec3 lighting = shadeBlinnPhong(s, -d, shading_, vis);
-  return combineEffects(s.reflectivity, 1.0f - s.opacity, primaryReflection(s, d),
-                        primaryRefraction(s, d), lighting);
+}
+
+void Whitted::shadePrimary8(const SurfaceSample* s, const Vec3* d, int n, Vec3* out) const {
+  if (n <= 0) return;
+  LightVisibility8 vis(scene_.lights.size());
+  lightVisibility8(s, n, vis.data());
+  ShadeBatch b;
+  b.count = n;
+  for (int k = 0; k < n; ++k) b.set(k, s[k], -d[k]);
+  shadeBatch(b, shading_, vis.data(), 8);
+  for (int k = 0; k < n; ++k)
+    out[k] = combineEffects(s[k].reflectivity, 1.0f - s[k].opacity, primaryReflection(s[k], d[k]),
+                            primaryRefraction(s[k], d[k]), b.result(k));
 }
 
 }  // namespace tandem

@@ -39,6 +39,20 @@ Vec3 offsetRayOrigin(const SurfaceSample& s, Vec3 dir);
 // Returns false on total internal reflection.
 bool refractDir(Vec3 d, Vec3 n, float eta, Vec3& out);
 
+// Per-light RGB visibility of up to 8 lanes, laid out as shadeBatch reads it:
+// [(3 * light + channel) * 8 + lane]. On the stack for the usual light counts.
+class LightVisibility8 {
+ public:
+  explicit LightVisibility8(size_t lights) {
+    if (lights > 32) heap_.resize(3 * 8 * lights);
+  }
+  float* data() { return heap_.empty() ? stack_ : heap_.data(); }
+
+ private:
+  float stack_[3 * 8 * 32];
+  std::vector<float> heap_;
+};
+
 class Whitted {
  public:
   Whitted(const RayTracer& rt, const Scene& scene, const ShadingContext& shading,
@@ -48,6 +62,9 @@ class Whitted {
   // Per-light RGB transmittance from the surface point to each light (1 where a light casts no
   // shadows or does not face the point). `vis` has one entry per scene light.
   void lightVisibility(const SurfaceSample& s, Vec3* vis) const;
+  // The same for up to 8 surfaces, each light's shadow rays in one 8-wide Embree packet, into a
+  // LightVisibility8 (lanes >= n are 1). rays (optional, 8 entries): shadow rays per lane.
+  void lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays = nullptr) const;
   // The reflection and refraction colours seen from a primary surface hit by direction d
   // (zero where the surface is not reflective / not transparent).
   Vec3 primaryReflection(const SurfaceSample& s, Vec3 d) const;
@@ -56,10 +73,16 @@ class Whitted {
   Vec3 traceSecondary(Vec3 origin, Vec3 dir, int depth, float importance) const;
   // Full ray-traced shading of a primary surface: shadows, reflection, refraction, combined.
   Vec3 shadePrimary(const SurfaceSample& s, Vec3 d) const;
+  // The same for up to 8 surfaces (a 4x2 pixel block): each light's shadow rays in one 8-wide
+  // Embree packet, the lighting in one shading batch; out[i] = shadePrimary(s[i], d[i]).
+  void shadePrimary8(const SurfaceSample* s, const Vec3* d, int n, Vec3* out) const;
 
  private:
   Vec3 reflectionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const;
   Vec3 refractionFrom(const SurfaceSample& s, Vec3 d, int depth, float importance) const;
+  // The shadow ray towards light `light` of `s`; false where none is needed (the light casts no
+  // shadows, does not face the point, or is dark).
+  bool shadowRay(const SurfaceSample& s, size_t light, Ray& r) const;
 
   const RayTracer& rt_;
   const Scene& scene_;

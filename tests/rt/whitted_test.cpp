@@ -179,6 +179,53 @@ TEST(Whitted, PartialTransparencyAttenuatesShadow) {
   EXPECT_NEAR(rt.transmittance(r).x, 0.48f, 1e-6f);
 }
 
+// Shadow packets: each lane of transmittance8 attenuates on its own and equals the single-ray
+// query, whatever mix of one sheet, two sheets, an opaque block and a miss the lanes see;
+// inactive lanes are left untouched.
+TEST(Whitted, ShadowPacketLanesEqualSingleRays) {
+  Scene s;
+  Material glass = diffuse({0.2f, 0.5f, 0.8f});
+  glass.opacity = 0.4f;
+  glass.doubleSided = true;
+  const size_t plane = s.addMesh(makePlane(1));
+  const int mat = s.addMaterial(glass);
+  s.addObject("low", plane, mat, Transform{{0, 1, 0}, {}, {1, 1, 1}});
+  s.addObject("high", plane, mat, Transform{{1, 2, 0}, {}, {1, 1, 1}});
+  s.addObject("wall", s.addMesh(makeCube()), s.addMaterial(diffuse({1, 1, 1})),
+              Transform{{-2, 1.5f, 0}, {}, {0.5f, 0.5f, 0.5f}});
+  FrameScene fs;
+  fs.update(s, 0, 0);
+  RayTracer rt;
+  rt.update(fs);
+  // x = -2: the cube; -0.5: the low sheet; 0.9: both; 1.3: the high sheet only; 4: nothing.
+  const float xs[8] = {-2.0f, -0.5f, 0.9f, 1.3f, 4.0f, 0.2f, -1.9f, 1.1f};
+  Ray rays[8];
+  bool active[8];
+  Vec3 out[8];
+  for (int k = 0; k < 8; ++k) {
+    rays[k] = upRay({xs[k], 0, 0.1f * float(k - 4)});
+    active[k] = k != 5;
+    out[k] = Vec3(-7.0f);
+  }
+  rt.transmittance8(rays, active, out);
+  for (int k = 0; k < 8; ++k) {
+    if (!active[k]) {
+      EXPECT_EQ(out[k].x, -7.0f) << "inactive lane " << k << " written";
+      continue;
+    }
+    const Vec3 single = rt.transmittance(rays[k]);
+    EXPECT_NEAR(out[k].x, single.x, 1e-6f) << "lane " << k;
+    EXPECT_NEAR(out[k].y, single.y, 1e-6f) << "lane " << k;
+    EXPECT_NEAR(out[k].z, single.z, 1e-6f) << "lane " << k;
+  }
+  // The cases differ, so the comparison above is not between equal numbers by accident.
+  EXPECT_EQ(out[0].x, 0.0f);
+  EXPECT_NEAR(out[1].x, 0.48f, 1e-6f);
+  EXPECT_NEAR(out[2].x, 0.48f * 0.48f, 1e-6f);
+  EXPECT_NEAR(out[3].x, 0.48f, 1e-6f);
+  EXPECT_EQ(out[4].x, 1.0f);
+}
+
 // The area of a cube's shadow on the floor under a point light matches the geometry: a unit
 // square occluder at height h under a light at height H casts a square of side H / (H - h).
 TEST(Whitted, ShadowAreaUnderPointLight) {
