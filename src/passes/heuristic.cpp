@@ -35,6 +35,48 @@ std::vector<int> selectWithinBudget(std::vector<HeuristicNode> nodes, double bud
   return selected;
 }
 
+PartialNode partialNode(const std::vector<HeuristicNode>& nodes, const std::vector<int>& selected,
+                        double left) {
+  PartialNode best;
+  if (!(left > 0)) return best;
+  double relevancy = -1;
+  for (const HeuristicNode& n : nodes) {
+    if (n.cost <= left || std::find(selected.begin(), selected.end(), n.id) != selected.end())
+      continue;  // affordable nodes the walk skipped were less relevant than what it took
+    if (n.relevancy > relevancy) {
+      relevancy = n.relevancy;
+      best = {n.id, left / n.cost};
+    }
+  }
+  return best;
+}
+
+double centralRadius2(const Buffer& objectId, int object, double fraction,
+                      const std::function<Vec2(int)>& centreOf) {
+  // A histogram of the object's pixels by squared distance to the centre, normalised by the
+  // squared half-diagonal of a view (1024 bins), cut where the count reaches the fraction.
+  constexpr int kBins = 1024;
+  const Vec2 c0 = centreOf(0);
+  const double norm = double(c0.x) * c0.x + double(c0.y) * c0.y;
+  std::vector<uint32_t> hist(kBins, 0);
+  uint32_t total = 0;
+  for (int y = 0; y < objectId.height; ++y)
+    for (int x = 0; x < objectId.width; ++x) {
+      if (objectId.at(x, y)[0] != float(object)) continue;
+      const Vec2 c = centreOf(x);
+      const double dx = x + 0.5 - c.x, dy = y + 0.5 - c.y;
+      hist[size_t(std::min(int((dx * dx + dy * dy) / norm * kBins), kBins - 1))]++;
+      ++total;
+    }
+  const double want = fraction * total;
+  uint32_t sum = 0;
+  for (int b = 0; b < kBins; ++b) {
+    if (sum + hist[size_t(b)] > want) return double(b) / kBins * norm;
+    sum += hist[size_t(b)];
+  }
+  return norm;
+}
+
 double centreWeight(double x, double y) {
   return std::max(1.0 - std::sqrt(x * x + y * y), 0.0) * 0.99 + 0.01;
 }
@@ -167,6 +209,13 @@ std::vector<ParamDesc> HeuristicPass::params() const {
        1,
        "select shadows, reflections, refractions separately per object",
        {}},
+      {"partial_objects",
+       ParamType::Bool,
+       1,
+       0,
+       1,
+       "ms budget: spend what is left on the central part of the next object that does not fit",
+       {}},
       {"count_recursion",
        ParamType::Bool,
        0,
@@ -198,6 +247,17 @@ void HeuristicPass::updateMeasurements(const RtStats& stats) {
         fold(msPerPixel_[o][e], stats.cpuMs[o][e] / pixels);
     }
 }
+
+namespace {
+// The centre (pixels) of the view that holds frame column x.
+Vec2 viewCentre(const FrameContext& ctx, int x) {
+  for (const View& v : ctx.views)
+    if (x >= v.x && x < v.x + v.camera.width)
+      return {float(v.x) + 0.5f * float(v.camera.width),
+              float(v.y) + 0.5f * float(v.camera.height)};
+  return {0.5f * float(ctx.width), 0.5f * float(ctx.height)};
+}
+}  // namespace
 
 void HeuristicPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
@@ -265,16 +325,29 @@ void HeuristicPass::execute(FrameContext& ctx) {
   std::vector<double> costOf(perEffect ? n * kEffectCount : n, 0.0);
   for (const HeuristicNode& node : nodes) costOf[size_t(node.id)] = node.cost;
   std::vector<uint8_t> selected(n, 0);  // effect bits per object
+  auto bitsOf = [&](int id) {
+    return perEffect ? uint8_t(1u << (id % kEffectCount)) : uint8_t((1u << kEffectCount) - 1);
+  };
+  auto objectOf = [&](int id) { return size_t(perEffect ? id / kEffectCount : id); };
   selectedCost_ = 0;
   for (int id : selected_) {
     selectedCost_ += costOf[size_t(id)];
-    if (perEffect)
-      selected[size_t(id / kEffectCount)] |= uint8_t(1u << (id % kEffectCount));
-    else
-      selected[size_t(id)] = (1u << kEffectCount) - 1;
+    selected[objectOf(id)] |= bitsOf(id);
+  }
+  partial_ = {};
+  double partialR2 = -1;
+  if (msBudget && param("partial_objects") != 0 && param("select_all") == 0) {
+    partial_ = partialNode(nodes, selected_, budget_ - selectedCost_);
+    if (partial_.id >= 0) {
+      selectedCost_ += partial_.fraction * costOf[size_t(partial_.id)];
+      partialR2 = centralRadius2(ids, int(objectOf(partial_.id)), partial_.fraction,
+                                 [&](int x) { return viewCentre(ctx, x); });
+    }
   }
   selectedFrame_ = ctx.serial;
   selectedLast_ = selected;
+  // The partial node counts as selected for stability (I): it stays the one part-traced.
+  if (partial_.id >= 0) selectedLast_[objectOf(partial_.id)] |= bitsOf(partial_.id);
   // For experiments and the viewer: what was selected out of what (nodes: objects, or
   // object-effect pairs with per_effect).
   ctx.counters["heuristic/selected"] = double(selected_.size());
@@ -282,13 +355,22 @@ void HeuristicPass::execute(FrameContext& ctx) {
   ctx.counters["heuristic/visible_objects"] = double(evaluated_.size());
   ctx.counters["heuristic/budget"] = budget_;
   ctx.counters["heuristic/selected_cost"] = selectedCost_;
+  ctx.counters["heuristic/partial_fraction"] = partial_.id >= 0 ? partial_.fraction : 0.0;
   Buffer& mask = ctx.output(*this, "heuristic_mask");
+  const float partialObject = partial_.id >= 0 ? float(objectOf(partial_.id)) : -2.0f;
+  const uint8_t partialBits = partial_.id >= 0 ? bitsOf(partial_.id) : 0;
   parallelRange(
       mask.pixelCount(),
       [&](size_t b, size_t e) {
         for (size_t i = b; i < e; ++i) {
           float id = ids.data[i];
           uint8_t bits = id >= 0 ? selected[size_t(id)] : 0;
+          if (id == partialObject) {
+            const int x = int(i % size_t(ids.width)), y = int(i / size_t(ids.width));
+            const Vec2 c = viewCentre(ctx, x);
+            const double dx = x + 0.5 - c.x, dy = y + 0.5 - c.y;
+            if (dx * dx + dy * dy < partialR2) bits |= partialBits;
+          }
           for (int k = 0; k < kEffectCount; ++k)
             mask.data[i * kEffectCount + size_t(k)] = float((bits >> k) & 1);
         }

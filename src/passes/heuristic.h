@@ -11,6 +11,8 @@
 //    ratio of predicted CPU ms to RT wall ms (smoothed), so the RT stage follows the budget;
 //  - per_effect: nodes are (object, effect) pairs, so an object may get shadows but not its
 //    reflection (the paper's future work);
+//  - partial_objects (ms budget): the unspent budget buys the central part of the most relevant
+//    node left out (mask set on that share of its pixels nearest the view centre);
 //  - count_recursion: Q is the rays per pixel the RT pass actually traced for the object and
 //    effect (recursion included), the paper's Q being the prior until it has been traced.
 // Inputs: object_id, rt_stats (last frame's, a history input). Outputs: heuristic_mask (3
@@ -18,6 +20,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/buffer.h"
@@ -46,6 +49,23 @@ struct HeuristicNode {
 // Phase 3 of §3.2: returns the ids of the selected nodes in selection order; the sum of their
 // costs never exceeds `budget`.
 std::vector<int> selectWithinBudget(std::vector<HeuristicNode> nodes, double budget);
+
+// Partial objects (ms-budget mode, beyond the paper): the most relevant node the walk left out
+// and the share of its cost that the unspent budget `left` pays for, so one large object that
+// does not fit whole is traced over part of its pixels instead of not at all. id -1: none.
+struct PartialNode {
+  int id = -1;
+  double fraction = 0;  // (0, 1)
+};
+PartialNode partialNode(const std::vector<HeuristicNode>& nodes, const std::vector<int>& selected,
+                        double left);
+
+// The squared distance from the view centre (pixels) within which `object` has `fraction` of its
+// visible pixels: the part of a partial object that is traced is the part nearest the centre (a
+// contiguous region, the part the eye is on). `centreOf(x)` is the centre of the view holding
+// column x.
+double centralRadius2(const Buffer& objectId, int object, double fraction,
+                      const std::function<Vec2(int)>& centreOf);
 
 // P of §3.2: 1 at the view centre falling to 0.01 at (and beyond) the edge, from NDC x, y.
 double centreWeight(double ndcX, double ndcY);
@@ -111,8 +131,9 @@ class HeuristicPass : public Pass {
   const std::vector<ObjectHeuristic>& lastEvaluation() const { return evaluated_; }
   // Selected node ids (objects, or object * 3 + effect with per_effect).
   const std::vector<int>& lastSelection() const { return selected_; }
-  double lastBudget() const { return budget_; }              // T used this frame (cost units)
-  double lastSelectedCost() const { return selectedCost_; }  // sum of the selected costs
+  double lastBudget() const { return budget_; }                // T used this frame (cost units)
+  double lastSelectedCost() const { return selectedCost_; }    // sum of the selected costs
+  const PartialNode& lastPartial() const { return partial_; }  // partial_objects: the part
 
  private:
   void updateMeasurements(const RtStats& stats);
@@ -127,6 +148,7 @@ class HeuristicPass : public Pass {
   bool calibrationPrior_ = false;  // prior set to the worker count on first use
   std::vector<std::array<double, kEffectCount>> msPerPixel_;  // measured, smoothed
   double budget_ = 0, selectedCost_ = 0;
+  PartialNode partial_;
   int64_t selectedFrame_ = -1;
 };
 

@@ -10,12 +10,6 @@ Vec3 anyUp(Vec3 dir) {
   return std::abs(dir.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
 }
 
-// Distance along the map camera's axis of a stored reversed-Z depth.
-float axisDistance(const Camera& c, float depth) {
-  if (c.desc.projection == Projection::Perspective) return c.desc.nearPlane / depth;
-  return c.desc.farPlane - depth * (c.desc.farPlane - c.desc.nearPlane);
-}
-
 std::vector<float> lightKey(const Scene& s) {
   std::vector<float> k;
   for (const Light& l : s.lights)
@@ -78,6 +72,9 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
     for (size_t k = 0; k < views.size(); ++k) {
       Face& face = faces_[i][k];
       face.camera = Camera::make(views[k], size, size);
+      face.texelPerDistance = face.camera.desc.projection == Projection::Perspective
+                                  ? 2.0f * face.camera.tanHalfFov / float(size)
+                                  : face.camera.desc.orthoHeight / float(size);
       raster_.render(fs, face.camera, face.map);
     }
   }
@@ -97,30 +94,43 @@ float ShadowMaps::visibility(size_t i, Vec3 p, Vec3 n) const {
   }
   for (size_t k = first; k < last; ++k) {
     const Face& f = faces[k];
-    // Offset along the normal against acne, scaled with the map's texel footprint.
     const Camera& c = f.camera;
+    const bool perspective = c.desc.projection == Projection::Perspective;
     const float along = dot(p - c.desc.position, c.forward);
-    if (c.desc.projection == Projection::Perspective && along <= c.desc.nearPlane) continue;
-    const float texel = c.desc.projection == Projection::Perspective
-                            ? 2.0f * along * c.tanHalfFov / float(f.map.width)
-                            : c.desc.orthoHeight / float(f.map.width);
+    if (perspective && along <= c.desc.nearPlane) continue;
+    // Offset along the normal against acne, scaled with the map's texel footprint.
+    const float texel = perspective ? along * f.texelPerDistance : f.texelPerDistance;
     const Vec3 q = p + n * (1.5f * texel);
-    Vec2 px;
-    if (!c.project(q, px)) continue;
+    const Mat4& m = c.viewProj;
+    const float w = m.m[3][0] * q.x + m.m[3][1] * q.y + m.m[3][2] * q.z + m.m[3][3];
+    if (perspective && w <= 1e-8f) continue;
+    const float iw = 1.0f / w;
+    const float sx =
+        ((m.m[0][0] * q.x + m.m[0][1] * q.y + m.m[0][2] * q.z + m.m[0][3]) * iw * 0.5f + 0.5f) *
+        float(f.map.width);
+    const float sy =
+        (0.5f - (m.m[1][0] * q.x + m.m[1][1] * q.y + m.m[1][2] * q.z + m.m[1][3]) * iw * 0.5f) *
+        float(f.map.height);
     // 2x2 taps around the point: percentage-closer filtering at a quarter of 3x3's cost.
-    const int cx = int(std::floor(px.x - 0.5f)), cy = int(std::floor(px.y - 0.5f));
+    const int cx = int(std::floor(sx - 0.5f)), cy = int(std::floor(sy - 0.5f));
     if (cx < -1 || cy < -1 || cx >= f.map.width || cy >= f.map.height) continue;
     const float dq = dot(q - c.desc.position, c.forward);
     const float bias = 2.0f * texel;
-    int lit = 0, taps = 0;
-    for (int dy = 0; dy <= 1; ++dy)
-      for (int dx = 0; dx <= 1; ++dx) {
-        const int x = std::clamp(cx + dx, 0, f.map.width - 1);
-        const int y = std::clamp(cy + dy, 0, f.map.height - 1);
-        const float d = f.map.depth[size_t(y) * size_t(f.map.width) + size_t(x)];
-        ++taps;
-        if (d <= 0.0f || dq <= axisDistance(c, d) + bias) ++lit;
-      }
+    // A tap is lit when its surface lies no nearer than dq - bias along the axis: one threshold
+    // in the map's reversed-Z depth instead of a distance per tap (depth falls with distance).
+    float threshold;
+    if (perspective)
+      threshold = dq - bias > 0.0f ? c.desc.nearPlane / (dq - bias) : INFINITY;
+    else
+      threshold = (c.desc.farPlane + bias - dq) / (c.desc.farPlane - c.desc.nearPlane);
+    const int x0 = std::clamp(cx, 0, f.map.width - 1), x1 = std::clamp(cx + 1, 0, f.map.width - 1);
+    const int y0 = std::clamp(cy, 0, f.map.height - 1),
+              y1 = std::clamp(cy + 1, 0, f.map.height - 1);
+    const float* row0 = &f.map.depth[size_t(y0) * size_t(f.map.width)];
+    const float* row1 = &f.map.depth[size_t(y1) * size_t(f.map.width)];
+    auto litTap = [&](float d) { return d <= 0.0f || d <= threshold ? 1 : 0; };
+    const int lit = litTap(row0[x0]) + litTap(row0[x1]) + litTap(row1[x0]) + litTap(row1[x1]);
+    const int taps = 4;
     return float(lit) / float(taps);
   }
   return 1.0f;

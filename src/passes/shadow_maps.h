@@ -25,6 +25,7 @@ class ShadowMaps {
   struct Face {
     Camera camera;
     VisibilityBuffer map;
+    float texelPerDistance = 0;  // a texel's world width per unit distance (ortho: the width)
   };
   std::vector<std::vector<Face>> faces_;  // per light
   uint64_t geometryVersion_ = ~0ull;

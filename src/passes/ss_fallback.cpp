@@ -108,7 +108,11 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   std::fill(out.data.begin(), out.data.end(), 0.0f);
   if (mode == FallbackMode::Off && !shadows) return;
   const Scene& scene = *ctx.scene;
-  if (shadows) shadowMaps_.update(ctx.frame, int(param("shadow_map_size")));
+  if (shadows) {
+    const auto t0 = Clock::now();
+    shadowMaps_.update(ctx.frame, int(param("shadow_map_size")));
+    ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+  }
   const ShadingContext shading = ShadingContext::from(scene);
   const Bounds3 b = scene.bounds(ctx.frame.time);
   const Frame f{hdr, position, objectId, optical, scene, std::max(length(b.hi - b.lo), 0.1f)};
@@ -116,22 +120,15 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const float thickness = float(param("thickness"));
   const size_t lights = scene.lights.size();
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
-    // Shadow pixels are shaded in batches: per light and channel a row of lanes holding the
-    // occluded fraction (rt_secondary's Listing 8a sum, 8 pixels at a time).
-    ShadeBatch batch;
-    std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
-    float* targets[ShadeBatch::kMax];
-    Vec3 base[ShadeBatch::kMax];
-    auto flush = [&] {
-      shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
-      for (int k = 0; k < batch.count; ++k) {
-        const Vec3 lost = batch.result(k) - base[k];
-        float* px = targets[k];
-        px[6] = 1.0f - lost.x, px[7] = 1.0f - lost.y, px[8] = 1.0f - lost.z;
-        px[10] = 1.0f;
-      }
-      batch.count = 0;
+    // The tile's shadow pixels are gathered first and looked up light by light (one map's texels
+    // stay in cache across the tile), then shaded in batches: per light and channel a row of
+    // lanes holding the occluded fraction (rt_secondary's Listing 8a sum, 16 pixels at a time).
+    struct ShadowPixel {
+      int x, y;
+      Vec3 d;
     };
+    std::vector<ShadowPixel> shadowed;
+    shadowed.reserve(size_t(x1 - x0) * size_t(y1 - y0));
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const int id = int(objectId.at(x, y)[0]);
@@ -142,9 +139,11 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
         const bool refract = mode != FallbackMode::Off && op[2] < 1 && m[kRefraction] < 0.5f;
         const bool shadow = shadows && m[kShadow] < 0.5f;
         if (!reflect && !refract && !shadow) continue;
-        const Vec3 p = position.rgb(x, y);
         Vec3 o, d;
         v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+        if (shadow) shadowed.push_back({x, y, d});
+        if (!reflect && !refract) continue;
+        const Vec3 p = position.rgb(x, y);
         Vec3 n = normal.rgb(x, y);
         if (dot(n, d) > 0) n = -n;
         auto look = [&](Vec3 r, int self) {
@@ -165,26 +164,68 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
           const Vec3 c = look(t, id);
           px[3] = c.x, px[4] = c.y, px[5] = c.z;
         }
-        if (reflect || refract) px[9] = 1.0f;
-        if (shadow) {
-          // As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one
-          // shading call weighted by each light's occluded fraction.
-          SurfaceSample s;
-          g.read(x, y, s);
-          const int lane = batch.count++;
-          batch.set(lane, s, -d);
-          for (size_t i = 0; i < lights; ++i) {
-            // A light the surface faces away from adds nothing whatever its map says: no lookup.
-            const bool faces = dot(s.normal, sampleLight(shading.lights[i], p).wi) > 0.0f;
-            const float occluded = faces ? 1.0f - shadowMaps_.visibility(i, p, s.geoNormal) : 0.0f;
-            for (size_t c = 0; c < 3; ++c)
-              blocked[(3 * i + c) * ShadeBatch::kMax + size_t(lane)] = occluded;
-          }
-          targets[lane] = px;
-          base[lane] = s.emission + shading.ambient * s.ambient;
-          if (batch.count == ShadeBatch::kMax) flush();
-        }
+        px[9] = 1.0f;
       }
+    if (shadowed.empty()) return;
+    // Occluded fraction per light and pixel. A light the surface faces away from, or that does
+    // not reach it, adds nothing whatever its map says: no lookup.
+    const size_t count = shadowed.size();
+    std::vector<float> occluded(lights * count);
+    std::vector<SurfaceSample> samples(count);
+    for (size_t k = 0; k < count; ++k) g.read(shadowed[k].x, shadowed[k].y, samples[k]);
+    for (size_t i = 0; i < lights; ++i)
+      for (size_t k = 0; k < count; ++k) {
+        const SurfaceSample& s = samples[k];
+        const LightSample ls = sampleLight(shading.lights[i], s.position);
+        const bool lit = dot(s.normal, ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f;
+        occluded[i * count + k] =
+            lit ? 1.0f - shadowMaps_.visibility(i, s.position, s.geoNormal) : 0.0f;
+      }
+    // As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one shading call
+    // weighted by each light's occluded fraction. Pixels no map shadows keep S = 1 unshaded, and
+    // a batch evaluates only the lights that shadow one of its lanes (the others add exactly 0).
+    ShadeBatch batch;
+    std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
+    std::vector<uint32_t> batchLights;
+    batchLights.reserve(lights);
+    size_t lane[ShadeBatch::kMax];
+    auto flush = [&] {
+      batchLights.clear();
+      for (size_t i = 0; i < lights; ++i)
+        for (int j = 0; j < batch.count; ++j)
+          if (occluded[i * count + lane[j]] > 0.0f) {
+            batchLights.push_back(uint32_t(i));
+            break;
+          }
+      for (uint32_t i : batchLights)
+        for (int j = 0; j < batch.count; ++j)
+          for (size_t c = 0; c < 3; ++c)
+            blocked[(3 * i + c) * ShadeBatch::kMax + size_t(j)] = occluded[i * count + lane[j]];
+      batch.lights = batchLights.data();
+      batch.lightCount = batchLights.size();
+      shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
+      for (int j = 0; j < batch.count; ++j) {
+        const SurfaceSample& s = samples[lane[j]];
+        const Vec3 lost = batch.result(j) - (s.emission + shading.ambient * s.ambient);
+        float* px = out.at(shadowed[lane[j]].x, shadowed[lane[j]].y);
+        px[6] = 1.0f - lost.x, px[7] = 1.0f - lost.y, px[8] = 1.0f - lost.z;
+      }
+      batch.count = 0;
+    };
+    batch.count = 0;
+    for (size_t k = 0; k < count; ++k) {
+      float* px = out.at(shadowed[k].x, shadowed[k].y);
+      px[10] = 1.0f;
+      bool any = false;
+      for (size_t i = 0; i < lights; ++i) any |= occluded[i * count + k] > 0.0f;
+      if (!any) {
+        px[6] = px[7] = px[8] = 1.0f;
+        continue;
+      }
+      lane[batch.count] = k;
+      batch.set(batch.count++, samples[k], -shadowed[k].d);
+      if (batch.count == ShadeBatch::kMax) flush();
+    }
     if (batch.count) flush();
   });
   ctx.counters["ss_fallback/shadow_map_redraws"] = shadowMaps_.redraws();

@@ -174,3 +174,42 @@ TEST(Heuristic, BudgetCalibrationIsTheMedianOfThreeFrames) {
   c.observe(3000, 10);  // 50, 300, 300 -> 300
   EXPECT_DOUBLE_EQ(c.unitsPerMs(), 300);
 }
+
+// Partial objects: the unspent budget buys a share of the most relevant node left out (Figure 4:
+// 5, 6, 7 take 350 of 400; of 0-4, node 1 is the most relevant, and 50 buys 50/700 of it).
+TEST(Heuristic, PartialNodeIsTheMostRelevantLeftOut) {
+  std::vector<HeuristicNode> nodes = {{0, 900, 5}, {1, 700, 9}, {2, 500, 2}, {3, 350, 3},
+                                      {4, 300, 1}, {5, 200, 8}, {6, 100, 6}, {7, 50, 2}};
+  std::vector<int> sel = selectWithinBudget(nodes, 400);
+  PartialNode p = partialNode(nodes, sel, 400 - 350);
+  EXPECT_EQ(p.id, 1);
+  EXPECT_DOUBLE_EQ(p.fraction, 50.0 / 700.0);
+  EXPECT_EQ(partialNode(nodes, sel, 0).id, -1);  // nothing left: no part
+  // Everything selected: nothing to part-trace.
+  std::vector<int> all = {0, 1, 2, 3, 4, 5, 6, 7};
+  EXPECT_EQ(partialNode(nodes, all, 100).id, -1);
+}
+
+// The traced part is the share of the object's pixels nearest the view centre: on an object
+// covering a whole 64 x 64 view, a quarter of its pixels is the disc of area 1024 around the
+// centre (radius 18.05), to within the histogram's resolution.
+TEST(Heuristic, PartialObjectIsItsCentralShare) {
+  Buffer ids(64, 64, 1, 3.0f, BufferKind::Id);
+  for (int x = 0; x < 8; ++x) ids.at(x, 0)[0] = 1.0f;  // a few pixels of another object
+  auto centre = [](int) { return Vec2{32, 32}; };
+  for (double f : {0.1, 0.25, 0.5}) {
+    const double r2 = centralRadius2(ids, 3, f, centre);
+    int inside = 0, total = 0;
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        if (ids.at(x, y)[0] != 3.0f) continue;
+        ++total;
+        const double dx = x + 0.5 - 32, dy = y + 0.5 - 32;
+        inside += dx * dx + dy * dy < r2 ? 1 : 0;
+      }
+    EXPECT_LE(inside, f * total) << f;  // never more than the budget pays for
+    EXPECT_GE(inside, 0.97 * f * total) << f;
+    EXPECT_NEAR(r2, f * total / 3.14159265, 0.03 * f * total) << f;  // a disc
+  }
+  EXPECT_DOUBLE_EQ(centralRadius2(ids, 3, 0.0, centre), 0.0);
+}
