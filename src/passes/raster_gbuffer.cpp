@@ -4,6 +4,7 @@
 #include "pipeline/view_tiles.h"
 #include "raster/triangle_planes.h"
 #include "shading/surface_resolve.h"
+#include "shading/surface_resolve_inline.h"
 
 namespace tandem {
 
@@ -31,12 +32,19 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
   auto t1 = Clock::now();
   GBufferView g = gbufferTargets(ctx, *this);
   const FrameScene& fs = ctx.frame;
-  const Scene& scene = *fs.scene;
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     const VisibilityBuffer& vis = visibility_[size_t(&v - ctx.views.data())];
     const Camera& cam = v.camera;
     const bool perspective = cam.desc.projection == Projection::Perspective;
-    TrianglePlaneCache cache;
+    // Triangles set up for this tile (planes and resolve constants), direct-mapped: a triangle
+    // mostly covers neighbouring pixels in this row and the rows below.
+    struct CachedTriangle {
+      uint32_t object = ~0u, prim = ~0u;
+      TrianglePlanes planes{};
+      TriangleSetup setup;
+    };
+    constexpr size_t kCacheSize = 64;
+    std::vector<CachedTriangle> cache(kCacheSize);
     const float spread = ctx.pixelSpread(v);  // texture level of detail: the pixel's cone
     for (int y = y0; y < y1; ++y) {
       const int ly = y - v.y;
@@ -58,20 +66,22 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
         const uint32_t object = vis.object[i], prim = vis.prim[i];
         // Barycentrics of the pixel's camera ray against the visible triangle: exact and
         // perspective-correct, what a primary ray would compute.
-        float tuv[3] = {0, 0, 0};
-        bool planar = perspective && fs.objects[object].stepPositions.empty();
-        if (planar) {
-          if (cache.object != object || cache.prim != prim) {
-            const FrameObject& fo = fs.objects[object];
-            const uint32_t* idx = &scene.meshes[scene.objects[object].mesh].indices[3 * prim];
-            cache = {object, prim,
-                     TrianglePlanes::make(o, fo.positions[idx[0]], fo.positions[idx[1]],
-                                          fo.positions[idx[2]])};
+        // Initialised in place (no copy): a copied sample's position would be read back
+        // before its stores retire.
+        const SurfaceSample s = [&] {
+          if (!fs.objects[object].stepPositions.empty())
+            return resolveSurface(fs, int(object), int(prim), o, d, 0.0f, nullptr, spread);
+          CachedTriangle& c = cache[(prim * 0x9E3779B1u + object) % kCacheSize];
+          if (c.object != object || c.prim != prim) {
+            c.object = object;
+            c.prim = prim;
+            c.setup = TriangleSetup::make(fs, int(object), int(prim), 0.0f);
+            c.planes = TrianglePlanes::make(o, c.setup.p[0], c.setup.p[1], c.setup.p[2]);
           }
-          planar = cache.planes.barycentrics(d, tuv[1], tuv[2]);
-        }
-        SurfaceSample s =
-            resolveSurface(fs, int(object), int(prim), o, d, 0.0f, planar ? tuv : nullptr, spread);
+          float tuv[3] = {0, 0, 0};
+          const bool planar = perspective && c.planes.barycentrics(d, tuv[1], tuv[2]);
+          return resolveSurfaceInline(c.setup, o, d, planar ? tuv : nullptr, spread);
+        }();
         const Vec2 pixel{float(lx) + 0.5f, float(ly) + 0.5f};
         g.write(x, y, s, vis.depth[i], motionVectorAtPixel(fs, v, s.object, s.position, pixel));
       }

@@ -24,36 +24,10 @@ GBufferView GBufferView::create(const std::function<Buffer&(const BufferSlot&)>&
   return {p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], width};
 }
 
-namespace {
-inline void put3(float* p, Vec3 v) {
-  p[0] = v.x;
-  p[1] = v.y;
-  p[2] = v.z;
-}
-}  // namespace
-
-void GBufferView::write(int x, int y, const SurfaceSample& s, float d, Vec2 mv) {
-  size_t i = size_t(y) * width + x;
-  depth[i] = d;
-  put3(position + 3 * i, s.position);
-  put3(normal + 3 * i, s.normal);
-  put3(geoNormal + 3 * i, s.geoNormal);
-  put3(diffuse + 4 * i, s.diffuse);
-  diffuse[4 * i + 3] = s.diffuseOpacity;
-  put3(specular + 4 * i, s.specular);
-  specular[4 * i + 3] = s.specularExponent;
-  put3(emission + 3 * i, s.emission);
-  put3(ambient + 3 * i, s.ambient);
-  put3(optical + 3 * i, {s.reflectivity, s.ior, s.opacity});
-  objectId[i] = float(s.object);
-  materialId[i] = float(s.material);
-  motion[2 * i] = mv.x;
-  motion[2 * i + 1] = mv.y;
-}
-
 void GBufferView::writeBackground(int x, int y, Vec2 mv) {
   size_t i = size_t(y) * width + x;
   depth[i] = 0;
+  auto put3 = [](float* p, Vec3 v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; };
   put3(position + 3 * i, Vec3(0.0f));
   put3(normal + 3 * i, Vec3(0.0f));
   put3(geoNormal + 3 * i, Vec3(0.0f));
@@ -68,9 +42,14 @@ void GBufferView::writeBackground(int x, int y, Vec2 mv) {
 }
 
 namespace {
-// Homogeneous point -> pixel coordinates; false behind the camera.
-bool toPixel(const Mat4& vp, const Camera& c, Vec4 q, Vec2& px) {
-  Vec4 h = vp * q;
+// Homogeneous point -> pixel coordinates; false behind the camera. (Components one by one: the
+// point usually was just stored as three floats, and a wide load of it would stall.)
+inline bool toPixel(const Mat4& vp, const Camera& c, Vec4 q, Vec2& px) {
+  const float* m = &vp.m[0][0];
+  const Vec4 h{m[0] * q.x + m[1] * q.y + m[2] * q.z + m[3] * q.w,
+               m[4] * q.x + m[5] * q.y + m[6] * q.z + m[7] * q.w,
+               m[8] * q.x + m[9] * q.y + m[10] * q.z + m[11] * q.w,
+               m[12] * q.x + m[13] * q.y + m[14] * q.z + m[15] * q.w};
   if (h.w <= 1e-8f) return false;
   px = {(h.x / h.w * 0.5f + 0.5f) * c.width, (0.5f - h.y / h.w * 0.5f) * c.height};
   return true;

@@ -35,7 +35,26 @@ struct GBufferView {
 
   // `target(slot)` gives the buffer of one of gbufferSlots(), `width` pixels wide.
   static GBufferView create(const std::function<Buffer&(const BufferSlot&)>& target);
-  void write(int x, int y, const SurfaceSample& s, float depth, Vec2 motion);
+  // Inline: the raster resolve writes a sample still in registers.
+  void write(int x, int y, const SurfaceSample& s, float d, Vec2 mv) {
+    const size_t i = size_t(y) * size_t(width) + size_t(x);
+    auto put3 = [](float* p, Vec3 v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; };
+    depth[i] = d;
+    put3(position + 3 * i, s.position);
+    put3(normal + 3 * i, s.normal);
+    put3(geoNormal + 3 * i, s.geoNormal);
+    put3(diffuse + 4 * i, s.diffuse);
+    diffuse[4 * i + 3] = s.diffuseOpacity;
+    put3(specular + 4 * i, s.specular);
+    specular[4 * i + 3] = s.specularExponent;
+    put3(emission + 3 * i, s.emission);
+    put3(ambient + 3 * i, s.ambient);
+    put3(optical + 3 * i, {s.reflectivity, s.ior, s.opacity});
+    objectId[i] = float(s.object);
+    materialId[i] = float(s.material);
+    motion[2 * i] = mv.x;
+    motion[2 * i + 1] = mv.y;
+  }
   void writeBackground(int x, int y, Vec2 motion);
 };
 

@@ -23,6 +23,27 @@ SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 or
 SurfaceSample resolveSurface(const FrameScene& fs, int object, int prim, Vec3 origin, Vec3 dir,
                              float time, const float* knownTuv, float pixelSpread = 0.0f);
 
+// The per-triangle part of resolveSurface: the object's material and mesh, the vertices (at the
+// ray's time), their normals and UVs, the geometric normal and the UV-to-world scale. A pass
+// resolving many pixels of one triangle sets it up once (the result is bit for bit the same).
+struct TriangleSetup {
+  const FrameScene* fs = nullptr;
+  int object = -1, prim = -1, materialIndex = -1;
+  const Material* mat = nullptr;
+  const Mesh* mesh = nullptr;
+  const FrameObject* fo = nullptr;
+  const uint32_t* idx = nullptr;
+  Vec3 p[3], n[3];
+  Vec2 uv[3]{};  // zero when the mesh has none
+  bool hasUvs = false;
+  Vec3 worldCross, geoNormal;
+  float worldArea = 0, uvPerWorld = 0;  // set for textured materials with UVs
+
+  static TriangleSetup make(const FrameScene& fs, int object, int prim, float time);
+};
+SurfaceSample resolveSurface(const TriangleSetup& tri, Vec3 origin, Vec3 dir, const float* knownTuv,
+                             float pixelSpread = 0.0f);
+
 // The pixel spread angle of a camera (0 for orthographic: no level of detail).
 float pixelSpreadAngle(const Camera& camera);
 

@@ -1,0 +1,103 @@
+// The body of resolveSurface(const TriangleSetup&, ...), inline for the raster resolve's pixel
+// loop: there the sample goes straight from registers into the G-buffer (through memory, a
+// freshly written sample stalls the loads that read it back). Everything else calls the
+// out-of-line resolveSurface, which is this function.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "scene/scene.h"
+#include "shading/blinn_phong.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+inline SurfaceSample resolveSurfaceInline(const TriangleSetup& tri, Vec3 origin, Vec3 dir,
+                                          const float* knownTuv, float pixelSpread) {
+  const Scene& scene = *tri.fs->scene;
+  const FrameObject& fo = *tri.fo;
+  const Material& mat = *tri.mat;
+  const uint32_t* idx = tri.idx;
+  const Vec3 a = tri.p[0], b = tri.p[1], c = tri.p[2];
+  float t, u, v;
+  if (knownTuv)  // the ray tracer's own hit: its barycentrics, no second intersection
+    t = knownTuv[0], u = knownTuv[1], v = knownTuv[2];
+  else
+    intersectTriangle(origin, dir, a, b, c, t, u, v);
+  // Pixels on an edge can land a hair outside [0,1]; clamp so attributes stay convex.
+  u = std::clamp(u, 0.0f, 1.0f);
+  v = std::clamp(v, 0.0f, 1.0f - u);
+  const float w = 1.0f - u - v;
+
+  SurfaceSample s;
+  s.object = tri.object;
+  s.material = tri.materialIndex;
+  s.t = t;
+  s.position = a * w + b * u + c * v;
+  s.geoNormal = tri.geoNormal;
+  Vec3 n = normalize(tri.n[0] * w + tri.n[1] * u + tri.n[2] * v);
+  if (mat.doubleSided && dot(s.geoNormal, dir) > 0) {
+    s.geoNormal = -s.geoNormal;
+    n = -n;
+  }
+  Vec2 uvMesh = tri.uv[0] * w + tri.uv[1] * u + tri.uv[2] * v;
+  s.uv = mat.transformUv(uvMesh);
+  // Each texture at the level of detail of the pixel's cone: its width at the hit, across the
+  // surface (1 / cos), in UV units through the triangle's UV / world scale (and the tiling).
+  float footprint = 0.0f;
+  if (pixelSpread > 0.0f && mat.hasTexture() && tri.hasUvs) {
+    const float dirLength = length(dir);
+    if (tri.worldArea > 0.0f && dirLength > 0.0f) {
+      const float cosine = std::abs(dot(s.geoNormal, dir)) / dirLength;
+      const float width = pixelSpread * length(s.position - origin) / std::max(cosine, 0.05f);
+      footprint = width * tri.uvPerWorld * std::max(std::abs(mat.tiling.x), std::abs(mat.tiling.y));
+    }
+  }
+  auto sampleTex = [&](int i) {
+    const Texture& t = scene.textures[size_t(i)];
+    return t.sample(s.uv, t.lodFor(footprint));
+  };
+
+  s.diffuse = mat.diffuse;
+  s.diffuseOpacity = mat.diffuseOpacity;
+  if (mat.diffuseTexture >= 0) {
+    Vec4 tex = sampleTex(mat.diffuseTexture);
+    s.diffuse = s.diffuse * tex.xyz();
+    s.diffuseOpacity *= tex.w;
+  }
+  s.ambient = mat.ambient;
+  s.emission = mat.emission;
+  if (mat.emissionTexture >= 0) s.emission = s.emission * sampleTex(mat.emissionTexture).xyz();
+  s.specular = mat.specular;
+  if (mat.specularTexture >= 0) s.specular = s.specular * sampleTex(mat.specularTexture).xyz();
+  s.specularExponent = mat.specularExponent;
+  s.reflectivity = mat.reflectivity;
+  if (mat.metallicRoughnessTexture >= 0) {
+    Vec4 mr = sampleTex(mat.metallicRoughnessTexture);
+    Vec3 base = mat.baseColor;
+    if (mat.diffuseTexture >= 0) base = base * sampleTex(mat.diffuseTexture).xyz();
+    BlinnPhongTerms bp = fromMetallicRoughness(base, mat.metallic * mr.z, mat.roughness * mr.y);
+    s.diffuse = bp.diffuse;
+    s.ambient = bp.diffuse;
+    s.specular = bp.specular;
+    s.specularExponent = bp.exponent;
+    s.reflectivity = bp.reflectivity;
+  }
+  s.ior = mat.ior;
+  s.opacity = mat.opacity;
+  if (mat.alphaMode == AlphaMode::Blend) s.opacity = std::min(s.opacity, s.diffuseOpacity);
+
+  if (mat.normalTexture >= 0) {
+    Vec4 tg = fo.tangents[idx[0]] * w + fo.tangents[idx[1]] * u + fo.tangents[idx[2]] * v;
+    Vec3 tangent = normalize(tg.xyz() - n * dot(n, tg.xyz()));
+    Vec3 bitangent = cross(n, tangent) * (fo.tangents[idx[0]].w < 0 ? -1.0f : 1.0f);
+    Vec4 tex = sampleTex(mat.normalTexture);
+    Vec3 tn{(tex.x * 2 - 1) * mat.normalScale, (tex.y * 2 - 1) * mat.normalScale, tex.z * 2 - 1};
+    Vec3 mapped = normalize(tangent * tn.x + bitangent * tn.y + n * tn.z);
+    if (isFinite(mapped) && length(mapped) > 0.5f) n = mapped;
+  }
+  s.normal = n;
+  return s;
+}
+
+}  // namespace tandem
