@@ -1,5 +1,6 @@
 #include "passes/shadow_maps.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tandem {
@@ -23,16 +24,43 @@ std::vector<float> lightKey(const Scene& s) {
 void ShadowMaps::update(const FrameScene& fs, int resolution) {
   const Scene& scene = *fs.scene;
   std::vector<float> key = lightKey(scene);
-  if (fs.geometryVersion == geometryVersion_ && key == lightKey_ && resolution == resolution_)
-    return;
+  const bool staticStale = fs.staticVersion != staticVersion_ || key != lightKey_ ||
+                           resolution != resolution_ || fs.scene != scene_;
+  if (!staticStale && fs.geometryVersion == geometryVersion_) return;
   geometryVersion_ = fs.geometryVersion;
+  staticVersion_ = fs.staticVersion;
+  scene_ = fs.scene;
   lightKey_ = std::move(key);
   resolution_ = resolution;
+  // Casters that are not animated are drawn once; animated ones each time they moved, over a
+  // copy of the static depth.
+  std::vector<uint8_t> moving(scene.objects.size()), still(scene.objects.size());
+  bool anyMoving = false;
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    moving[o] = scene.objects[o].animated() ? 1 : 0;
+    still[o] = 1 - moving[o];
+    anyMoving |= moving[o] != 0;
+  }
+  if (staticStale) drawStatic(fs, still, anyMoving);
+  if (!anyMoving) return;
+  ++movingRedraws_;
+  for (std::vector<Face>& faces : faces_)
+    for (Face& face : faces) {
+      std::copy(face.staticDepth.begin(), face.staticDepth.end(), face.map.depth.begin());
+      raster_.render(fs, face.camera, face.map, Rasterizer::Subset{&moving, /*keep=*/true});
+    }
+}
+
+void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still,
+                            bool keepCopy) {
+  const Scene& scene = *fs.scene;
   ++redraws_;
+  // The directional maps cover the scene's bounds as they are now (a moving caster that
+  // leaves them later casts no fallback shadow outside).
   const Bounds3 b = scene.bounds(fs.time);
   const Vec3 centre = (b.lo + b.hi) * 0.5f;
   const float radius = std::max(0.5f * length(b.hi - b.lo), 0.01f);
-  // Maps keep their memory from one redraw to the next (animated scenes redraw every frame).
+  // Maps keep their memory from one redraw to the next.
   faces_.resize(scene.lights.size());
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -67,7 +95,7 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
       }
     }
     // Cube faces at half the size: six of them cover what one map does for a spot.
-    const int size = views.size() == 6 ? std::max(resolution / 2, 16) : resolution;
+    const int size = views.size() == 6 ? std::max(resolution_ / 2, 16) : resolution_;
     faces_[i].resize(views.size());
     for (size_t k = 0; k < views.size(); ++k) {
       Face& face = faces_[i][k];
@@ -75,7 +103,11 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
       face.texelPerDistance = face.camera.desc.projection == Projection::Perspective
                                   ? 2.0f * face.camera.tanHalfFov / float(size)
                                   : face.camera.desc.orthoHeight / float(size);
-      raster_.render(fs, face.camera, face.map);
+      raster_.render(fs, face.camera, face.map, Rasterizer::Subset{&still, /*keep=*/false});
+      if (keepCopy)
+        face.staticDepth = face.map.depth;
+      else
+        face.staticDepth.clear();
     }
   }
 }

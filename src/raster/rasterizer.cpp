@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "core/error.h"
 #include "core/parallel.h"
 #include "shading/surface_resolve.h"
 
@@ -92,8 +93,14 @@ bool outsideFrustum(const Mat4& vp, const Bounds3& b) {
 
 void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
                         RasterStats* stats, float tau) {
+  render(fs, cam, out, Subset{}, stats, tau);
+}
+
+void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
+                        const Subset& subset, RasterStats* stats, float tau) {
   const Scene& scene = *fs.scene;
   const int W = cam.width, H = cam.height;
+  TANDEM_ASSERT(!subset.keep || (out.width == W && out.height == H));
   out.resize(W, H);
   const int tilesX = (W + kBinSize - 1) / kBinSize, tilesY = (H + kBinSize - 1) / kBinSize;
   const int tileCount = tilesX * tilesY;
@@ -107,7 +114,7 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
   for (size_t o = 0; o < fs.objects.size(); ++o) {
     const FrameObject& fo = fs.objects[o];
     const auto& pos = fo.positions;
-    if (outsideFrustum(vp, fo.bounds)) {
+    if ((subset.objects && !(*subset.objects)[o]) || outsideFrustum(vp, fo.bounds)) {
       objectCulled_[o] = 1;
       continue;
     }
@@ -263,7 +270,7 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
     const int tx = tile % tilesX, ty = tile / tilesX;
     const int x0 = tx * kBinSize, y0 = ty * kBinSize;
     const int x1 = std::min(W, x0 + kBinSize) - 1, y1 = std::min(H, y0 + kBinSize) - 1;
-    for (int y = y0; y <= y1; ++y) {
+    for (int y = y0; y <= y1 && !subset.keep; ++y) {
       size_t row = size_t(y) * W;
       std::fill(out.depth.begin() + row + x0, out.depth.begin() + row + x1 + 1, 0.0f);
       std::fill(out.object.begin() + row + x0, out.object.begin() + row + x1 + 1, kNoObject);

@@ -7,6 +7,7 @@
 //  - back-face culling unless the material is double-sided; alpha-mask discard;
 //  - reversed-Z float depth (greater wins), perspective-correct because z/w is affine on screen.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "raster/visibility_buffer.h"
@@ -25,6 +26,14 @@ class Rasterizer {
   // `tau` in [0, 1] moving objects are drawn where they are at that fraction of the shutter
   // (positionAt); tau < 0 draws them at the frame time.
   void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
+              RasterStats* stats = nullptr, float tau = -1.0f);
+
+  // What else a draw may be asked for (shadow maps: static casters once, moving ones over them).
+  struct Subset {
+    const std::vector<uint8_t>* objects = nullptr;  // non-zero entries are drawn; null: all
+    bool keep = false;  // draw over `out`'s contents (same size) instead of clearing it
+  };
+  void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out, const Subset& subset,
               RasterStats* stats = nullptr, float tau = -1.0f);
 
   struct SetupTriangle {

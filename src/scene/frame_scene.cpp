@@ -48,7 +48,7 @@ void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
   time = t;
   prevTime = tPrev;
   if (first) objects.assign(s.objects.size(), FrameObject{});
-  bool changed = first;
+  bool changed = first, staticChanged = first;
   for (size_t i = 0; i < s.objects.size(); ++i) {
     const Object& o = s.objects[i];
     FrameObject& f = objects[i];
@@ -59,6 +59,7 @@ void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
     const bool blurred = close > t && !sameMatrix(o.worldMatrix(close), w);
     if (!first && sameMatrix(w, f.world) && !blurred && f.stepPositions.empty()) continue;
     changed = true;
+    staticChanged |= !o.animated();
     f.world = w;
     f.normalMatrix = w.normalMatrix();
     const Mesh& m = s.meshes[o.mesh];
@@ -89,6 +90,7 @@ void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
       for (const Vec3& p : step) f.bounds.extend(p);
   }
   if (changed) ++geometryVersion;
+  if (staticChanged) ++staticVersion;
 }
 
 }  // namespace tandem

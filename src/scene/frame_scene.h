@@ -29,6 +29,7 @@ struct FrameScene {
   float shutterClose = 0;        // == time: no motion blur
   int motionSteps = 4;           // time steps per moving object while the shutter is open
   uint64_t geometryVersion = 0;  // bumps whenever world-space geometry changed
+  uint64_t staticVersion = 0;    // bumps when geometry of an object that is not animated changed
 
   // Re-evaluates transforms; recomputes world geometry only for objects whose matrix changed.
   // A shutter > 0 (seconds) keeps the shutter's time steps of objects that move in it.

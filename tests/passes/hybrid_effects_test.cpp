@@ -181,6 +181,47 @@ TEST(ShadowMaps, OccluderShadowsThePointBelowIt) {
   EXPECT_EQ(maps.redraws(), 1);
 }
 
+// Static casters are drawn once; an animated caster is drawn again over their depth whenever it
+// moves: its shadow follows it, the static shadow stays, and the static maps are not redrawn.
+TEST(HybridEffects, ShadowMapsRedrawOnlyMovingCasters) {
+  Scene s;
+  Material m;
+  m.diffuse = {0.5f, 0.5f, 0.5f};
+  const int mat = s.addMaterial(m), plane = s.addMesh(makePlane()), cube = s.addMesh(makeCube());
+  Transform ground, roof;
+  ground.scale = {10, 1, 10};
+  roof.position = {0, 2, 4};  // a static roof over z in [3, 5]
+  s.addObject("ground", plane, mat, ground);
+  s.addObject("roof", plane, mat, roof);
+  const int box = s.addObject("box", cube, mat);
+  Transform left, right;
+  left.position = {-4, 2, 0};
+  right.position = {4, 2, 0};
+  left.scale = right.scale = {0.5f, 0.5f, 0.5f};
+  s.objects[size_t(box)].animation = {{0.0f, left}, {1.0f, right}};
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = {0, -1, 0};
+  s.lights = {sun};
+  const Vec3 up{0, 1, 0};
+  FrameScene fs;
+  ShadowMaps maps;
+  fs.update(s, 0, 0);
+  maps.update(fs, 512);
+  EXPECT_EQ(maps.visibility(0, {-4, 0, 0}, up), 0.0f);  // under the box
+  EXPECT_EQ(maps.visibility(0, {4, 0, 0}, up), 1.0f);
+  EXPECT_EQ(maps.visibility(0, {0, 0, 4}, up), 0.0f);  // under the roof
+  fs.update(s, 1, 0);
+  maps.update(fs, 512);
+  EXPECT_EQ(maps.visibility(0, {-4, 0, 0}, up), 1.0f);  // the box has left
+  EXPECT_EQ(maps.visibility(0, {4, 0, 0}, up), 0.0f);
+  EXPECT_EQ(maps.visibility(0, {0, 0, 4}, up), 0.0f);
+  EXPECT_EQ(maps.redraws(), 1);
+  EXPECT_EQ(maps.movingRedraws(), 2);
+  maps.update(fs, 512);  // nothing moved: nothing drawn
+  EXPECT_EQ(maps.movingRedraws(), 2);
+}
+
 // With nothing ray traced, the fallbacks (shadow maps, screen-space reflection and refraction)
 // bring the image much closer to hybrid-all than the paper's rule (unshadowed, black mirrors).
 TEST(HybridEffects, FallbacksStandInForUnselectedEffects) {
