@@ -19,6 +19,7 @@ int wrapIndex(int i, int n, WrapMode mode) {
     }
     case WrapMode::Repeat:
     default: {
+      if ((n & (n - 1)) == 0) return i & (n - 1);  // powers of two: no division (same result)
       int m = i % n;
       return m < 0 ? m + n : m;
     }
@@ -56,7 +57,10 @@ uint8_t encodeByte(float v, bool srgb) {
   return uint8_t(std::clamp(int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)), 0, 255));
 }
 
-Vec4 bilinear(const Texture::Level& l, Vec2 uv, WrapMode ws, WrapMode wt, const float* table) {
+// Channel by channel in registers: building the four texels as vectors on the stack and reading
+// them back stalled on store forwarding.
+Vec4 bilinear(const Texture::Level& l, Vec2 uv, WrapMode ws, WrapMode wt, const float* table,
+              const float* alphaTable) {
   const int w = l.width, h = l.height;
   // Keep the coordinate in a modest range before converting to int (huge UVs stay exact enough).
   float fx = std::clamp(uv.x * float(w) - 0.5f, -1e7f, 1e7f);
@@ -66,13 +70,18 @@ Vec4 bilinear(const Texture::Level& l, Vec2 uv, WrapMode ws, WrapMode wt, const 
   const int x0 = int(x0f), y0 = int(y0f);
   const int xa = wrapIndex(x0, w, ws), xb = wrapNext(xa, x0 + 1, w, ws);
   const int ya = wrapIndex(y0, h, wt), yb = wrapNext(ya, y0 + 1, h, wt);
-  auto px = [&](int x, int y) {
-    const uint8_t* p = &l.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4];
-    return Vec4(table[p[0]], table[p[1]], table[p[2]], decodeTables().linear[p[3]]);
-  };
-  const Vec4 top = px(xa, ya) * (1 - tx) + px(xb, ya) * tx;
-  const Vec4 bottom = px(xa, yb) * (1 - tx) + px(xb, yb) * tx;
-  return top * (1 - ty) + bottom * ty;
+  const uint8_t* rowA = &l.rgba[size_t(ya) * size_t(w) * 4];
+  const uint8_t* rowB = &l.rgba[size_t(yb) * size_t(w) * 4];
+  const uint8_t *p00 = rowA + size_t(xa) * 4, *p10 = rowA + size_t(xb) * 4;
+  const uint8_t *p01 = rowB + size_t(xa) * 4, *p11 = rowB + size_t(xb) * 4;
+  float out[4];
+  for (int k = 0; k < 4; ++k) {
+    const float* t = k < 3 ? table : alphaTable;
+    const float top = t[p00[k]] * (1 - tx) + t[p10[k]] * tx;
+    const float bottom = t[p01[k]] * (1 - tx) + t[p11[k]] * tx;
+    out[k] = top * (1 - ty) + bottom * ty;
+  }
+  return {out[0], out[1], out[2], out[3]};
 }
 
 }  // namespace
@@ -80,15 +89,16 @@ Vec4 bilinear(const Texture::Level& l, Vec2 uv, WrapMode ws, WrapMode wt, const 
 Vec4 Texture::sample(Vec2 uv, float lod) const {
   if (levels.empty()) return {1, 1, 1, 1};
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = {0, 0};
-  const float* table = srgb ? decodeTables().srgb : decodeTables().linear;
+  const DecodeTables& tables = decodeTables();
+  const float *table = srgb ? tables.srgb : tables.linear, *alpha = tables.linear;
   const float top = float(levels.size() - 1);
-  if (!(lod > 0.0f)) return bilinear(levels[0], uv, wrapS, wrapT, table);
+  if (!(lod > 0.0f)) return bilinear(levels[0], uv, wrapS, wrapT, table, alpha);
   lod = std::min(lod, top);
   const int l0 = int(lod);
   const float t = lod - float(l0);
-  const Vec4 a = bilinear(levels[size_t(l0)], uv, wrapS, wrapT, table);
+  const Vec4 a = bilinear(levels[size_t(l0)], uv, wrapS, wrapT, table, alpha);
   if (t <= 0.0f || l0 + 1 > int(top)) return a;
-  return a * (1 - t) + bilinear(levels[size_t(l0) + 1], uv, wrapS, wrapT, table) * t;
+  return a * (1 - t) + bilinear(levels[size_t(l0) + 1], uv, wrapS, wrapT, table, alpha) * t;
 }
 
 float Texture::lodFor(float uvPerPixel) const {
