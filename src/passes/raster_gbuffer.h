@@ -4,8 +4,8 @@
 #pragma once
 #include <vector>
 
+#include "passes/visible_surfaces.h"
 #include "pipeline/pass.h"
-#include "raster/rasterizer.h"
 
 namespace tandem {
 
@@ -18,14 +18,8 @@ class RasterGBufferPass : public Pass {
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
 
-  // The last frame's visibility buffer of each view and the rasterizer's figures (all views).
-  const std::vector<VisibilityBuffer>& visibility() const { return visibility_; }
-  const RasterStats& stats() const { return stats_; }
-
  private:
-  Rasterizer rasterizer_;  // binning scratch reused across frames
-  std::vector<VisibilityBuffer> visibility_;
-  RasterStats stats_;
+  VisibleSurfaces surfaces_;
 };
 
 }  // namespace tandem

@@ -13,20 +13,23 @@
 #include "passes/ss_fallback.h"
 #include "passes/taa.h"
 #include "passes/tonemap.h"
+#include "passes/vbuffer_shading.h"
 #include "pipeline/pipeline.h"
 
 namespace tandem {
 
 const std::vector<std::string>& passTypes() {
   static const std::vector<std::string> types = {
-      "raster_gbuffer", "rt_gbuffer", "deferred_shading", "heuristic",    "rt_secondary",
-      "ss_fallback",    "blend",      "rt_whitted",       "pt_reference", "taa",
-      "accumulation",   "downsample", "tonemap"};
+      "raster_gbuffer", "vbuffer_shading", "rt_gbuffer",  "deferred_shading",
+      "heuristic",      "rt_secondary",    "ss_fallback", "blend",
+      "rt_whitted",     "pt_reference",    "taa",         "accumulation",
+      "downsample",     "tonemap"};
   return types;
 }
 
 std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "raster_gbuffer") return std::make_unique<RasterGBufferPass>();
+  if (type == "vbuffer_shading") return std::make_unique<VBufferShadingPass>();
   if (type == "rt_gbuffer") return std::make_unique<RTGBufferPass>();
   if (type == "deferred_shading") return std::make_unique<DeferredShadingPass>();
   if (type == "heuristic") return std::make_unique<HeuristicPass>();

@@ -183,3 +183,25 @@ TEST(Pipeline, PassesAreDocumented) {
       EXPECT_NE(doc.find("`" + p.name + "`"), std::string::npos) << type << "." << p.name;
   }
 }
+
+// Shading straight from the visibility buffer draws the deferred picture: the same radiance,
+// depth and object ids on every built-in scene (one resolve, one shading kernel).
+TEST(Pipeline, VisibilityBufferShadingEqualsDeferred) {
+  for (const std::string& name : builtinSceneNames()) {
+    Scene s = makeBuiltinScene(name);
+    auto gbuffer = test::renderOnce(s, "deferred", 160, 90, s.camera);
+    auto vbuffer = test::renderOnce(s, "deferred-vbuffer", 160, 90, s.camera);
+    for (const char* buffer : {"hdr", "depth", "object_id"}) {
+      const Buffer& a = gbuffer->context().input(buffer);
+      const Buffer& b = vbuffer->context().input(buffer);
+      ASSERT_TRUE(a.sameShape(b)) << name << " " << buffer;
+      double worst = 0, range = 0;
+      for (size_t i = 0; i < a.data.size(); ++i) {
+        worst = std::max(worst, double(std::abs(a.data[i] - b.data[i])));
+        range = std::max(range, double(std::abs(a.data[i])));
+      }
+      EXPECT_GT(range, 0.0) << name << " " << buffer << " is empty";
+      EXPECT_LE(worst, 1e-6 * std::max(range, 1.0)) << name << " " << buffer;
+    }
+  }
+}

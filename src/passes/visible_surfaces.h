@@ -1,0 +1,94 @@
+// The raster stage that raster_gbuffer and vbuffer_shading share: the frame's scene rasterized
+// into one visibility buffer per view, then each covered pixel resolved once into a
+// SurfaceSample along its camera ray (barycentrics from per-triangle planes, the triangle's
+// resolve constants set up once per tile in a small direct-mapped cache).
+#pragma once
+#include <vector>
+
+#include "pipeline/frame_context.h"
+#include "raster/rasterizer.h"
+#include "raster/triangle_planes.h"
+#include "shading/surface_resolve.h"
+#include "shading/surface_resolve_inline.h"
+
+namespace tandem {
+
+class VisibleSurfaces {
+ public:
+  // Rasterizes every view; reported as the pass part "visibility" and the raster/* counters.
+  void rasterize(FrameContext& ctx);
+
+  // Triangles set up for one tile: a triangle mostly covers neighbouring pixels in this row and
+  // the rows below.
+  struct TriangleCache {
+    struct Entry {
+      uint32_t object = ~0u, prim = ~0u;
+      TrianglePlanes planes{};
+      TriangleSetup setup;
+    };
+    static constexpr size_t kSize = 64;
+    std::vector<Entry> entries = std::vector<Entry>(kSize);
+  };
+
+  // Resolves the tile [x0,x1) x [y0,y1) (frame pixels) of view v row by row: surface(x, y, s,
+  // depth, pixel) for covered pixels (pixel: the view-local pixel centre) and background(x, y,
+  // dir) for the others (dir: the unnormalised camera ray).
+  template <class Surface, class Background>
+  void resolveTile(const FrameContext& ctx, const View& v, int x0, int y0, int x1, int y1,
+                   TriangleCache& cache, Surface&& surface, Background&& background) const;
+
+ private:
+  Rasterizer rasterizer_;  // binning scratch reused across frames
+  std::vector<VisibilityBuffer> visibility_;
+};
+
+template <class Surface, class Background>
+void VisibleSurfaces::resolveTile(const FrameContext& ctx, const View& v, int x0, int y0, int x1,
+                                  int y1, TriangleCache& cache, Surface&& surface,
+                                  Background&& background) const {
+  const VisibilityBuffer& vis = visibility_[size_t(&v - ctx.views.data())];
+  const FrameScene& fs = ctx.frame;
+  const Camera& cam = v.camera;
+  const bool perspective = cam.desc.projection == Projection::Perspective;
+  const float spread = ctx.pixelSpread(v);  // texture level of detail: the pixel's cone
+  for (int y = y0; y < y1; ++y) {
+    const int ly = y - v.y;
+    // The pixel ray (unnormalised): the row's part once, the column's a multiply-add.
+    Vec3 o, dRow;
+    cam.generateRayUnnormalized(-cam.jitter.x, float(ly) + 0.5f, o, dRow);  // NDC x = -1
+    dRow = dRow + cam.right * cam.tanHalfFov * cam.aspect;                  // NDC x = 0
+    const float ndcPerPixel = 2.0f / float(cam.width) * cam.tanHalfFov * cam.aspect;
+    for (int x = x0; x < x1; ++x) {
+      const int lx = x - v.x;
+      const size_t i = size_t(ly) * size_t(vis.width) + size_t(lx);
+      Vec3 d = dRow + cam.right * ((float(lx) + 0.5f + cam.jitter.x) * ndcPerPixel -
+                                   cam.tanHalfFov * cam.aspect);
+      if (!perspective) cam.generateRay(float(lx) + 0.5f, float(ly) + 0.5f, o, d);
+      if (vis.object[i] == kNoObject) {
+        background(x, y, d);
+        continue;
+      }
+      const uint32_t object = vis.object[i], prim = vis.prim[i];
+      // Barycentrics of the pixel's camera ray against the visible triangle: exact and
+      // perspective-correct, what a primary ray would compute. Initialised in place (no copy):
+      // a copied sample's fields would be read back before their stores retire.
+      const SurfaceSample s = [&] {
+        if (!fs.objects[object].stepPositions.empty())
+          return resolveSurface(fs, int(object), int(prim), o, d, 0.0f, nullptr, spread);
+        TriangleCache::Entry& c = cache.entries[(prim * 0x9E3779B1u + object) % cache.kSize];
+        if (c.object != object || c.prim != prim) {
+          c.object = object;
+          c.prim = prim;
+          c.setup = TriangleSetup::make(fs, int(object), int(prim), 0.0f);
+          c.planes = TrianglePlanes::make(o, c.setup.p[0], c.setup.p[1], c.setup.p[2]);
+        }
+        float tuv[3] = {0, 0, 0};
+        const bool planar = perspective && c.planes.barycentrics(d, tuv[1], tuv[2]);
+        return resolveSurfaceInline(c.setup, o, d, planar ? tuv : nullptr, spread);
+      }();
+      surface(x, y, s, vis.depth[i], Vec2{float(lx) + 0.5f, float(ly) + 0.5f});
+    }
+  }
+}
+
+}  // namespace tandem
