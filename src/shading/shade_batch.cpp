@@ -185,14 +185,6 @@ void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>&
   b.lightCount = out.size();
 }
 
-void ShadeBatch::set(int lane, const SurfaceSample& s, Vec3 wo) {
-  const float v[kFields - 3] = {
-      s.position.x, s.position.y, s.position.z, s.normal.x,         s.normal.y,   s.normal.z,
-      wo.x,         wo.y,         wo.z,         s.diffuse.x,        s.diffuse.y,  s.diffuse.z,
-      s.specular.x, s.specular.y, s.specular.z, s.specularExponent, s.emission.x, s.emission.y,
-      s.emission.z, s.ambient.x,  s.ambient.y,  s.ambient.z};
-  for (int k = 0; k < kFields - 3; ++k) f[k][lane] = v[k];
-}
 
 }  // namespace tandem
 #endif

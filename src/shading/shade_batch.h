@@ -48,7 +48,17 @@ struct ShadeBatch {
   size_t lightCount = 0;
   alignas(64) float f[kFields][kMax];
 
-  void set(int lane, const SurfaceSample& s, Vec3 wo);
+  // Inline: resolve passes fill lanes from a sample still in registers.
+  void set(int lane, const SurfaceSample& s, Vec3 wo) {
+    f[PX][lane] = s.position.x, f[PY][lane] = s.position.y, f[PZ][lane] = s.position.z;
+    f[NX][lane] = s.normal.x, f[NY][lane] = s.normal.y, f[NZ][lane] = s.normal.z;
+    f[WX][lane] = wo.x, f[WY][lane] = wo.y, f[WZ][lane] = wo.z;
+    f[DR][lane] = s.diffuse.x, f[DG][lane] = s.diffuse.y, f[DB][lane] = s.diffuse.z;
+    f[SR][lane] = s.specular.x, f[SG][lane] = s.specular.y, f[SB][lane] = s.specular.z;
+    f[EXP][lane] = s.specularExponent;
+    f[ER][lane] = s.emission.x, f[EG][lane] = s.emission.y, f[EB][lane] = s.emission.z;
+    f[AR][lane] = s.ambient.x, f[AG][lane] = s.ambient.y, f[AB][lane] = s.ambient.z;
+  }
   Vec3 result(int lane) const { return {f[OR][lane], f[OG][lane], f[OB][lane]}; }
 };
 
