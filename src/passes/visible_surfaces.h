@@ -18,17 +18,9 @@ class VisibleSurfaces {
   // Rasterizes every view; reported as the pass part "visibility" and the raster/* counters.
   void rasterize(FrameContext& ctx);
 
-  // Triangles set up for one tile: a triangle mostly covers neighbouring pixels in this row and
-  // the rows below.
-  struct TriangleCache {
-    struct Entry {
-      uint32_t object = ~0u, prim = ~0u;
-      TrianglePlanes planes{};
-      TriangleSetup setup;
-    };
-    static constexpr size_t kSize = 64;
-    std::vector<Entry> entries = std::vector<Entry>(kSize);
-  };
+  // Triangles set up for one tile, with their barycentric planes: a triangle mostly covers
+  // neighbouring pixels in this row and the rows below.
+  using TriangleCache = TriangleSetupCache<TrianglePlanes>;
 
   // Resolves the tile [x0,x1) x [y0,y1) (frame pixels) of view v row by row: surface(x, y, s,
   // depth, pixel) for covered pixels (pixel: the view-local pixel centre) and background(x, y,
@@ -75,15 +67,11 @@ void VisibleSurfaces::resolveTile(const FrameContext& ctx, const View& v, int x0
       const SurfaceSample s = [&] {
         if (!fs.objects[object].stepPositions.empty())
           return resolveSurface(fs, int(object), int(prim), o, d, 0.0f, nullptr, spread);
-        TriangleCache::Entry& c = cache.entries[(prim * 0x9E3779B1u + object) % cache.kSize];
-        if (c.object != object || c.prim != prim) {
-          c.object = object;
-          c.prim = prim;
-          c.setup = TriangleSetup::make(fs, int(object), int(prim), 0.0f);
-          c.planes = TrianglePlanes::make(o, c.setup.p[0], c.setup.p[1], c.setup.p[2]);
-        }
+        bool fresh;
+        TriangleCache::Entry& c = cache.get(fs, object, prim, fresh);
+        if (fresh) c.extra = TrianglePlanes::make(o, c.setup.p[0], c.setup.p[1], c.setup.p[2]);
         float tuv[3] = {0, 0, 0};
-        const bool planar = perspective && c.planes.barycentrics(d, tuv[1], tuv[2]);
+        const bool planar = perspective && c.extra.barycentrics(d, tuv[1], tuv[2]);
         return resolveSurfaceInline(c.setup, o, d, planar ? tuv : nullptr, spread);
       }();
       surface(x, y, s, vis.depth[i], Vec2{float(lx) + 0.5f, float(ly) + 0.5f});

@@ -2,6 +2,9 @@
 // ray, interpolated normals/tangents/UVs, material and textures. The raster G-buffer (via its
 // visibility buffer) and every ray hit go through this one function.
 #pragma once
+#include <cstdint>
+#include <vector>
+
 #include "scene/frame_scene.h"
 #include "shading/surface.h"
 
@@ -43,6 +46,34 @@ struct TriangleSetup {
 };
 SurfaceSample resolveSurface(const TriangleSetup& tri, Vec3 origin, Vec3 dir, const float* knownTuv,
                              float pixelSpread = 0.0f);
+
+// Triangles set up recently by one worker (direct-mapped, 64 entries): neighbouring pixels
+// mostly hit the same triangles. `Extra` is what a caller keeps beside each set-up (the raster
+// resolve: its barycentric planes). For objects standing still during the frame (the set-up is
+// at time 0); valid for one frame.
+template <class Extra = char>
+struct TriangleSetupCache {
+  struct Entry {
+    uint32_t object = ~0u, prim = ~0u;
+    TriangleSetup setup;
+    Extra extra{};
+  };
+  static constexpr size_t kSize = 64;
+  std::vector<Entry> entries = std::vector<Entry>(kSize);
+
+  // The entry of (object, prim), set up if it was not there; `fresh` tells the caller to fill
+  // its extra.
+  Entry& get(const FrameScene& fs, uint32_t object, uint32_t prim, bool& fresh) {
+    Entry& e = entries[(prim * 0x9E3779B1u + object) % kSize];
+    fresh = e.object != object || e.prim != prim;
+    if (fresh) {
+      e.object = object;
+      e.prim = prim;
+      e.setup = TriangleSetup::make(fs, int(object), int(prim), 0.0f);
+    }
+    return e;
+  }
+};
 
 // The pixel spread angle of a camera (0 for orthographic: no level of detail).
 float pixelSpreadAngle(const Camera& camera);
