@@ -10,19 +10,21 @@
 namespace tandem {
 
 namespace {
-enum class FallbackMode { Off = 0, Environment = 1, ScreenSpace = 2 };
+enum class FallbackMode { Off = 0, Environment = 1, ScreenSpace = 2, Probe = 3 };
 }
 
 std::vector<ParamDesc> ScreenSpaceFallbackPass::params() const {
-  // Defaults measured (docs/benchmarks.md): the sky scores as well as the screen-space march
-  // against rt-only on the heuristic scenes at less cost; 1024 maps as well as 2048 within 0.01.
+  // Defaults measured (docs/benchmarks.md): probes score best against rt-only on the heuristic
+  // scenes (SSIM and FLIP; the sky and the screen-space march tie below them); 1024 maps as well
+  // as 2048 within 0.01.
   return {{"mode",
            ParamType::Enum,
-           1,
+           3,
            0,
-           2,
-           "unselected reflections/refractions: off (seed 002: black), sky, screen space",
-           {"off", "environment", "screen_space"}},
+           3,
+           "unselected reflections/refractions: off (seed 002: black), sky, screen space, "
+           "per-object reflection probes",
+           {"off", "environment", "screen_space", "probe"}},
           {"shadows",
            ParamType::Enum,
            1,
@@ -31,6 +33,14 @@ std::vector<ParamDesc> ScreenSpaceFallbackPass::params() const {
            "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
            {"off", "shadow_map"}},
           {"shadow_map_size", ParamType::Int, 1024, 64, 8192, "shadow map resolution", {}},
+          {"probe_size", ParamType::Int, 64, 8, 1024, "reflection probe face resolution", {}},
+          {"probe_refresh",
+           ParamType::Int,
+           2,
+           0,
+           1024,
+           "probes redrawn per frame when geometry moved (oldest first; new ones always)",
+           {}},
           {"steps", ParamType::Int, 32, 1, 512, "march steps along the reflected ray", {}},
           {"thickness",
            ParamType::Float,
@@ -114,6 +124,21 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
     ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   }
   const ShadingContext shading = ShadingContext::from(scene);
+  if (mode == FallbackMode::Probe) {
+    // A probe for every reflective or transparent object that shows an untraced effect.
+    const auto t0 = Clock::now();
+    std::vector<uint8_t> wanted(scene.objects.size(), 0);
+    for (size_t i = 0; i < objectId.pixelCount(); ++i) {
+      const float id = objectId.data[i];
+      if (id < 0 || wanted[size_t(id)]) continue;
+      const float *op = &optical.data[3 * i], *m = &mask.data[size_t(kEffectCount) * i];
+      wanted[size_t(id)] =
+          (op[0] > 0 && m[kReflection] < 0.5f) || (op[2] < 1 && m[kRefraction] < 0.5f);
+    }
+    ctx.counters["ss_fallback/probes_drawn"] = probes_.update(
+        ctx.frame, shading, wanted, int(param("probe_size")), int(param("probe_refresh")));
+    ctx.passParts.push_back({"probes", msSince(t0), 0});
+  }
   const Bounds3 b = scene.bounds(ctx.frame.time);
   const Frame f{hdr, position, objectId, optical, scene, std::max(length(b.hi - b.lo), 0.1f)};
   const int steps = int(param("steps"));
@@ -147,6 +172,11 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
         Vec3 n = normal.rgb(x, y);
         if (dot(n, d) > 0) n = -n;
         auto look = [&](Vec3 r, int self) {
+          if (mode == FallbackMode::Probe) {  // refraction: out through the object first
+            Vec3 from = p;
+            const Vec3 dir = self < 0 ? r : probes_.exitDirection(id, p, r, op[1], from);
+            return probes_.lookupFrom(scene, id, from, dir, b);
+          }
           return mode == FallbackMode::Environment
                      ? scene.skyRadiance(r)
                      : marchScreen(f, v, p, r, steps, thickness, self);

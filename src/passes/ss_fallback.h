@@ -4,12 +4,14 @@
 // through the frame itself: a world-space march projected on the screen, hitting where it
 // passes just behind the depth of the G-buffer, takes the shaded colour there (screen-space
 // reflection / refraction); a march that leaves the screen or finds nothing takes the sky.
-// Mode "environment" (the default: it measures as well at less cost) skips the march. Unselected
+// Mode "environment" skips the march and takes the sky; mode "probe" (the default: it measures
+// best) looks up a small cube map drawn from the object's centre (reflection_probes.h). Unselected
 // shadows come from raster shadow maps (shadow_maps.h) through the same shading call rt_secondary
 // uses. Both "off" is the paper's rule, for its tables. Inputs: the G-buffer sample slots, hdr,
 // heuristic_mask. Output: fallback = reflection RGB, refraction RGB, shadow RGB (eq. 4's S), then
 // flags: 1 where reflection/refraction were written, 1 where the shadow was.
 #pragma once
+#include "passes/reflection_probes.h"
 #include "passes/shadow_maps.h"
 #include "pipeline/pass.h"
 
@@ -25,11 +27,15 @@ class ScreenSpaceFallbackPass : public Pass {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"fallback", kChannels}}; }
   void execute(FrameContext& ctx) override;
-  void resetHistory() override { shadowMaps_ = {}; }
+  void resetHistory() override {
+    shadowMaps_ = {};
+    probes_ = {};
+  }
   static constexpr int kChannels = 11;
 
  private:
   ShadowMaps shadowMaps_;
+  ReflectionProbes probes_;
 };
 
 }  // namespace tandem

@@ -7,6 +7,7 @@
 #include "eval/metrics.h"
 #include "passes/blend.h"
 #include "passes/heuristic.h"
+#include "passes/reflection_probes.h"
 #include "passes/shadow_maps.h"
 #include "pipeline/frame_context.h"
 #include "rt/whitted.h"
@@ -220,6 +221,52 @@ TEST(HybridEffects, ShadowMapsRedrawOnlyMovingCasters) {
   EXPECT_EQ(maps.movingRedraws(), 2);
   maps.update(fs, 512);  // nothing moved: nothing drawn
   EXPECT_EQ(maps.movingRedraws(), 2);
+}
+
+// A probe sees the scene from its object's centre: a red wall on +x, a green floor below, the
+// sky elsewhere; the object itself is not in its own probe.
+TEST(ReflectionProbes, SeeTheSceneAroundTheObject) {
+  Scene s;
+  Material red, green, ball;
+  red.emission = {1, 0, 0};  // emission: the colour does not depend on the lights
+  green.emission = {0, 1, 0};
+  ball.emission = {0, 0, 1};
+  s.skybox.color = {0.2f, 0.2f, 0.2f};
+  const int plane = s.addMesh(makePlane());
+  Transform wall, floor;
+  wall.position = {3, 0, 0};
+  wall.rotationDeg = {0, 0, 90};  // the plane's normal +y turned to -x: facing the ball
+  wall.scale = {10, 1, 10};
+  floor.position = {0, -3, 0};
+  floor.scale = {10, 1, 10};
+  s.addObject("wall", plane, s.addMaterial(red), wall);
+  s.addObject("floor", plane, s.addMaterial(green), floor);
+  const int b = s.addObject("ball", s.addMesh(makeUvSphere(16, 8)), s.addMaterial(ball));
+  s.materials[size_t(s.objects[0].material)].doubleSided = true;
+  FrameScene fs;
+  fs.update(s, 0, 0);
+  ReflectionProbes probes;
+  std::vector<uint8_t> wanted(s.objects.size(), 0);
+  wanted[size_t(b)] = 1;
+  const ShadingContext shading = ShadingContext::from(s);
+  EXPECT_EQ(probes.update(fs, shading, wanted, 32, 2), 1);
+  EXPECT_EQ(probes.update(fs, shading, wanted, 32, 2), 0);  // nothing changed: reused
+  auto near = [](Vec3 a, Vec3 e) { return length(a - e) < 0.02f; };
+  EXPECT_TRUE(near(probes.lookup(s, b, {1, 0, 0}), {1, 0, 0}));
+  EXPECT_TRUE(near(probes.lookup(s, b, {0, -1, 0}), {0, 1, 0}));
+  EXPECT_TRUE(near(probes.lookup(s, b, {0, 1, 0}), {0.2f, 0.2f, 0.2f}));   // sky, not the ball
+  EXPECT_TRUE(near(probes.lookup(s, b, {0, 0, -1}), {0.2f, 0.2f, 0.2f}));  // past the wall
+  // Parallax: from a point near the wall looking at the floor's edge region the box proxy
+  // bends the lookup, from the centre it is the plain lookup.
+  const Bounds3 box{{-5, -3, -5}, {3, 5, 5}};
+  EXPECT_TRUE(near(probes.lookupFrom(s, b, {0, 0, 0}, {0, -1, 0}, box), {0, 1, 0}));
+  // Straight through the ball's centre a ray leaves undeviated, from the far side.
+  Vec3 exit;
+  const Vec3 out = probes.exitDirection(b, {-1, 0, 0}, {1, 0, 0}, 1.5f, exit);
+  EXPECT_NEAR(out.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(exit.x, 1.0f, 1e-3f);
+  // An object without a probe shows the sky.
+  EXPECT_TRUE(near(probes.lookup(s, 0, {1, 0, 0}), {0.2f, 0.2f, 0.2f}));
 }
 
 // With nothing ray traced, the fallbacks (shadow maps, screen-space reflection and refraction)

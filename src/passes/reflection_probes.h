@@ -1,0 +1,57 @@
+// Reflection probes: the stand-in production hybrids use for reflections and refractions they do
+// not ray trace. For each object that needs one, a small cube map of the scene seen from the
+// object's centre (the object itself left out), rasterized, resolved and shaded by the one
+// shading function (lights unshadowed; the sky behind). A mirror ball looks up its reflected
+// direction; glass looks up the direction its ray leaves by, refracted in and out of the
+// object's bounding sphere. Probes do not depend on the camera: they are redrawn only when
+// geometry or lights change.
+#pragma once
+#include <vector>
+
+#include "raster/rasterizer.h"
+#include "scene/frame_scene.h"
+#include "shading/blinn_phong.h"
+
+namespace tandem {
+
+class ReflectionProbes {
+ public:
+  // Makes sure every object with wanted[o] != 0 has a probe of `size`^2 faces: missing ones are
+  // drawn now; ones whose geometry changed since (animated scenes) are redrawn, oldest first,
+  // at most `refresh` a frame (what games do: probes trail moving objects by a few frames).
+  // Returns the probes drawn.
+  int update(const FrameScene& fs, const ShadingContext& shading,
+             const std::vector<uint8_t>& wanted, int size, int refresh);
+  // Radiance arriving at object o's centre from unit direction d (bilinear within a face); the
+  // sky where o has no probe.
+  Vec3 lookup(const Scene& scene, int object, Vec3 d) const;
+  // Radiance seen from point p (near object o) along unit direction d, parallax-corrected
+  // (Lagarde 2012): the ray is followed to the box `proxy` (the scene's bounds) and the probe is
+  // looked up towards where it leaves, so a floor or a wall appears where it would from p.
+  Vec3 lookupFrom(const Scene& scene, int object, Vec3 p, Vec3 d, const Bounds3& proxy) const;
+  // The direction a ray entering object o at p along t (already refracted in) leaves by: out
+  // through the object's bounding sphere, refracted (eta = ior inside / outside), or reflected
+  // back in on total internal reflection (then looked up as it is).
+  // `exit` receives the point it leaves from.
+  Vec3 exitDirection(int object, Vec3 p, Vec3 t, float eta, Vec3& exit) const;
+
+ private:
+  struct Probe {
+    uint64_t version = ~0ull;  // geometry version drawn for
+    uint64_t drawn = 0;        // update() call it was drawn in (the oldest is refreshed first)
+    Vec3 centre;
+    float radius = 0;
+    int size = 0;
+    std::vector<Camera> cameras;           // the six faces
+    std::vector<std::vector<Vec3>> faces;  // size x size radiance each
+  };
+  void draw(const FrameScene& fs, const ShadingContext& shading, int object, int size, Probe& p);
+
+  std::vector<Probe> probes_;  // per object
+  uint64_t updates_ = 0;
+  std::vector<float> lightKey_;
+  Rasterizer raster_;
+  VisibilityBuffer vis_;
+};
+
+}  // namespace tandem
