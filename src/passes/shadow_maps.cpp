@@ -104,11 +104,61 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
                                   ? 2.0f * face.camera.tanHalfFov / float(size)
                                   : face.camera.desc.orthoHeight / float(size);
       raster_.render(fs, face.camera, face.map, Rasterizer::Subset{&still, /*keep=*/false});
+      const Camera& c = face.camera;
+      ShadowFace& lf = face.lookup;  // its depth pointer is taken at lookup time
+      lf.width = face.map.width;
+      lf.height = face.map.height;
+      for (int r = 0; r < 3; ++r)
+        for (int j = 0; j < 4; ++j) lf.row[r][j] = c.viewProj.m[r == 2 ? 3 : r][j];
+      lf.eye = c.desc.position;
+      lf.forward = c.forward;
+      lf.texelPerDistance = face.texelPerDistance;
+      lf.perspective = c.desc.projection == Projection::Perspective;
+      lf.nearPlane = c.desc.nearPlane;
+      lf.farPlane = c.desc.farPlane;
       if (keepCopy)
         face.staticDepth = face.map.depth;
       else
         face.staticDepth.clear();
     }
+  }
+}
+
+void ShadowMaps::visibilityBatch(size_t i, const float* px, const float* py, const float* pz,
+                                 const float* nx, const float* ny, const float* nz,
+                                 const float* use, int count, float* out) const {
+  if (i >= faces_.size() || faces_[i].empty()) {
+    for (int k = 0; k < count; ++k)
+      if (use[k] > 0) out[k] = 1.0f;
+    return;
+  }
+  const std::vector<Face>& faces = faces_[i];
+  auto lookup = [&](const Face& f, const float* lanes) {
+    ShadowFace lf = f.lookup;
+    lf.depth = f.map.depth.data();
+    shadowLookupBatch(lf, px, py, pz, nx, ny, nz, lanes, size_t(count), out);
+  };
+  if (faces.size() != 6) {
+    lookup(faces[0], use);
+    return;
+  }
+  // A cube: each point's face is its major axis from the light; one kernel call per face seen.
+  const Vec3 l = faces[0].camera.desc.position;
+  int face[16];
+  unsigned seen = 0;
+  for (int k = 0; k < count; ++k) {
+    const Vec3 d{px[k] - l.x, py[k] - l.y, pz[k] - l.z};
+    const Vec3 a{std::abs(d.x), std::abs(d.y), std::abs(d.z)};
+    face[k] = a.x >= a.y && a.x >= a.z ? (d.x > 0 ? 0 : 1)
+              : a.y >= a.z             ? (d.y > 0 ? 2 : 3)
+                                       : (d.z > 0 ? 4 : 5);
+    if (use[k] > 0) seen |= 1u << face[k];
+  }
+  for (int f = 0; f < 6; ++f) {
+    if (!(seen & (1u << f))) continue;
+    float mine[16] = {};
+    for (int k = 0; k < count; ++k) mine[k] = use[k] > 0 && face[k] == f ? 1.0f : 0.0f;
+    lookup(faces[size_t(f)], mine);
   }
 }
 

@@ -2,6 +2,8 @@
 // measurements, the ms-budget calibration and the equivalences between modes.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <tbb/task_arena.h>
 
 #include "eval/metrics.h"
@@ -180,6 +182,72 @@ TEST(ShadowMaps, OccluderShadowsThePointBelowIt) {
   // Drawn once; a second update with nothing changed reuses them.
   maps.update(fs, 512);
   EXPECT_EQ(maps.redraws(), 1);
+}
+
+// The SIMD batch lookup is the scalar one, 16 points at a time, for every kind of map: random
+// points under and around a roof, lit by a sun, a spot and a point light (a cube).
+TEST(ShadowMaps, BatchLookupEqualsScalar) {
+  Scene s;
+  Material m;
+  m.diffuse = {0.5f, 0.5f, 0.5f};
+  const int mat = s.addMaterial(m), plane = s.addMesh(makePlane()), cube = s.addMesh(makeCube());
+  Transform ground, roof, box;
+  ground.scale = {10, 1, 10};
+  roof.position = {0, 2, 0};
+  box.position = {2, 0.5f, 1};
+  box.scale = {0.5f, 0.5f, 0.5f};
+  s.addObject("ground", plane, mat, ground);
+  s.addObject("roof", plane, mat, roof);
+  s.addObject("box", cube, mat, box);
+  Light sun, spot, bulb;
+  sun.type = LightType::Directional;
+  sun.direction = normalize(Vec3{0.3f, -1, 0.2f});
+  spot.type = LightType::Spot;
+  spot.position = {0, 6, 0};
+  spot.direction = {0, -1, 0};
+  spot.outerConeDeg = 60;
+  bulb.type = LightType::Point;
+  bulb.position = {0.5f, 4, -0.5f};
+  s.lights = {sun, spot, bulb};
+  FrameScene fs;
+  fs.update(s, 0, 0);
+  ShadowMaps maps;
+  maps.update(fs, 256);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-4, 4);
+  int lanes = 0, differ = 0, shadowed = 0;
+  for (int batch = 0; batch < 400; ++batch) {
+    float px[16], py[16], pz[16], nx[16], ny[16], nz[16], use[16], out[16];
+    for (int k = 0; k < 16; ++k) {
+      // On the ground (normal up) or on the box's top, a few points unused.
+      const bool onBox = k % 5 == 0;
+      px[k] = onBox ? 2 + u(rng) / 8 : u(rng);
+      pz[k] = onBox ? 1 + u(rng) / 8 : u(rng);
+      py[k] = onBox ? 1.0f : 0.0f;
+      nx[k] = 0, ny[k] = 1, nz[k] = 0;
+      use[k] = k % 7 == 3 ? 0.0f : 1.0f;
+      out[k] = -1.0f;
+    }
+    const int count = 1 + batch % 16;
+    for (size_t light = 0; light < 3; ++light) {
+      maps.visibilityBatch(light, px, py, pz, nx, ny, nz, use, count, out);
+      for (int k = 0; k < 16; ++k) {
+        if (k >= count || use[k] == 0) {
+          EXPECT_EQ(out[k], k >= count || light == 0 ? -1.0f : out[k]) << "lane " << k;
+          continue;
+        }
+        const float ref = maps.visibility(light, {px[k], py[k], pz[k]}, {0, 1, 0});
+        ++lanes;
+        shadowed += ref < 1.0f;
+        if (out[k] != ref) {
+          ++differ;
+          EXPECT_NEAR(out[k], ref, 0.25f + 1e-6f);  // one tap at its threshold, at most
+        }
+      }
+    }
+  }
+  EXPECT_GT(shadowed, lanes / 10);  // the comparison covers shadowed points too
+  EXPECT_LE(differ, lanes / 200) << differ << " of " << lanes;
 }
 
 // Static casters are drawn once; an animated caster is drawn again over their depth whenever it
