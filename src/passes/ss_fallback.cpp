@@ -113,6 +113,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const Buffer& normal = ctx.input(*this, "normal");
   const Buffer& optical = ctx.input(*this, "optical");
   const Buffer& objectId = ctx.input(*this, "object_id");
+  const Buffer& geoNormal = ctx.input(*this, "geo_normal");
   const Buffer& mask = ctx.input(*this, "heuristic_mask");
   Buffer& out = ctx.output(*this, "fallback");
   std::fill(out.data.begin(), out.data.end(), 0.0f);
@@ -201,24 +202,25 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
     // not reach it, adds nothing whatever its map says: no lookup.
     const size_t count = shadowed.size();
     std::vector<float> occluded(lights * count);
-    std::vector<SurfaceSample> samples(count);
-    for (size_t k = 0; k < count; ++k) g.read(shadowed[k].x, shadowed[k].y, samples[k]);
-    // Looked up 16 points at a time (the SIMD kernel), light by light.
+    // Looked up 16 points at a time (the SIMD kernel), light by light; only the position and
+    // the two normals are read here.
     constexpr size_t W = 16;
     for (size_t k0 = 0; k0 < count; k0 += W) {
       const size_t n = std::min(W, count - k0);
       float px[W] = {}, py[W] = {}, pz[W] = {}, nx[W] = {}, ny[W] = {}, nz[W] = {};
+      Vec3 shadingNormal[W];
       for (size_t k = 0; k < n; ++k) {
-        const SurfaceSample& s = samples[k0 + k];
-        px[k] = s.position.x, py[k] = s.position.y, pz[k] = s.position.z;
-        nx[k] = s.geoNormal.x, ny[k] = s.geoNormal.y, nz[k] = s.geoNormal.z;
+        const int x = shadowed[k0 + k].x, y = shadowed[k0 + k].y;
+        const float *p = position.at(x, y), *gn = geoNormal.at(x, y);
+        px[k] = p[0], py[k] = p[1], pz[k] = p[2];
+        nx[k] = gn[0], ny[k] = gn[1], nz[k] = gn[2];
+        shadingNormal[k] = normal.rgb(x, y);
       }
       for (size_t i = 0; i < lights; ++i) {
         float lit[W] = {}, vis[W] = {};
         for (size_t k = 0; k < n; ++k) {
-          const SurfaceSample& s = samples[k0 + k];
-          const LightSample ls = sampleLight(shading.lights[i], s.position);
-          lit[k] = dot(s.normal, ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f ? 1.0f : 0.0f;
+          const LightSample ls = sampleLight(shading.lights[i], {px[k], py[k], pz[k]});
+          lit[k] = dot(shadingNormal[k], ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f;
         }
         shadowMaps_.visibilityBatch(i, px, py, pz, nx, ny, nz, lit, int(n), vis);
         for (size_t k = 0; k < n; ++k)
@@ -228,6 +230,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
     // As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one shading call
     // weighted by each light's occluded fraction. Pixels no map shadows keep S = 1 unshaded, and
     // a batch evaluates only the lights that shadow one of its lanes (the others add exactly 0).
+    using F = ShadeBatch;
     ShadeBatch batch;
     std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
     std::vector<uint32_t> batchLights;
@@ -247,10 +250,15 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
             blocked[(3 * i + c) * ShadeBatch::kMax + size_t(j)] = occluded[i * count + lane[j]];
       batch.lights = batchLights.data();
       batch.lightCount = batchLights.size();
+      // The light-independent terms, read before the kernel overwrites nothing of them.
+      Vec3 base[ShadeBatch::kMax];
+      for (int j = 0; j < batch.count; ++j)
+        base[j] = {batch.f[F::ER][j] + shading.ambient.x * batch.f[F::AR][j],
+                   batch.f[F::EG][j] + shading.ambient.y * batch.f[F::AG][j],
+                   batch.f[F::EB][j] + shading.ambient.z * batch.f[F::AB][j]};
       shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
       for (int j = 0; j < batch.count; ++j) {
-        const SurfaceSample& s = samples[lane[j]];
-        const Vec3 lost = batch.result(j) - (s.emission + shading.ambient * s.ambient);
+        const Vec3 lost = batch.result(j) - base[j];
         float* px = out.at(shadowed[lane[j]].x, shadowed[lane[j]].y);
         px[6] = 1.0f - lost.x, px[7] = 1.0f - lost.y, px[8] = 1.0f - lost.z;
       }
@@ -266,8 +274,12 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
         px[6] = px[7] = px[8] = 1.0f;
         continue;
       }
-      lane[batch.count] = k;
-      batch.set(batch.count++, samples[k], -shadowed[k].d);
+      // The G-buffer straight into the lane (as deferred shading reads it); the viewer is -d.
+      const int l = batch.count;
+      g.read(shadowed[k].x, shadowed[k].y, batch, l);
+      const Vec3 wo = -shadowed[k].d;
+      batch.f[F::WX][l] = wo.x, batch.f[F::WY][l] = wo.y, batch.f[F::WZ][l] = wo.z;
+      lane[batch.count++] = k;
       if (batch.count == ShadeBatch::kMax) flush();
     }
     if (batch.count) flush();
