@@ -2,7 +2,7 @@
 
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
-#include "shading/shade_batch.h"
+#include "shading/batch_shader.h"
 
 namespace tandem {
 
@@ -18,18 +18,11 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     const Camera& cam = v.camera;
     const bool perspective = cam.desc.projection == Projection::Perspective;
-    ShadeBatch b;
-    int xs[ShadeBatch::kMax];
-    std::vector<uint32_t> lights;  // per batch: the lights that can reach it (tiled deferred)
-    auto flush = [&](int y) {
-      cullLights(b, shading, lights);
-      shadeBatch(b, shading);
-      for (int k = 0; k < b.count; ++k) hdr.setRgb(xs[k], y, b.result(k));
-      b.count = 0;
-    };
-    for (int y = y0; y < y1; ++y) {
+    BatchShader shader(shading, hdr);
+    ShadeBatch& b = shader.batch();
+    for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
-        const int lane = b.count;
+        const int lane = shader.lane();
         if (!g.read(x, y, b, lane)) {
           Vec3 o, d;
           cam.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
@@ -41,11 +34,8 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
         const Vec3 p{b.f[F::PX][lane], b.f[F::PY][lane], b.f[F::PZ][lane]};
         const Vec3 wo = perspective ? normalize(cam.eye - p) : -cam.forward;
         b.f[F::WX][lane] = wo.x, b.f[F::WY][lane] = wo.y, b.f[F::WZ][lane] = wo.z;
-        xs[b.count++] = x;
-        if (b.count == ShadeBatch::kMax) flush(y);
+        shader.push(x, y);
       }
-      if (b.count) flush(y);
-    }
   });
 }
 

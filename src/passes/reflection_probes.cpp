@@ -5,7 +5,7 @@
 
 #include "core/parallel.h"
 #include "rt/whitted.h"
-#include "shading/shade_batch.h"
+#include "shading/batch_shader.h"
 #include "shading/surface_resolve.h"
 
 namespace tandem {
@@ -74,7 +74,7 @@ void ReflectionProbes::draw(const FrameScene& fs, const ShadingContext& shading,
     r2 = std::max(r2, dot(v - p.centre, v - p.centre));
   p.radius = std::max(std::sqrt(r2), 1e-4f);
   p.cameras.resize(6);
-  p.faces.assign(6, std::vector<Vec3>(size_t(size) * size_t(size)));
+  p.faces.assign(6, Buffer(size, size, 3));
   // The object does not see itself. Mirrors and clear glass are left out too: drawn by the one
   // shading function they would be near-black discs, where the ray would see what lies behind
   // or around them; without them the probe shows that.
@@ -94,35 +94,25 @@ void ReflectionProbes::draw(const FrameScene& fs, const ShadingContext& shading,
     const Camera cam = Camera::make(d, size, size);
     p.cameras[size_t(f)] = cam;
     raster_.render(fs, cam, vis_, Rasterizer::Subset{&others, false});
-    std::vector<Vec3>& face = p.faces[size_t(f)];
+    Buffer& face = p.faces[size_t(f)];
     parallelRange(
         size_t(size),
         [&](size_t y0, size_t y1) {
-          ShadeBatch batch;
-          int at[ShadeBatch::kMax];
-          std::vector<uint32_t> lights;
-          auto flush = [&] {
-            cullLights(batch, shading, lights);
-            shadeBatch(batch, shading);
-            for (int k = 0; k < batch.count; ++k) face[size_t(at[k])] = batch.result(k);
-            batch.count = 0;
-          };
-          for (size_t y = y0; y < y1; ++y)
+          BatchShader shader(shading, face);
+          for (int y = int(y0); y < int(y1); ++y)
             for (int x = 0; x < size; ++x) {
-              const size_t i = y * size_t(size) + size_t(x);
+              const size_t i = size_t(y) * size_t(size) + size_t(x);
               Vec3 o, dir;
               cam.generateRay(float(x) + 0.5f, float(y) + 0.5f, o, dir);
               if (vis_.object[i] == kNoObject) {
-                face[i] = scene.skyRadiance(dir);
+                face.setRgb(x, y, scene.skyRadiance(dir));
                 continue;
               }
               const SurfaceSample s =
                   resolveSurface(fs, int(vis_.object[i]), int(vis_.prim[i]), o, dir);
-              batch.set(batch.count, s, -dir);
-              at[batch.count++] = int(i);
-              if (batch.count == ShadeBatch::kMax) flush();
+              shader.batch().set(shader.lane(), s, -dir);
+              shader.push(x, y);
             }
-          if (batch.count) flush();
         },
         8);
   }
@@ -141,8 +131,8 @@ Vec3 ReflectionProbes::lookup(const Scene& scene, int object, Vec3 d) const {
               fy = std::clamp(px.y - 0.5f, 0.0f, float(n - 1));
   const int x0 = int(fx), y0 = int(fy), x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
   const float tx = fx - float(x0), ty = fy - float(y0);
-  const std::vector<Vec3>& face = p.faces[size_t(f)];
-  auto at = [&](int x, int y) { return face[size_t(y) * size_t(n) + size_t(x)]; };
+  const Buffer& face = p.faces[size_t(f)];
+  auto at = [&](int x, int y) { return face.rgb(x, y); };
   return (at(x0, y0) * (1 - tx) + at(x1, y0) * tx) * (1 - ty) +
          (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;
 }

@@ -8,6 +8,7 @@
 #pragma once
 #include <vector>
 
+#include "core/buffer.h"
 #include "raster/rasterizer.h"
 #include "scene/frame_scene.h"
 #include "shading/blinn_phong.h"
@@ -42,8 +43,8 @@ class ReflectionProbes {
     Vec3 centre;
     float radius = 0;
     int size = 0;
-    std::vector<Camera> cameras;           // the six faces
-    std::vector<std::vector<Vec3>> faces;  // size x size radiance each
+    std::vector<Camera> cameras;  // the six faces
+    std::vector<Buffer> faces;    // size x size radiance each
   };
   void draw(const FrameScene& fs, const ShadingContext& shading, int object, int size, Probe& p);
 

@@ -1,7 +1,7 @@
 #include "passes/vbuffer_shading.h"
 
 #include "pipeline/view_tiles.h"
-#include "shading/shade_batch.h"
+#include "shading/batch_shader.h"
 
 namespace tandem {
 
@@ -17,25 +17,16 @@ void VBufferShadingPass::execute(FrameContext& ctx) {
     const Camera& cam = v.camera;
     const bool perspective = cam.desc.projection == Projection::Perspective;
     VisibleSurfaces::TriangleCache cache;
-    ShadeBatch b;
-    int xs[ShadeBatch::kMax], ys[ShadeBatch::kMax];
-    std::vector<uint32_t> lights;  // per batch: the lights that can reach it (tiled deferred)
-    auto flush = [&] {
-      cullLights(b, shading, lights);
-      shadeBatch(b, shading);
-      for (int k = 0; k < b.count; ++k) hdr.setRgb(xs[k], ys[k], b.result(k));
-      b.count = 0;
-    };
+    BatchShader shader(shading, hdr);
     surfaces_.resolveTile(
         ctx, v, x0, y0, x1, y1, cache,
         [&](int x, int y, const SurfaceSample& s, float d, Vec2) {
           depth.at(x, y)[0] = d;
           ids.at(x, y)[0] = float(s.object);
           // The surface lies on the pixel's camera ray: the eye direction needs no ray.
-          b.set(b.count, s, perspective ? normalize(cam.eye - s.position) : -cam.forward);
-          xs[b.count] = x;
-          ys[b.count++] = y;
-          if (b.count == ShadeBatch::kMax) flush();
+          shader.batch().set(shader.lane(), s,
+                             perspective ? normalize(cam.eye - s.position) : -cam.forward);
+          shader.push(x, y);
         },
         [&](int x, int y, Vec3) {
           Vec3 o, d;
@@ -44,7 +35,6 @@ void VBufferShadingPass::execute(FrameContext& ctx) {
           depth.at(x, y)[0] = 0.0f;
           ids.at(x, y)[0] = -1.0f;
         });
-    if (b.count) flush();
   });
   ctx.passParts.push_back({"shading", msSince(t1), 0});
 }

@@ -1,0 +1,44 @@
+// Tiled deferred shading of a stream of pixels: lanes are filled one pixel at a time and the batch
+// is shaded into an RGB buffer whenever it is full (each batch evaluates only the lights that can
+// reach it). Deferred shading, shading from the visibility buffer and reflection probes all
+// shade this way.
+#pragma once
+#include <vector>
+
+#include "core/buffer.h"
+#include "shading/shade_batch.h"
+
+namespace tandem {
+
+class BatchShader {
+ public:
+  BatchShader(const ShadingContext& ctx, Buffer& out) : ctx_(ctx), out_(out) {}
+  ~BatchShader() { flush(); }
+  BatchShader(const BatchShader&) = delete;
+  BatchShader& operator=(const BatchShader&) = delete;
+
+  // The lane to fill next, then push() its pixel.
+  ShadeBatch& batch() { return b_; }
+  int lane() const { return b_.count; }
+  void push(int x, int y) {
+    xs_[b_.count] = x;
+    ys_[b_.count++] = y;
+    if (b_.count == ShadeBatch::kMax) flush();
+  }
+  void flush() {
+    if (b_.count == 0) return;
+    cullLights(b_, ctx_, lights_);
+    shadeBatch(b_, ctx_);
+    for (int k = 0; k < b_.count; ++k) out_.setRgb(xs_[k], ys_[k], b_.result(k));
+    b_.count = 0;
+  }
+
+ private:
+  const ShadingContext& ctx_;
+  Buffer& out_;
+  ShadeBatch b_;
+  int xs_[ShadeBatch::kMax], ys_[ShadeBatch::kMax];
+  std::vector<uint32_t> lights_;
+};
+
+}  // namespace tandem
