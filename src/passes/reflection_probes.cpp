@@ -33,7 +33,8 @@ std::vector<float> lightKey(const Scene& s) {
 }  // namespace
 
 int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading,
-                             const std::vector<uint8_t>& wanted, int size, int refresh) {
+                             const std::vector<uint8_t>& wanted, int size, int refresh,
+                             size_t capacity) {
   const Scene& scene = *fs.scene;
   std::vector<float> key = lightKey(scene);
   if (key != lightKey_ || probes_.size() != scene.objects.size()) {
@@ -45,6 +46,7 @@ int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading
   std::vector<size_t> stale;
   for (size_t o = 0; o < wanted.size() && o < probes_.size(); ++o) {
     Probe& p = probes_[o];
+    if (wanted[o]) p.wanted = updates_;
     if (!wanted[o] || (p.version == fs.geometryVersion && p.size == size)) continue;
     if (p.size == size) {
       stale.push_back(o);
@@ -57,6 +59,15 @@ int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading
             [&](size_t a, size_t b) { return probes_[a].drawn < probes_[b].drawn; });
   for (size_t k = 0; k < stale.size() && k < size_t(std::max(refresh, 0)); ++k, ++drawn)
     draw(fs, shading, int(stale[k]), size, probes_[stale[k]]);
+  // Memory stays bounded however many objects a camera path has shown.
+  std::vector<size_t> held;
+  for (size_t o = 0; o < probes_.size(); ++o)
+    if (probes_[o].size > 0) held.push_back(o);
+  if (held.size() > capacity) {
+    std::sort(held.begin(), held.end(),
+              [&](size_t a, size_t b) { return probes_[a].wanted < probes_[b].wanted; });
+    for (size_t k = 0; k < held.size() - capacity; ++k) probes_[held[k]] = Probe{};
+  }
   return drawn;
 }
 

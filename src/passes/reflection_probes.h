@@ -20,9 +20,9 @@ class ReflectionProbes {
   // Makes sure every object with wanted[o] != 0 has a probe of `size`^2 faces: missing ones are
   // drawn now; ones whose geometry changed since (animated scenes) are redrawn, oldest first,
   // at most `refresh` a frame (what games do: probes trail moving objects by a few frames).
-  // Returns the probes drawn.
+  // Probes beyond `capacity` are freed, the longest unwanted first. Returns the probes drawn.
   int update(const FrameScene& fs, const ShadingContext& shading,
-             const std::vector<uint8_t>& wanted, int size, int refresh);
+             const std::vector<uint8_t>& wanted, int size, int refresh, size_t capacity);
   // Radiance arriving at object o's centre from unit direction d (bilinear within a face); the
   // sky where o has no probe.
   Vec3 lookup(const Scene& scene, int object, Vec3 d) const;
@@ -40,6 +40,7 @@ class ReflectionProbes {
   struct Probe {
     uint64_t version = ~0ull;  // geometry version drawn for
     uint64_t drawn = 0;        // update() call it was drawn in (the oldest is refreshed first)
+    uint64_t wanted = 0;       // update() call that last wanted it (the oldest is freed first)
     Vec3 centre;
     float radius = 0;
     int size = 0;

@@ -1,5 +1,7 @@
 #include "passes/ss_fallback.h"
 
+#include <algorithm>
+
 #include "passes/rt_stats.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gbuffer_io.h"
@@ -34,6 +36,13 @@ std::vector<ParamDesc> ScreenSpaceFallbackPass::params() const {
            {"off", "shadow_map"}},
           {"shadow_map_size", ParamType::Int, 1024, 64, 8192, "shadow map resolution", {}},
           {"probe_size", ParamType::Int, 64, 8, 1024, "reflection probe face resolution", {}},
+          {"max_probes",
+           ParamType::Int,
+           32,
+           0,
+           4096,
+           "most objects with a probe (the largest on screen; others show the sky)",
+           {}},
           {"probe_refresh",
            ParamType::Int,
            2,
@@ -128,16 +137,27 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   if (mode == FallbackMode::Probe) {
     // A probe for every reflective or transparent object that shows an untraced effect.
     const auto t0 = Clock::now();
-    std::vector<uint8_t> wanted(scene.objects.size(), 0);
+    // At most max_probes of them, the largest on screen (the others show the sky): each probe
+    // costs six draws of the scene and its memory.
+    std::vector<uint32_t> area(scene.objects.size(), 0);
     for (size_t i = 0; i < objectId.pixelCount(); ++i) {
       const float id = objectId.data[i];
-      if (id < 0 || wanted[size_t(id)]) continue;
+      if (id < 0) continue;
       const float *op = &optical.data[3 * i], *m = &mask.data[size_t(kEffectCount) * i];
-      wanted[size_t(id)] =
-          (op[0] > 0 && m[kReflection] < 0.5f) || (op[2] < 1 && m[kRefraction] < 0.5f);
+      if ((op[0] > 0 && m[kReflection] < 0.5f) || (op[2] < 1 && m[kRefraction] < 0.5f))
+        ++area[size_t(id)];
     }
-    ctx.counters["ss_fallback/probes_drawn"] = probes_.update(
-        ctx.frame, shading, wanted, int(param("probe_size")), int(param("probe_refresh")));
+    std::vector<uint32_t> order;
+    for (size_t o = 0; o < area.size(); ++o)
+      if (area[o] > 0) order.push_back(uint32_t(o));
+    const size_t keep = std::min(order.size(), size_t(param("max_probes")));
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
+                      [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
+    std::vector<uint8_t> wanted(scene.objects.size(), 0);
+    for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
+    ctx.counters["ss_fallback/probes_drawn"] =
+        probes_.update(ctx.frame, shading, wanted, int(param("probe_size")),
+                       int(param("probe_refresh")), 2 * size_t(param("max_probes")));
     ctx.passParts.push_back({"probes", msSince(t0), 0});
   }
   const Bounds3 b = scene.bounds(ctx.frame.time);

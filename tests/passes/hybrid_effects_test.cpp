@@ -317,8 +317,8 @@ TEST(ReflectionProbes, SeeTheSceneAroundTheObject) {
   std::vector<uint8_t> wanted(s.objects.size(), 0);
   wanted[size_t(b)] = 1;
   const ShadingContext shading = ShadingContext::from(s);
-  EXPECT_EQ(probes.update(fs, shading, wanted, 32, 2), 1);
-  EXPECT_EQ(probes.update(fs, shading, wanted, 32, 2), 0);  // nothing changed: reused
+  EXPECT_EQ(probes.update(fs, shading, wanted, 32, 2, 8), 1);
+  EXPECT_EQ(probes.update(fs, shading, wanted, 32, 2, 8), 0);  // nothing changed: reused
   auto near = [](Vec3 a, Vec3 e) { return length(a - e) < 0.02f; };
   EXPECT_TRUE(near(probes.lookup(s, b, {1, 0, 0}), {1, 0, 0}));
   EXPECT_TRUE(near(probes.lookup(s, b, {0, -1, 0}), {0, 1, 0}));
@@ -335,6 +335,11 @@ TEST(ReflectionProbes, SeeTheSceneAroundTheObject) {
   EXPECT_NEAR(exit.x, 1.0f, 1e-3f);
   // An object without a probe shows the sky.
   EXPECT_TRUE(near(probes.lookup(s, 0, {1, 0, 0}), {0.2f, 0.2f, 0.2f}));
+  // Over capacity, the probe wanted longest ago is freed: the ball's, once the wall has one.
+  std::vector<uint8_t> wallOnly(s.objects.size(), 0);
+  wallOnly[0] = 1;
+  EXPECT_EQ(probes.update(fs, shading, wallOnly, 32, 2, 1), 1);
+  EXPECT_TRUE(near(probes.lookup(s, b, {1, 0, 0}), {0.2f, 0.2f, 0.2f}));
 }
 
 // With nothing ray traced, the fallbacks (shadow maps, screen-space reflection and refraction)
