@@ -76,6 +76,7 @@ struct BenchVerb {
       Json pj = {
           {"median_ms", s.median}, {"mean_ms", s.mean}, {"min_ms", s.min}, {"max_ms", s.max}};
       if (mrays > 0) pj["mrays_per_s"] = mrays;
+      pj["frame_ms"] = ms[name];  // every timed frame, in order (e.g. budget tracking)
       report["passes"][name] = pj;
     }
     TimingStats t = summarize(total);
