@@ -331,8 +331,8 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   md << "\n## Beyond the paper: fallbacks for unselected effects (product default)\n\n"
         "The rows above follow the paper's rule (`ss_fallback.mode=off`, `shadows=off`): what the "
         "heuristic leaves out is drawn without shadows and mirrors black. The product "
-        "`hybrid-heuristic` fills those pixels from raster shadow maps and the sky "
-        "(`ss_fallback`).\n\n";
+        "`hybrid-heuristic` fills those pixels from raster shadow maps and per-object reflection "
+        "probes (`ss_fallback`).\n\n";
   header("measure");
   row("SSIM paper's rule vs rt-only",
       [](const SceneResult& r) { return fmt(r.heurVsRtOnly.ssim, 4); });

@@ -211,7 +211,7 @@ std::vector<ParamDesc> HeuristicPass::params() const {
        {}},
       {"partial_objects",
        ParamType::Bool,
-       1,
+       0,
        0,
        1,
        "ms budget: spend what is left on the central part of the next object that does not fit",

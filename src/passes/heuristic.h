@@ -11,8 +11,9 @@
 //    ratio of predicted CPU ms to RT wall ms (smoothed), so the RT stage follows the budget;
 //  - per_effect: nodes are (object, effect) pairs, so an object may get shadows but not its
 //    reflection (the paper's future work);
-//  - partial_objects (ms budget): the unspent budget buys the central part of the most relevant
-//    node left out (mask set on that share of its pixels nearest the view centre);
+//  - partial_objects (ms budget; off: it measured worse tracking): the unspent budget buys the
+//    central part of the most relevant node left out (mask set on that share of its pixels
+//    nearest the view centre);
 //  - count_recursion: Q is the rays per pixel the RT pass actually traced for the object and
 //    effect (recursion included), the paper's Q being the prior until it has been traced.
 // Inputs: object_id, rt_stats (last frame's, a history input). Outputs: heuristic_mask (3
