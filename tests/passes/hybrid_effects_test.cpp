@@ -6,8 +6,10 @@
 
 #include <tbb/task_arena.h>
 
+#include <hwy/targets.h>
 #include "eval/metrics.h"
 #include "passes/blend.h"
+
 #include "passes/heuristic.h"
 #include "passes/reflection_probes.h"
 #include "passes/shadow_maps.h"
@@ -213,41 +215,46 @@ TEST(ShadowMaps, BatchLookupEqualsScalar) {
   fs.update(s, 0, 0);
   ShadowMaps maps;
   maps.update(fs, 256);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> u(-4, 4);
-  int lanes = 0, differ = 0, shadowed = 0;
-  for (int batch = 0; batch < 400; ++batch) {
-    float px[16], py[16], pz[16], nx[16], ny[16], nz[16], use[16], out[16];
-    for (int k = 0; k < 16; ++k) {
-      // On the ground (normal up) or on the box's top, a few points unused.
-      const bool onBox = k % 5 == 0;
-      px[k] = onBox ? 2 + u(rng) / 8 : u(rng);
-      pz[k] = onBox ? 1 + u(rng) / 8 : u(rng);
-      py[k] = onBox ? 1.0f : 0.0f;
-      nx[k] = 0, ny[k] = 1, nz[k] = 0;
-      use[k] = k % 7 == 3 ? 0.0f : 1.0f;
-      out[k] = -1.0f;
-    }
-    const int count = 1 + batch % 16;
-    for (size_t light = 0; light < 3; ++light) {
-      maps.visibilityBatch(light, px, py, pz, nx, ny, nz, use, count, out);
+  // On every instruction set the kernel was compiled for (CI's machines run AVX2).
+  for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-4, 4);
+    int lanes = 0, differ = 0, shadowed = 0;
+    for (int batch = 0; batch < 400; ++batch) {
+      float px[16], py[16], pz[16], nx[16], ny[16], nz[16], use[16], out[16];
       for (int k = 0; k < 16; ++k) {
-        if (k >= count || use[k] == 0) {
-          EXPECT_EQ(out[k], k >= count || light == 0 ? -1.0f : out[k]) << "lane " << k;
-          continue;
-        }
-        const float ref = maps.visibility(light, {px[k], py[k], pz[k]}, {0, 1, 0});
-        ++lanes;
-        shadowed += ref < 1.0f;
-        if (out[k] != ref) {
-          ++differ;
-          EXPECT_NEAR(out[k], ref, 0.25f + 1e-6f);  // one tap at its threshold, at most
+        // On the ground (normal up) or on the box's top, a few points unused.
+        const bool onBox = k % 5 == 0;
+        px[k] = onBox ? 2 + u(rng) / 8 : u(rng);
+        pz[k] = onBox ? 1 + u(rng) / 8 : u(rng);
+        py[k] = onBox ? 1.0f : 0.0f;
+        nx[k] = 0, ny[k] = 1, nz[k] = 0;
+        use[k] = k % 7 == 3 ? 0.0f : 1.0f;
+      }
+      const int count = 1 + batch % 16;
+      for (size_t light = 0; light < 3; ++light) {
+        for (float& o : out) o = -1.0f;
+        maps.visibilityBatch(light, px, py, pz, nx, ny, nz, use, count, out);
+        for (int k = 0; k < 16; ++k) {
+          if (k >= count || use[k] == 0) {
+            EXPECT_EQ(out[k], -1.0f) << "unused lane " << k << " written";
+            continue;
+          }
+          const float ref = maps.visibility(light, {px[k], py[k], pz[k]}, {0, 1, 0});
+          ++lanes;
+          shadowed += ref < 1.0f;
+          if (out[k] != ref) {
+            ++differ;
+            EXPECT_NEAR(out[k], ref, 0.25f + 1e-6f);  // one tap at its threshold, at most
+          }
         }
       }
     }
+    EXPECT_GT(shadowed, lanes / 10) << hwy::TargetName(target);  // shadowed points covered too
+    EXPECT_LE(differ, lanes / 200) << hwy::TargetName(target) << ": " << differ << " of " << lanes;
   }
-  EXPECT_GT(shadowed, lanes / 10);  // the comparison covers shadowed points too
-  EXPECT_LE(differ, lanes / 200) << differ << " of " << lanes;
+  hwy::SetSupportedTargetsForTest(0);
 }
 
 // Static casters are drawn once; an animated caster is drawn again over their depth whenever it
