@@ -132,8 +132,7 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
   addSceneOptions(app, o);
   std::string names;
   for (const std::string& n : Pipeline::builtinNames()) names += (names.empty() ? "" : ", ") + n;
-  app->add_option("--pipeline", o.pipeline,
-                  "Pipeline: built-in name (" + names + ") or JSON file");
+  app->add_option("--pipeline", o.pipeline, "Pipeline: built-in name (" + names + ") or JSON file");
   app->add_option("--aov", o.aov,
                   "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
   app->add_option("--frames", o.frames, "Frames to render (scene time advances 1/30 s per frame)");

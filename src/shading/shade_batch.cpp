@@ -185,6 +185,5 @@ void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>&
   b.lightCount = out.size();
 }
 
-
 }  // namespace tandem
 #endif
