@@ -21,8 +21,10 @@ void TonemapSpanImpl(const float* in, float* out, size_t n, float ev, ToneOperat
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const auto scale = hn::Set(d, std::exp2(ev));  // hoisted: one exp2 per span
   for (size_t i = 0; i < n; i += lanes) {
+    // Plain loads and stores for whole vectors; masked ones only at the span's tail.
+    const bool whole = i + lanes <= n;
     const auto live = hn::FirstN(d, n - i);
-    auto v = hn::Mul(hn::MaskedLoad(live, d, in + i), scale);
+    auto v = hn::Mul(whole ? hn::LoadU(d, in + i) : hn::MaskedLoad(live, d, in + i), scale);
     v = hn::IfThenElseZero(hn::IsFinite(v), hn::Max(v, zero));  // NaN, inf, negative -> 0
     switch (op) {
       case ToneOperator::Clamp:
@@ -46,7 +48,10 @@ void TonemapSpanImpl(const float* in, float* out, size_t n, float ev, ToneOperat
         hn::Set(d, -0.055f));
     const auto linear = hn::Mul(v, hn::Set(d, 12.92f));
     v = hn::IfThenElse(hn::Le(v, hn::Set(d, 0.0031308f)), linear, hn::Min(curve, one));
-    hn::BlendedStore(v, live, d, out + i);
+    if (whole)
+      hn::StoreU(v, d, out + i);
+    else
+      hn::BlendedStore(v, live, d, out + i);
   }
 }
 

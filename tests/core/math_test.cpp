@@ -65,6 +65,12 @@ TEST(Color, VectorTonemapMatchesExactCurves) {
     }
     EXPECT_LT(worst, 2e-5f);  // half an 8-bit step is 2e-3
     for (size_t i = in.size() - 4; i < in.size(); ++i) EXPECT_EQ(out[i], 0.0f) << in[i];
+    // Bad values in whole vectors too (the span's tail takes another path), and a tail of one.
+    std::vector<float> bad(33, 0.5f), badOut(33);
+    bad[0] = -1.0f, bad[1] = std::nanf(""), bad[2] = INFINITY, bad[17] = -INFINITY;
+    tonemapSpan(bad.data(), badOut.data(), bad.size(), 0.0f, op);
+    for (size_t i : {0, 1, 2, 17}) EXPECT_EQ(badOut[i], 0.0f) << i;
+    for (size_t i : {3, 16, 32}) EXPECT_EQ(badOut[i], badOut[4]) << i;
   }
   // Exposure: +1 stop doubles the linear value.
   float half = 0.25f, encoded;
