@@ -62,6 +62,13 @@ struct Vec4 {
 inline constexpr float dot(Vec3 a, Vec3 b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
+// The cube-map face a direction falls on: its major axis, +x -x +y -y +z -z = 0..5.
+inline int cubeFace(Vec3 d) {
+  const float ax = d.x < 0 ? -d.x : d.x, ay = d.y < 0 ? -d.y : d.y, az = d.z < 0 ? -d.z : d.z;
+  return ax >= ay && ax >= az ? (d.x > 0 ? 0 : 1)
+         : ay >= az           ? (d.y > 0 ? 2 : 3)
+                              : (d.z > 0 ? 4 : 5);
+}
 inline constexpr Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }

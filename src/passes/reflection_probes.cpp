@@ -14,13 +14,6 @@ namespace {
 
 const Vec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 
-int majorFace(Vec3 d) {
-  const Vec3 a{std::abs(d.x), std::abs(d.y), std::abs(d.z)};
-  return a.x >= a.y && a.x >= a.z ? (d.x > 0 ? 0 : 1)
-         : a.y >= a.z             ? (d.y > 0 ? 2 : 3)
-                                  : (d.z > 0 ? 4 : 5);
-}
-
 std::vector<float> lightKey(const Scene& s) {
   std::vector<float> k;
   for (const Light& l : s.lights)
@@ -133,7 +126,7 @@ Vec3 ReflectionProbes::lookup(const Scene& scene, int object, Vec3 d) const {
   if (object < 0 || size_t(object) >= probes_.size() || probes_[size_t(object)].size == 0)
     return scene.skyRadiance(d);
   const Probe& p = probes_[size_t(object)];
-  const int f = majorFace(d);
+  const int f = cubeFace(d);
   Vec2 px;
   if (!p.cameras[size_t(f)].project(p.centre + d, px)) return scene.skyRadiance(d);
   // Bilinear within the face (edges clamp: the seam is a texel wide).

@@ -147,11 +147,7 @@ void ShadowMaps::visibilityBatch(size_t i, const float* px, const float* py, con
   int face[16];
   unsigned seen = 0;
   for (int k = 0; k < count; ++k) {
-    const Vec3 d{px[k] - l.x, py[k] - l.y, pz[k] - l.z};
-    const Vec3 a{std::abs(d.x), std::abs(d.y), std::abs(d.z)};
-    face[k] = a.x >= a.y && a.x >= a.z ? (d.x > 0 ? 0 : 1)
-              : a.y >= a.z             ? (d.y > 0 ? 2 : 3)
-                                       : (d.z > 0 ? 4 : 5);
+    face[k] = cubeFace({px[k] - l.x, py[k] - l.y, pz[k] - l.z});
     if (use[k] > 0) seen |= 1u << face[k];
   }
   for (int f = 0; f < 6; ++f) {
@@ -167,11 +163,7 @@ float ShadowMaps::visibility(size_t i, Vec3 p, Vec3 n) const {
   const std::vector<Face>& faces = faces_[i];
   size_t first = 0, last = faces.size();
   if (faces.size() == 6) {  // a cube: the face of the major axis, no search
-    const Vec3 d = p - faces[0].camera.desc.position;
-    const Vec3 a{std::abs(d.x), std::abs(d.y), std::abs(d.z)};
-    first = a.x >= a.y && a.x >= a.z ? (d.x > 0 ? 0 : 1)
-            : a.y >= a.z             ? (d.y > 0 ? 2 : 3)
-                                     : (d.z > 0 ? 4 : 5);
+    first = size_t(cubeFace(p - faces[0].camera.desc.position));
     last = first + 1;
   }
   for (size_t k = first; k < last; ++k) {
