@@ -82,6 +82,11 @@ struct BenchVerb {
     TimingStats t = summarize(total);
     std::printf("  %-28s %9.3f %9.3f %9.3f %9.3f\n", "frame", t.median, t.mean, t.min, t.max);
     std::printf("  fps (from median frame) %.2f\n", t.median > 0 ? 1000.0 / t.median : 0.0);
+    // What the passes reported of the last frame (rays per pixel, masked share, spp, ...).
+    const auto& counters = renderer.context().counters;
+    if (!counters.empty()) std::printf("  counters (last frame)\n");
+    for (const auto& [name, value] : counters) std::printf("    %-34s %.6g\n", name.c_str(), value);
+    report["counters"] = counters;
     report["total"] = {{"median_ms", t.median},
                        {"mean_ms", t.mean},
                        {"min_ms", t.min},

@@ -22,8 +22,9 @@ namespace {
 
 struct ReferenceVerb {
   RenderOptions opts;
-  int spp = 1024, maxDepth = 16;
+  int spp = 1024, maxDepth = -1;  // -1: 16 path bounces, 10 Whitted levels
   double timeLimit = 0;
+  std::string integrator = "path";
   float time = 0;
   bool cameraPath = false, noCache = false, quiet = false;
   std::string cache;
@@ -32,9 +33,12 @@ struct ReferenceVerb {
     validateRenderOptions(opts);
     if (spp < 1 || spp > (1 << 20))
       throw InputError("command line", "--spp", "must be in [1, 1048576]");
+    if (maxDepth == -1) maxDepth = integrator == "whitted" ? 10 : 16;
     if (maxDepth < 1 || maxDepth > 1024)
       throw InputError("command line", "--max-depth", "must be in [1, 1024]");
     if (!(timeLimit >= 0)) throw InputError("command line", "--time-limit", "must be >= 0 seconds");
+    if (integrator != "path" && integrator != "whitted")
+      throw InputError("command line", "--integrator", "expected path or whitted");
     if (!std::isfinite(time)) throw InputError("command line", "--time", "must be finite");
   }
 
@@ -60,6 +64,10 @@ struct ReferenceVerb {
     job.settings.spp = spp;
     job.settings.timeLimitS = timeLimit;
     job.settings.path.maxDepth = maxDepth;
+    if (integrator == "whitted") {
+      job.settings.integrator = Integrator::Whitted;
+      job.settings.whitted.maxDepth = std::min(maxDepth, 64);
+    }
     job.settings.seed = opts.seed;
     job.settings.progress = !quiet;
     const fs::path dir = isFile ? fs::path(out).parent_path() : fs::path(out);
@@ -102,7 +110,13 @@ VerbRunner addReferenceVerb(CLI::App& app) {
   addSceneOptions(sub, v->opts);
   sub->add_option("--spp", v->spp, "Target samples per pixel (default 1024)");
   sub->add_option("--time-limit", v->timeLimit, "Stop after this many seconds (0 = none)");
-  sub->add_option("--max-depth", v->maxDepth, "Maximum path length in bounces (default 16)");
+  sub->add_option("--max-depth", v->maxDepth,
+                  "Maximum path length in bounces (default 16); whitted: recursion depth (default "
+                  "10, as rt-only; at most 64)");
+  sub->add_option("--integrator", v->integrator,
+                  "path (global illumination, default) or whitted: distributed ray tracing of the "
+                  "hybrids' shading (shadows, mirrors, glass), the ground truth of a technique "
+                  "such as depth of field with the same light transport");
   sub->add_option("--time", v->time, "Scene time in seconds (animation)");
   sub->add_flag("--camera-path", v->cameraPath,
                 "Camera from the scene's camera path at --time (moving while the shutter is open)");

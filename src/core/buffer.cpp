@@ -22,6 +22,8 @@ const char* kindName(BufferKind k) {
       return "mask";
     case BufferKind::Count:
       return "count";
+    case BufferKind::Signed:
+      return "signed";
     case BufferKind::Variance:
       return "variance";
     case BufferKind::Material:

@@ -23,6 +23,7 @@ enum class BufferKind {
   Motion,    // screen-space motion in pixels (2 channels)
   Mask,      // weights or flags in [0,1], one channel per mask
   Count,     // non-negative integers (samples, rays)
+  Signed,    // signed scalars (a circle of confusion: < 0 near field, > 0 far field)
   Variance,  // variance of a mean (shown as standard error)
   Material,  // material terms in [0,1] (albedo, specular, optical)
   List,      // records, not pixels: an N x 1 list (per object, per sample)

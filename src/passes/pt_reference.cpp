@@ -30,7 +30,24 @@ std::vector<ParamDesc> PTReferencePass::params() const {
            1,
            "keep converging over frames while nothing changes (viewer)",
            {}},
-          {"frame_spp", ParamType::Int, 4, 1, 1024, "accumulate: samples added per frame", {}}};
+          {"frame_spp", ParamType::Int, 4, 1, 1024, "accumulate: samples added per frame", {}},
+          {"integrator",
+           ParamType::Enum,
+           0,
+           0,
+           1,
+           "path: path tracing (global illumination); whitted: distributed ray tracing of the "
+           "hybrids' shading (shadows, mirrors, glass; the same light transport as rt-only)",
+           {"path", "whitted"},
+           /*invalidatesHistory=*/true},
+          {"whitted_depth",
+           ParamType::Int,
+           10,
+           1,
+           64,
+           "whitted: recursion depth of secondary rays (rt_whitted's max_depth)",
+           {},
+           /*invalidatesHistory=*/true}};
 }
 
 void PTReferencePass::execute(FrameContext& ctx) {
@@ -41,6 +58,8 @@ void PTReferencePass::execute(FrameContext& ctx) {
   settings.spp = int(param("spp"));
   settings.timeLimitS = param("time_limit");
   settings.path.maxDepth = int(param("max_depth"));
+  settings.integrator = param("integrator") == 1 ? Integrator::Whitted : Integrator::Path;
+  settings.whitted.maxDepth = int(param("whitted_depth"));
   settings.progress = param("progress") != 0;
   settings.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);
   SampleCluster single;

@@ -78,6 +78,16 @@ Buffer visualizeBuffer(const Buffer& b, float scale) {
       set(i, Vec3(std::min(std::sqrt(std::max(b.data[i * b.channels], 0.0f)) * scale, 1.0f)));
     return out;
   }
+  if (b.kind == BufferKind::Count || b.kind == BufferKind::Signed) {
+    // Scaled by the largest magnitude of the first channel; signed: blue below 0, red above.
+    float m = 1e-6f;
+    for (size_t i = 0; i < n; ++i) m = std::max(m, std::abs(b.data[i * b.channels]));
+    for (size_t i = 0; i < n; ++i) {
+      const float v = b.data[i * b.channels] / m;
+      set(i, b.kind == BufferKind::Count ? Vec3(v) : Vec3(std::max(v, 0.0f), 0.0f, std::max(-v, 0.0f)));
+    }
+    return out;
+  }
   if (b.kind == BufferKind::Color) {
     for (size_t i = 0; i < n; ++i)
       set(i, tonemapPixel(b.rgb(int(i % b.width), int(i / b.width)), 0.0f, ToneOperator::Aces));

@@ -3,10 +3,17 @@
 #include "passes/accumulation.h"
 #include "passes/blend.h"
 #include "passes/deferred_shading.h"
+#include "passes/dof_accumulation.h"
+#include "passes/dof_coc.h"
+#include "passes/dof_composite.h"
+#include "passes/dof_reconstruction.h"
 #include "passes/downsample.h"
 #include "passes/heuristic.h"
+#include "passes/postfx_dof.h"
 #include "passes/pt_reference.h"
+#include "passes/ray_mask.h"
 #include "passes/raster_gbuffer.h"
+#include "passes/rt_dof.h"
 #include "passes/rt_gbuffer.h"
 #include "passes/rt_secondary.h"
 #include "passes/rt_whitted.h"
@@ -23,7 +30,9 @@ const std::vector<std::string>& passTypes() {
       "raster_gbuffer", "vbuffer_shading", "rt_gbuffer",  "deferred_shading",
       "heuristic",      "rt_secondary",    "ss_fallback", "blend",
       "rt_whitted",     "pt_reference",    "taa",         "accumulation",
-      "downsample",     "tonemap"};
+      "downsample",     "dof_coc",         "postfx_dof",  "ray_mask",
+      "rt_dof",         "dof_accumulation", "dof_reconstruction", "dof_composite",
+      "tonemap"};
   return types;
 }
 
@@ -41,6 +50,13 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "taa") return std::make_unique<TAAPass>();
   if (type == "accumulation") return std::make_unique<AccumulationPass>();
   if (type == "downsample") return std::make_unique<DownsamplePass>();
+  if (type == "dof_coc") return std::make_unique<DofCocPass>();
+  if (type == "postfx_dof") return std::make_unique<PostfxDofPass>();
+  if (type == "ray_mask") return std::make_unique<RayMaskPass>();
+  if (type == "rt_dof") return std::make_unique<RTDofPass>();
+  if (type == "dof_accumulation") return std::make_unique<DofAccumulationPass>();
+  if (type == "dof_reconstruction") return std::make_unique<DofReconstructionPass>();
+  if (type == "dof_composite") return std::make_unique<DofCompositePass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "core/profiler.h"
+#include "shading/surface_resolve.h"
 
 namespace tandem {
 
@@ -88,6 +89,22 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
   if (sums.width != width || sums.height != height || sums.data.empty()) sums.reset(width, height);
   const ShadingContext shading = ShadingContext::from(scene);
   PathTracer pt(rt, scene, shading, settings.path);
+  const Whitted whitted(rt, scene, shading, settings.whitted);
+  const bool drt = settings.integrator == Integrator::Whitted;
+  // Distributed ray tracing of the hybrids' shading: the camera ray starts at the near plane
+  // and culls back faces as the rasterizer does, then Whitted shading of the hit.
+  auto whittedRadiance = [&](const Camera& cam, Vec3 o, Vec3 d, float tau) {
+    Ray r;
+    r.origin = o;
+    r.dir = d;
+    r.tnear = cam.desc.nearPlane / std::max(dot(d, cam.forward), 1e-6f);
+    r.time = tau;
+    const Hit h = rt.intersect(r, /*cullBackfaces=*/true);
+    if (!h.valid()) return scene.skyRadiance(d);
+    const float tuv[3] = {h.t, h.u, h.v};
+    const SurfaceSample s = resolveSurface(*rt.frame(), h.object, h.prim, o, d, tau, tuv);
+    return whitted.shadePrimary(s, d);
+  };
   const bool cameraMoves = std::memcmp(&open.desc.position, &close.desc.position, sizeof(Vec3)) ||
                            std::memcmp(&open.desc.lookAt, &close.desc.lookAt, sizeof(Vec3));
   const bool progress = settings.progress && cluster.rank() == 0 && isatty(STDERR_FILENO);
@@ -117,12 +134,10 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
             const Vec2 jitter = sampler.get2D(), lens = sampler.get2D();
             const float tau = sampler.uniform();  // shutter time
             Vec3 o, d;
-            if (cameraMoves)
-              cameraAtShutter(open, close, tau)
-                  .generateThinLensRay(x + jitter.x, y + jitter.y, lens.x, lens.y, o, d);
-            else
-              open.generateThinLensRay(x + jitter.x, y + jitter.y, lens.x, lens.y, o, d);
-            Vec3 L = pt.radiance(o, d, tau, sampler);
+            const Camera cam = cameraMoves ? cameraAtShutter(open, close, tau) : Camera();
+            const Camera& c = cameraMoves ? cam : open;
+            c.generateThinLensRay(x + jitter.x, y + jitter.y, lens.x, lens.y, o, d);
+            Vec3 L = drt ? whittedRadiance(c, o, d, tau) : pt.radiance(o, d, tau, sampler);
             // A NaN or infinite sample (a degenerate pdf) must not poison the pixel.
             if (!(std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z))) L = Vec3(0.0f);
             const double lum = luminance(L);

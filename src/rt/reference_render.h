@@ -11,6 +11,7 @@
 
 #include "core/buffer.h"
 #include "rt/path_tracer.h"
+#include "rt/whitted.h"
 #include "scene/camera.h"
 
 namespace tandem {
@@ -34,10 +35,19 @@ class SampleCluster {
   int rank_ = 0, ranks_ = 1;
 };
 
+// What each sample evaluates. Path: the path tracer (global illumination). Whitted: distributed
+// ray tracing (Cook et al. 1984) of the hybrids' own shading — the one Blinn-Phong function with
+// ray-traced shadows, mirror and glass recursion (rt-only's and hybrid-all's light transport) —
+// so a technique's error against it measures the technique (depth of field, motion blur), not a
+// difference of light transport (seed 000 §5.1 compares against exactly this).
+enum class Integrator { Path, Whitted };
+
 struct ReferenceSettings {
   int spp = 1024;           // target samples per pixel
   double timeLimitS = 0.0;  // > 0: stop at the last whole batch that fits in this time
+  Integrator integrator = Integrator::Path;
   PathSettings path;
+  WhittedSettings whitted;  // Integrator::Whitted (secondary rays see objects at the frame time)
   uint64_t seed = 0;
   bool progress = false;  // draw a progress bar on stderr (rank 0, terminals only)
 };

@@ -1,0 +1,35 @@
+// dof_composite: the final depth-of-field image (seed 000 §3.3, eq. 7). Inside the zone of focus
+// (|CoC| < √2) the sharp raster colour; outside it, in the near field the ray-traced colour
+// (accurate see-through silhouettes) lerped towards the post-process colour by the bokeh
+// intensity (bright bokeh converge poorly when traced); in the far field the ray-traced colour
+// lerped towards the post-process colour by smoothstep(0, 0.3, h) of the hit ratio (eq. 7).
+// Where no ray has reached a pixel yet (outside the mask, no history), the post-process colour.
+// The ray-traced image is upsampled bilinearly from its resolution.
+// `mode = rt` (the rt-dof baseline): the ray-traced colour wherever it exists, the sharp raster
+// elsewhere. Without an rt_recon input (postfx-dof): the post-process colour out of focus.
+// Inputs: hdr (sharp colour), coc; optional: postfx and bokeh (without them the sharp colour
+// stands in: rt-dof has no post-process), rt_recon. Output: dof.
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class DofCompositePass : public Pass {
+ public:
+  std::string type() const override { return "dof_composite"; }
+  std::string description() const override {
+    return "Composite: sharp raster in the zone of focus, ray-traced near field, post-process "
+           "bokeh, far field by hit ratio (seed 000 §3.3, eq. 7)";
+  }
+  std::vector<BufferSlot> inputs() const override {
+    BufferSlot rt{"rt_recon", 6, BufferKind::Color, Extent::any()};
+    BufferSlot postfx{"postfx", 3}, bokeh{"bokeh", 1, BufferKind::Mask};
+    rt.optional = postfx.optional = bokeh.optional = true;
+    return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, postfx, bokeh, rt};
+  }
+  std::vector<BufferSlot> outputs() const override { return {{"dof", 3}}; }
+  std::vector<ParamDesc> params() const override;
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem

@@ -1,0 +1,235 @@
+#include "passes/postfx_dof.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "core/image_filters.h"
+#include "core/parallel.h"
+#include "passes/dof_common.h"
+#include "pipeline/frame_context.h"
+#include "scene/thin_lens.h"
+
+namespace tandem {
+
+using dof::saturate;
+
+std::vector<ParamDesc> PostfxDofPass::params() const {
+  return {{"depth_range",
+           ParamType::Float,
+           0.1,
+           0,
+           1e6,
+           "metres: a tap this much nearer than the centre is foreground (the paper: 10 cm)",
+           {}},
+          {"specular_threshold",
+           ParamType::Float,
+           0.5,
+           0,
+           1,
+           "specular luminance from which a sample counts towards the bokeh intensity",
+           {}},
+          {"polygon",
+           ParamType::Bool,
+           1,
+           0,
+           1,
+           "polygonal aperture (apertureBlades >= 3) in the gather kernel (beyond the paper)",
+           {}},
+          {"median", ParamType::Bool, 1, 0, 1, "3x3 median post-filter", {}}};
+}
+
+namespace {
+
+constexpr int kTile = 8;  // half-res pixels per tile side (16 frame pixels)
+
+struct HalfSample {
+  float r, g, b;
+  float coc;   // signed, in half-res pixels (diameter)
+  float z;     // view depth, metres (infinity: sky)
+  float spec;  // 1: high-specular
+};
+
+// The 81 taps: the centre, then rings k = 1..4 of 8k taps at radius k/4 (unit kernel).
+struct Tap {
+  float x, y, dist;
+};
+std::array<Tap, 81> ringTaps(float rotation) {
+  std::array<Tap, 81> t{};
+  t[0] = {0, 0, 0};
+  int i = 1;
+  for (int k = 1; k <= 4; ++k) {
+    const int n = 8 * k;
+    for (int j = 0; j < n; ++j, ++i) {
+      const float a = rotation + 2.0f * kPi * (float(j) + 0.5f * float(k & 1)) / float(n);
+      const float r = float(k) / 4.0f;
+      t[size_t(i)] = {r * std::cos(a), r * std::sin(a), r};
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+void PostfxDofPass::execute(FrameContext& ctx) {
+  const Buffer& hdr = ctx.input(*this, "hdr");
+  const Buffer& cocIn = ctx.input(*this, "coc");
+  const Buffer& specIn = ctx.input(*this, "specular");
+  Buffer& out = ctx.output(*this, "postfx");
+  Buffer& bokehOut = ctx.output(*this, "bokeh");
+  const ThinLens lens = ThinLens::of(ctx.camera());
+  if (!lens.active()) {  // a pinhole: nothing to blur
+    out.data = hdr.data;
+    bokehOut.fill(0.0f);
+    return;
+  }
+  const int W = hdr.width, H = hdr.height, hw = (W + 1) / 2, hh = (H + 1) / 2;
+  const float depthRange = float(param("depth_range"));
+  const float specThreshold = float(param("specular_threshold"));
+  const bool polygon = param("polygon") != 0 && lens.blades >= 3;
+  // CoC -> view depth (the inverse of ThinLens::coc; depth is what separates fg from bg).
+  const float k = lens.aperture * lens.pixelsPerSlope;
+  auto depthOf = [&](float cocFrame) {
+    const float den = k - cocFrame * lens.focus;
+    return den > 1e-9f ? k * lens.focus / den : 1e30f;  // the sky: far, finite (no inf - inf)
+  };
+
+  // 1. Downsample CoC, depth and the high-specular flag (colour: the prefilter below).
+  std::vector<HalfSample> half(size_t(hw) * hh);
+  parallelRows(hh, [&](int y) {
+    for (int x = 0; x < hw; ++x) {
+      Vec3 c(0.0f);
+      float cmin = std::numeric_limits<float>::infinity(), spec = 0.0f;
+      int n = 0;
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const int sx = 2 * x + i, sy = 2 * y + j;
+          if (sx >= W || sy >= H) continue;
+          c = c + hdr.rgb(sx, sy);
+          cmin = std::min(cmin, cocIn.at(sx, sy)[0]);
+          const float* s = specIn.at(sx, sy);
+          spec = std::max(spec, dof::luma(Vec3(s[0], s[1], s[2])));
+          ++n;
+        }
+      c = c * (1.0f / float(n));
+      half[size_t(y) * hw + x] = {c.x, c.y, c.z, 0.5f * cmin, depthOf(cmin),
+                                  spec >= specThreshold ? 1.0f : 0.0f};
+    }
+  });
+
+  // 2. Tile max |CoC| and its 3x3 neighbourhood max (half-res pixels, diameter).
+  const int tw = (hw + kTile - 1) / kTile, th = (hh + kTile - 1) / kTile;
+  std::vector<float> tileMax(size_t(tw) * th, 0.0f), neighbourMax(size_t(tw) * th, 0.0f);
+  for (int y = 0; y < hh; ++y)
+    for (int x = 0; x < hw; ++x) {
+      float& m = tileMax[size_t(y / kTile) * tw + size_t(x / kTile)];
+      m = std::max(m, std::abs(half[size_t(y) * hw + x].coc));
+    }
+  for (int ty = 0; ty < th; ++ty)
+    for (int tx = 0; tx < tw; ++tx) {
+      float m = 0.0f;
+      for (int j = std::max(ty - 1, 0); j <= std::min(ty + 1, th - 1); ++j)
+        for (int i = std::max(tx - 1, 0); i <= std::min(tx + 1, tw - 1); ++i)
+          m = std::max(m, tileMax[size_t(j) * tw + i]);
+      neighbourMax[size_t(ty) * tw + tx] = m;
+    }
+  auto at = [&](int x, int y) -> const HalfSample& {
+    return half[size_t(std::clamp(y, 0, hh - 1)) * hw + size_t(std::clamp(x, 0, hw - 1))];
+  };
+
+  // 3. The 9-tap bilateral prefilter is the downsampling filter (Jimenez): bilinear taps of the
+  // frame around each half-res pixel's centre, diameter 1/8 of the neighbourhood's max CoC but
+  // at least √2 frame pixels (then it is a 2x2 average, no pixel sampled twice); taps of a very
+  // different CoC (another surface) count less. CoC, depth and flags stay the downsample's.
+  std::vector<HalfSample> pre(half.size());
+  parallelRows(hh, [&](int y) {
+    for (int x = 0; x < hw; ++x) {
+      const HalfSample& c0 = at(x, y);
+      const float maxCoc = neighbourMax[size_t(y / kTile) * tw + size_t(x / kTile)];
+      const float radius = 0.5f * std::max(2.0f * maxCoc / 8.0f, dof::kZoneOfFocusCoc);
+      const float cx = 2.0f * float(x) + 1.0f, cy = 2.0f * float(y) + 1.0f;  // frame coordinates
+      float r = 0, g = 0, b = 0, wsum = 0;
+      for (int t = 0; t < 9; ++t) {
+        const float a = 2.0f * kPi * float(t) / 8.0f;
+        const float px = t == 8 ? cx : cx + radius * std::cos(a);
+        const float py = t == 8 ? cy : cy + radius * std::sin(a);
+        float rgb[3];
+        sampleBilinear(hdr, px, py, rgb);
+        const float tc = 0.5f * cocIn.at(std::clamp(int(px), 0, W - 1), std::clamp(int(py), 0, H - 1))[0];
+        const float w = 1.0f / (1.0f + std::abs(tc - c0.coc));
+        r += w * rgb[0];
+        g += w * rgb[1];
+        b += w * rgb[2];
+        wsum += w;
+      }
+      HalfSample s = c0;
+      s.r = r / wsum;
+      s.g = g / wsum;
+      s.b = b / wsum;
+      pre[size_t(y) * hw + x] = s;
+    }
+  });
+
+  // 4. 81-tap gather, eq. 1.
+  const float rotation = 2.0f * kPi * float((uint32_t(ctx.frameIndex) * 2654435769u) >> 8) /
+                         float(1u << 24) / 81.0f;
+  const std::array<Tap, 81> taps = ringTaps(rotation);
+  std::array<float, 81> tapAngle{};
+  for (size_t i = 0; i < taps.size(); ++i) tapAngle[i] = std::atan2(-taps[i].y, -taps[i].x);
+  Buffer gathered(hw, hh, 3), bokeh(hw, hh, 1);
+  parallelRows(hh, [&](int y) {
+    for (int x = 0; x < hw; ++x) {
+      const HalfSample& c0 = pre[size_t(y) * hw + x];
+      const float maxCoc = neighbourMax[size_t(y / kTile) * tw + size_t(x / kTile)];
+      const float R = 0.5f * maxCoc;  // kernel radius, half-res pixels
+      if (R < 0.5f) {
+        gathered.setRgb(x, y, Vec3(c0.r, c0.g, c0.b));
+        continue;
+      }
+      const float r0 = 0.5f * std::abs(c0.coc);
+      float fr = 0, fg = 0, fb = 0, br = 0, bg = 0, bb = 0, wsum = 0, spec = 0, reach = 0;
+      for (size_t i = 0; i < taps.size(); ++i) {
+        const float ox = taps[i].x * R, oy = taps[i].y * R, d = taps[i].dist * R;
+        const HalfSample& s =
+            pre[size_t(std::clamp(int(std::lround(float(y) + oy)), 0, hh - 1)) * hw +
+                size_t(std::clamp(int(std::lround(float(x) + ox)), 0, hw - 1))];
+        const float ri = 0.5f * std::abs(s.coc);
+        // Foreground: nearer than the centre by more than the depth range (soft over one range).
+        const float fgShare =
+            depthRange > 0 ? saturate((c0.z - s.z) / depthRange - 1.0f) : (s.z < c0.z ? 1.f : 0.f);
+        // A background tap spreads no further than the centre's own blur.
+        float reachFg = ri, reachBg = std::min(ri, r0);
+        if (polygon && i > 0) {
+          const float e = dof::apertureExtent(lens.blades, lens.rotationDeg, tapAngle[i],
+                                              s.coc < 0);
+          reachFg *= e;
+          reachBg *= e;
+        }
+        const float dFg = i == 0 ? 1.0f : saturate(reachFg - d + 1.0f);
+        const float dBg = i == 0 ? 1.0f : saturate(reachBg - d + 1.0f);
+        const float alpha = 1.0f / (kPi * std::max(ri * ri, 0.25f));
+        const float wf = fgShare * dFg * alpha, wb = (1.0f - fgShare) * dBg * alpha;
+        fr += wf * s.r;
+        fg += wf * s.g;
+        fb += wf * s.b;
+        br += wb * s.r;
+        bg += wb * s.g;
+        bb += wb * s.b;
+        wsum += wf + wb;
+        const float dd = fgShare * dFg + (1.0f - fgShare) * dBg;
+        reach += dd;
+        spec += dd * s.spec;
+      }
+      const float inv = 1.0f / std::max(wsum, 1e-20f);
+      gathered.setRgb(x, y, Vec3((fr + br) * inv, (fg + bg) * inv, (fb + bb) * inv));
+      bokeh.at(x, y)[0] = reach > 0 ? spec / reach : 0.0f;
+    }
+  });
+
+  // 5. Median, upscale.
+  const Buffer filtered = param("median") != 0 ? median3x3(gathered) : gathered;
+  out.data = resizeBilinear(filtered, W, H).data;
+  bokehOut.data = resizeBilinear(bokeh, W, H).data;
+}
+
+}  // namespace tandem

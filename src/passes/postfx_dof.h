@@ -1,0 +1,44 @@
+// postfx_dof: the post-process depth of field of seed 000 §3.1 (Jimenez 2014 as the paper
+// adapts it), at half resolution:
+//  1. downsample: colour (2x2 mean), CoC (the nearest of the four: the near field wins at
+//     silhouettes) and a high-specular flag (specular >= specular_threshold);
+//  2. tile max CoC over 8x8 half-res tiles and its 3x3-tile neighbourhood max: the gather radius;
+//  3. 9-tap bilateral prefilter, which is also the colour's downsampling filter: bilinear taps
+//     of the frame, diameter 1/8 of the neighbourhood's max CoC (never below √2 frame pixels,
+//     so the taps do not fall on the same pixel), weighted by CoC similarity;
+//  4. 81-tap main filter: the centre and four rings of 8, 16, 24, 32 taps scaled to the
+//     neighbourhood max; a tap reaches the centre when its CoC radius covers the distance
+//     (D(0, i)), the background's CoC clamped to the centre's so it never blurs over sharper
+//     foreground; foreground (nearer by more than depth_range) and background weighted by the
+//     sample alpha 1 / (π r²) and combined by eq. 1's normalised weighted sum (not Jimenez's
+//     alpha, §3.1); the bokeh intensity is the share of reaching taps that are high-specular;
+//     the ring pattern turns by a per-frame angle (the paper jitters; TAA resolves it);
+//  5. 3x3 median, then a bilinear upscale to the frame.
+// With apertureBlades >= 3 (beyond the paper, parameter `polygon`) D(0, i) tests the tap against
+// the aperture polygon's bokeh instead of a disk, as the reference's lens samples spread.
+// Inputs: hdr (sharp colour), coc, specular. Outputs: postfx (colour), bokeh (intensity).
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class PostfxDofPass : public Pass {
+ public:
+  std::string type() const override { return "postfx_dof"; }
+  std::string description() const override {
+    return "Post-process gather DoF: half res, tile max CoC, 9-tap prefilter, 81-tap gather "
+           "(eq. 1), bokeh intensity, 3x3 median (seed 000 §3.1)";
+  }
+  std::vector<BufferSlot> inputs() const override {
+    return {{"hdr", 3},
+            {"coc", 1, BufferKind::Signed},
+            {"specular", 4, BufferKind::Material}};
+  }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"postfx", 3}, {"bokeh", 1, BufferKind::Mask}};
+  }
+  std::vector<ParamDesc> params() const override;
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem

@@ -1,0 +1,37 @@
+// rt_dof: ray-traced depth of field (seed 000 §3.2.2, Cook et al. 1984) in the pixels of the ray
+// mask, at the mask's resolution. Each of a pixel's x_f rays starts at a point of the aperture
+// (disk or the camera's n-gon: Camera::lensPoint, the reference's lens) and goes through the
+// pixel's point on the focus plane; the pixel position is jittered over the mask pixel's
+// footprint and both come from the Sobol sampler, new every frame. Hits are shaded by the one
+// shading function with ray-traced shadows, mirrors and glass (rt/whitted.h, as rt-only), rays
+// traced in 8-wide packets. Each ray's colour and CoC are split into the near and far field by
+// its hit's CoC (a linear ramp across the zone of focus); the hit ratio is the near share of the
+// pixel's rays, and the mean far-field world position is kept for the far field's reprojection.
+// Input: ray_mask. Outputs (the mask's size): rt_near and rt_far (rgb, mean |CoC| in frame
+// pixels), rt_hit (hit ratio, rays), rt_far_position (mean far hit, 1 where there is one).
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class RTDofPass : public Pass {
+ public:
+  std::string type() const override { return "rt_dof"; }
+  std::string description() const override {
+    return "Ray-traced DoF: lens rays in the ray mask, split into near and far fields (seed 000 "
+           "§3.2.2)";
+  }
+  std::vector<BufferSlot> inputs() const override {
+    return {{"ray_mask", 1, BufferKind::Count, Extent::any()}};
+  }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"rt_near", 4, BufferKind::Color, Extent::any()},
+            {"rt_far", 4, BufferKind::Color, Extent::any()},
+            {"rt_hit", 2, BufferKind::Mask, Extent::any()},
+            {"rt_far_position", 4, BufferKind::Position, Extent::any()}};
+  }
+  std::vector<ParamDesc> params() const override;
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem
