@@ -161,11 +161,11 @@ void validateRenderOptions(const RenderOptions& o) {
     throw InputError("command line", "--vfov", "must be in (0, 180)");
   if (!(o.shutter >= 0 && o.shutter <= 1000))
     throw InputError("command line", "--shutter", "must be in [0, 1000] seconds");
-  if (!(o.aperture < 0 || o.aperture <= 1000))
+  if (o.aperture && !(*o.aperture >= 0 && *o.aperture <= 1000))
     throw InputError("command line", "--aperture", "must be in [0, 1000] metres");
-  if (!(o.focus >= 0 && o.focus <= 1e9))
+  if (o.focus && !(*o.focus > 0 && *o.focus <= 1e9))
     throw InputError("command line", "--focus", "must be a positive distance in metres");
-  if (o.blades == 1 || o.blades == 2 || o.blades > 64)
+  if (o.blades && (*o.blades < 0 || *o.blades == 1 || *o.blades == 2 || *o.blades > 64))
     throw InputError("command line", "--blades", "must be 0 (circle) or 3 to 64");
   if (o.ipd < 0 || o.ipd > 1000 || !std::isfinite(o.ipd))
     throw InputError("command line", "--ipd", "must be in (0, 1000] metres");
@@ -204,9 +204,9 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
   if (length(cross(normalize(c.lookAt - c.position), normalize(c.up))) < 1e-6f)
     throw InputError("command line", "--up", "must not be parallel to the view direction");
   fitNearPlane(c);  // sensible for tiny models seen from close up
-  if (o.aperture >= 0) c.apertureDiameter = o.aperture;
-  if (o.focus > 0) c.focusDistance = o.focus;
-  if (o.blades >= 0) c.apertureBlades = o.blades;
+  if (o.aperture) c.apertureDiameter = *o.aperture;
+  if (o.focus) c.focusDistance = *o.focus;
+  if (o.blades) c.apertureBlades = *o.blades;
   return c;
 }
 

@@ -3,6 +3,7 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,10 +30,10 @@ struct RenderOptions {
   bool stereo = false;                  // two eyes side by side (--width is one eye)
   float ipd = 0;                        // > 0: interpupillary distance (implies --stereo)
   float convergence = 0;                // > 0: converged axes meeting this far ahead
-  // Lens and shutter (render, bench, view): < 0 / 0 keep the scene camera's.
+  // Lens and shutter (render, bench, view): unset keeps the scene camera's.
   float shutter = 0;  // seconds the shutter stays open (motion blur)
-  float aperture = -1, focus = 0;
-  int blades = -1;
+  std::optional<float> aperture, focus;
+  std::optional<int> blades;
 };
 
 // Scene, size, output, seed, threads, camera overrides and lights (every rendering verb).

@@ -30,7 +30,7 @@ std::vector<BufferSlot> DofAccumulationPass::outputs() const {
   return {{"acc_near", 5, BufferKind::Color, Extent::any()},
           {"acc_far", 5, BufferKind::Color, Extent::any()},
           {"acc_moments", 3, BufferKind::List, Extent::any()},
-          {"rt_color", 6, BufferKind::Color, Extent::any()},
+          {"rt_color", dof::RtChannels::kCount, BufferKind::Color, Extent::any()},
           {"dof_variance", 1, BufferKind::Variance, Extent::any()}};
 }
 
@@ -167,7 +167,7 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       float* am = accMoments.at(x, y);
       am[2] = std::min(age + (rays > 0 ? 1.0f : 0.0f), 1000.0f);
       if (total <= 1e-6f) {
-        for (int c = 0; c < 6; ++c) o[c] = 0.0f;
+        for (int c = 0; c < dof::RtChannels::kCount; ++c) o[c] = 0.0f;
         am[0] = am[1] = 0.0f;
         continue;
       }
@@ -196,6 +196,7 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       o[3] = farCoc + (nearCoc - farCoc) * hr;
       o[4] = hr;
       o[5] = 1.0f;
+      o[6] = nearC.x, o[7] = nearC.y, o[8] = nearC.z;
     }
   });
   double mean = 0;

@@ -11,6 +11,13 @@ namespace tandem::dof {
 
 constexpr float kZoneOfFocusCoc = 1.41421356f;  // √2 px: one sensor cell's diagonal (§3.3)
 
+// The channels of the accumulated ray-traced DoF (rt_color, rt_recon): the merged colour, its
+// CoC (frame pixels), the hit ratio, the coverage (1 where any ray has contributed; bilinear
+// samples divide by it) and the near field's own colour.
+struct RtChannels {
+  static constexpr int kRgb = 0, kCoc = 3, kHit = 4, kCoverage = 5, kNear = 6, kCount = 9;
+};
+
 inline float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
 inline float smoothstep(float a, float b, float x) {
   const float t = saturate((x - a) / (b - a));
@@ -18,10 +25,15 @@ inline float smoothstep(float a, float b, float x) {
 }
 inline float luma(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
-// Share of a sample that belongs to the near field, from its signed CoC: 1 well in front of the
-// focus plane, 0 well behind, a linear ramp across the zone of focus (|CoC| < √2), so a surface
-// crossing the focus plane moves smoothly from one field to the other (§3.2.2).
-inline float nearShare(float coc) { return saturate(0.5f - coc / (2.0f * kZoneOfFocusCoc)); }
+// Share of a sample that belongs to the near field, from its signed CoC (§3.2.2 splits by the
+// distance to the focus plane, smoothly): 0 behind the focus plane and inside the zone of focus,
+// 1 from a CoC of −2√2 on, a linear ramp between. Everything sharp counts as far field, so the
+// hit ratio (the near share of a pixel's rays) is exactly what a blurred foreground covers of
+// it — 0 over an in-focus background that no foreground reaches; sharp points gain nothing from
+// the near field's motion-vector reprojection anyway.
+inline float nearShare(float coc) {
+  return saturate((-coc - kZoneOfFocusCoc) / kZoneOfFocusCoc);
+}
 
 // The bokeh of an n-gon aperture (n >= 3, rotated `rotationDeg`) relative to a disk of the same
 // circumradius: the polygon's extent in direction `angle` (radians, screen x right, y down) as a

@@ -18,8 +18,21 @@ std::vector<ParamDesc> DofCompositePass::params() const {
            "hybrid: eq. 7; rt: the ray-traced colour wherever there is one (rt-dof)",
            {"hybrid", "rt"}},
           {"far_blend", ParamType::Float, 0.3, 0.001, 1, "eq. 7: smoothstep(0, far_blend, h)", {}},
-          {"bokeh", ParamType::Bool, 1, 0, 1, "near field: post-process colour on bright bokeh", {}}};
+          {"bokeh", ParamType::Bool, 1, 0, 1, "near field: post-process colour on bright bokeh", {}},
+          {"silhouette",
+           ParamType::Enum,
+           1,
+           0,
+           1,
+           "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) or "
+           "sharp_background: the raster colour and the traced near field by hit ratio",
+           {"eq7", "sharp_background"}}};
 }
+
+namespace {
+// A hit ratio or foreground share below this is no silhouette (the noise floor of a few rays).
+constexpr float kSilhouette = 0.02f;
+}  // namespace
 
 void DofCompositePass::execute(FrameContext& ctx) {
   const Buffer& sharp = ctx.input(*this, "hdr");
@@ -31,24 +44,37 @@ void DofCompositePass::execute(FrameContext& ctx) {
   Buffer& out = ctx.output(*this, "dof");
   const bool rtMode = param("mode") == 1, useBokeh = param("bokeh") != 0;
   const float farBlend = float(param("far_blend"));
+  const bool sharpBackground = param("silhouette") == 1;
   const int W = sharp.width, H = sharp.height;
   const float sx = rt ? float(rt->width) / float(W) : 1.0f, sy = rt ? float(rt->height) / float(H) : 1.0f;
   parallelRows(H, [&](int y) {
     for (int x = 0; x < W; ++x) {
       const float c = coc.at(x, y)[0];
-      float r[6] = {};
+      float r[dof::RtChannels::kCount] = {};
       if (rt) sampleBilinear(*rt, (float(x) + 0.5f) * sx, (float(y) + 0.5f) * sy, r);
       const float coverage = dof::saturate(r[5]);
       Vec3 rtc(0.0f);
       if (coverage > 0) rtc = Vec3(r[0], r[1], r[2]) * (1.0f / std::max(r[5], 1e-6f));
       const float hit = coverage > 0 ? r[4] / std::max(r[5], 1e-6f) : 0.0f;
+      const float* rn = &r[dof::RtChannels::kNear];
+      const Vec3 rtNear =
+          coverage > 0 ? Vec3(rn[0], rn[1], rn[2]) * (1.0f / std::max(r[5], 1e-6f)) : Vec3(0.0f);
+      const bool inFocus = std::abs(c) < dof::kZoneOfFocusCoc;
+      // A blurred foreground reaches over this pixel: some of its lens rays hit the near field,
+      // or (without rays) the gather drew from foreground taps.
+      const bool silhouette = coverage > 0 ? hit > kSilhouette
+                                           : bokehIn && bokehIn->at(x, y)[1] > kSilhouette;
+      const Vec3 pp = postfx.rgb(x, y);
       Vec3 col;
       if (rtMode) {
         col = lerp(sharp.rgb(x, y), rtc, coverage);
-      } else if (std::abs(c) < dof::kZoneOfFocusCoc) {
-        col = sharp.rgb(x, y);  // zone of focus (eq. 6)
+      } else if (inFocus && !silhouette) {
+        col = sharp.rgb(x, y);  // zone of focus (eq. 6), no foreground over it
+      } else if (inFocus && sharpBackground) {
+        // A sharp surface behind a blurred foreground's rim: the share 1 - h of the lens that
+        // sees past the foreground sees exactly the raster colour; the share h the near field.
+        col = lerp(pp, lerp(sharp.rgb(x, y), rtNear, hit), coverage);
       } else {
-        const Vec3 pp = postfx.rgb(x, y);
         Vec3 traced;
         if (c < 0)  // near field: ray traced, post-process on bright bokeh
           traced = useBokeh && bokehIn ? lerp(rtc, pp, bokehIn->at(x, y)[0]) : rtc;

@@ -1,5 +1,12 @@
 // dof_composite: the final depth-of-field image (seed 000 §3.3, eq. 7). Inside the zone of focus
-// (|CoC| < √2) the sharp raster colour; outside it, in the near field the ray-traced colour
+// (|CoC| < √2) the sharp raster colour — unless a blurred foreground reaches over the pixel
+// (some of its lens rays hit the near field, or the gather's foreground share is not 0): the
+// pixel is then part of a near-field silhouette (taking the paper's rule literally cuts every
+// blurred foreground off at its own outline over an in-focus background). Such a pixel is
+// composited like the far field (eq. 7; `silhouette = eq7`) or, by default (beyond the paper,
+// measured better), as lerp(sharp, traced near field, h): the lens share 1 − h that sees past
+// the foreground sees exactly the sharp raster colour, which half-resolution rays only blur.
+// Outside it, in the near field the ray-traced colour
 // (accurate see-through silhouettes) lerped towards the post-process colour by the bokeh
 // intensity (bright bokeh converge poorly when traced); in the far field the ray-traced colour
 // lerped towards the post-process colour by smoothstep(0, 0.3, h) of the hit ratio (eq. 7).
@@ -10,6 +17,7 @@
 // Inputs: hdr (sharp colour), coc; optional: postfx and bokeh (without them the sharp colour
 // stands in: rt-dof has no post-process), rt_recon. Output: dof.
 #pragma once
+#include "passes/dof_common.h"
 #include "pipeline/pass.h"
 
 namespace tandem {
@@ -22,8 +30,8 @@ class DofCompositePass : public Pass {
            "bokeh, far field by hit ratio (seed 000 §3.3, eq. 7)";
   }
   std::vector<BufferSlot> inputs() const override {
-    BufferSlot rt{"rt_recon", 6, BufferKind::Color, Extent::any()};
-    BufferSlot postfx{"postfx", 3}, bokeh{"bokeh", 1, BufferKind::Mask};
+    BufferSlot rt{"rt_recon", dof::RtChannels::kCount, BufferKind::Color, Extent::any()};
+    BufferSlot postfx{"postfx", 3}, bokeh{"bokeh", 2, BufferKind::Mask};
     rt.optional = postfx.optional = bokeh.optional = true;
     return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, postfx, bokeh, rt};
   }

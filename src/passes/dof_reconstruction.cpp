@@ -23,10 +23,12 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
   const Buffer filtered = param("median") != 0 ? median3x3(in) : in;
   // Mip levels 0..3 of colour, CoC and hit ratio premultiplied by coverage, so uncovered
   // pixels do not darken the coarser levels.
+  constexpr int N = dof::RtChannels::kCount, kCov = dof::RtChannels::kCoverage;
   Buffer premul = filtered;
   for (size_t i = 0; i < premul.pixelCount(); ++i) {
-    float* p = &premul.data[i * 6];
-    for (int c = 0; c < 5; ++c) p[c] *= p[5];
+    float* p = &premul.data[i * N];
+    for (int c = 0; c < N; ++c)
+      if (c != kCov) p[c] *= p[kCov];
   }
   std::vector<Buffer> mips = {premul};
   while (mips.size() < 4 && mips.back().width > 1 && mips.back().height > 1)
@@ -37,8 +39,8 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
     for (int x = 0; x < w; ++x) {
       const float* c0 = filtered.at(x, y);
       float* o = out.at(x, y);
-      for (int c = 0; c < 6; ++c) o[c] = c0[c];
-      if (c0[5] <= 0) continue;
+      for (int c = 0; c < N; ++c) o[c] = c0[c];
+      if (c0[kCov] <= 0) continue;
       const float b = std::clamp(variance.at(x, y)[0] * vw, 0.0f, 0.9f);  // eq. 5
       const float radius = 0.5f * c0[3] / scale;  // this resolution's pixels
       if (b <= 0 || radius < 0.5f) continue;
@@ -46,24 +48,25 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
       const int level = int(lod);
       const Buffer& mip = mips[size_t(level)];
       const float ms = float(mip.width) / float(w);
-      float acc[6] = {};
+      float acc[N] = {};
       for (int ring = 0; ring <= 2; ++ring) {
         const int n = ring == 0 ? 1 : 8 * ring;
         const float r = radius * float(ring) / 2.0f;
         for (int k = 0; k < n; ++k) {
           const float a = 2.0f * kPi * (float(k) + 0.5f * float(ring & 1)) / float(n);
           const float sx = float(x) + 0.5f + r * std::cos(a), sy = float(y) + 0.5f + r * std::sin(a);
-          float s[6];
+          float s[N];
           sampleBilinear(mip, sx * ms, sy * ms, s);
-          if (s[5] <= 1e-4f) continue;
+          if (s[kCov] <= 1e-4f) continue;
           // Reject a tap whose own blur does not reach the centre.
-          if (ring > 0 && 0.5f * (s[3] / s[5]) / scale < r) continue;
-          for (int c = 0; c < 6; ++c) acc[c] += s[c];
+          if (ring > 0 && 0.5f * (s[3] / s[kCov]) / scale < r) continue;
+          for (int c = 0; c < N; ++c) acc[c] += s[c];
         }
       }
-      if (acc[5] <= 1e-4f) continue;
-      const float inv = 1.0f / acc[5];
-      for (int c = 0; c < 5; ++c) o[c] = c0[c] + (acc[c] * inv - c0[c]) * b;
+      if (acc[kCov] <= 1e-4f) continue;
+      const float inv = 1.0f / acc[kCov];
+      for (int c = 0; c < N; ++c)
+        if (c != kCov) o[c] = c0[c] + (acc[c] * inv - c0[c]) * b;
     }
   });
 }

@@ -5,8 +5,9 @@
 // taps whose own CoC radius is smaller than their distance; the pixel's colour and hit ratio are
 // lerped towards the gathered ones by b = clamp(σ²·2000, 0, 0.9) (eq. 5), so converged pixels
 // keep their detail and noisy ones are blurred.
-// Inputs: rt_color (rgb, CoC, hit ratio, coverage), dof_variance. Output: rt_recon (the same).
+// Inputs: rt_color (dof::RtChannels), dof_variance. Output: rt_recon (the same channels).
 #pragma once
+#include "passes/dof_common.h"
 #include "pipeline/pass.h"
 
 namespace tandem {
@@ -18,11 +19,11 @@ class DofReconstructionPass : public Pass {
     return "Median + spatial reconstruction of ray-traced DoF, eq. 5 and 8 (seed 000 §3.2.4)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"rt_color", 6, BufferKind::Color, Extent::any()},
+    return {{"rt_color", dof::RtChannels::kCount, BufferKind::Color, Extent::any()},
             {"dof_variance", 1, BufferKind::Variance, Extent::any()}};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"rt_recon", 6, BufferKind::Color, Extent::any()}};
+    return {{"rt_recon", dof::RtChannels::kCount, BufferKind::Color, Extent::any()}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;

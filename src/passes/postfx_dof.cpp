@@ -29,6 +29,13 @@ std::vector<ParamDesc> PostfxDofPass::params() const {
            1,
            "specular luminance from which a sample counts towards the bokeh intensity",
            {}},
+          {"bokeh_luminance",
+           ParamType::Float,
+           1.0,
+           0,
+           1e6,
+           "luminance from which a high-specular sample is a bright highlight (bokeh)",
+           {}},
           {"polygon",
            ParamType::Bool,
            1,
@@ -86,6 +93,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   const int W = hdr.width, H = hdr.height, hw = (W + 1) / 2, hh = (H + 1) / 2;
   const float depthRange = float(param("depth_range"));
   const float specThreshold = float(param("specular_threshold"));
+  const float bokehLuminance = float(param("bokeh_luminance"));
   const bool polygon = param("polygon") != 0 && lens.blades >= 3;
   // CoC -> view depth (the inverse of ThinLens::coc; depth is what separates fg from bg).
   const float k = lens.aperture * lens.pixelsPerSlope;
@@ -98,22 +106,18 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   std::vector<HalfSample> half(size_t(hw) * hh);
   parallelRows(hh, [&](int y) {
     for (int x = 0; x < hw; ++x) {
-      Vec3 c(0.0f);
-      float cmin = std::numeric_limits<float>::infinity(), spec = 0.0f;
-      int n = 0;
+      float cmin = std::numeric_limits<float>::infinity(), highlight = 0.0f;
       for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
-          const int sx = 2 * x + i, sy = 2 * y + j;
-          if (sx >= W || sy >= H) continue;
-          c = c + hdr.rgb(sx, sy);
+          const int sx = std::min(2 * x + i, W - 1), sy = std::min(2 * y + j, H - 1);
           cmin = std::min(cmin, cocIn.at(sx, sy)[0]);
+          // A bright specular highlight: a specular surface, and brighter than white.
           const float* s = specIn.at(sx, sy);
-          spec = std::max(spec, dof::luma(Vec3(s[0], s[1], s[2])));
-          ++n;
+          if (dof::luma(Vec3(s[0], s[1], s[2])) >= specThreshold &&
+              dof::luma(hdr.rgb(sx, sy)) >= bokehLuminance)
+            highlight = 1.0f;
         }
-      c = c * (1.0f / float(n));
-      half[size_t(y) * hw + x] = {c.x, c.y, c.z, 0.5f * cmin, depthOf(cmin),
-                                  spec >= specThreshold ? 1.0f : 0.0f};
+      half[size_t(y) * hw + x] = {0, 0, 0, 0.5f * cmin, depthOf(cmin), highlight};
     }
   });
 
@@ -176,7 +180,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   const std::array<Tap, 81> taps = ringTaps(rotation);
   std::array<float, 81> tapAngle{};
   for (size_t i = 0; i < taps.size(); ++i) tapAngle[i] = std::atan2(-taps[i].y, -taps[i].x);
-  Buffer gathered(hw, hh, 3), bokeh(hw, hh, 1);
+  Buffer gathered(hw, hh, 3), bokeh(hw, hh, 2);
   parallelRows(hh, [&](int y) {
     for (int x = 0; x < hw; ++x) {
       const HalfSample& c0 = pre[size_t(y) * hw + x];
@@ -187,7 +191,8 @@ void PostfxDofPass::execute(FrameContext& ctx) {
         continue;
       }
       const float r0 = 0.5f * std::abs(c0.coc);
-      float fr = 0, fg = 0, fb = 0, br = 0, bg = 0, bb = 0, wsum = 0, spec = 0, reach = 0;
+      float fr = 0, fg = 0, fb = 0, br = 0, bg = 0, bb = 0, wsum = 0, wfSum = 0, spec = 0,
+            reach = 0;
       for (size_t i = 0; i < taps.size(); ++i) {
         const float ox = taps[i].x * R, oy = taps[i].y * R, d = taps[i].dist * R;
         const HalfSample& s =
@@ -205,8 +210,8 @@ void PostfxDofPass::execute(FrameContext& ctx) {
           reachFg *= e;
           reachBg *= e;
         }
-        const float dFg = i == 0 ? 1.0f : saturate(reachFg - d + 1.0f);
-        const float dBg = i == 0 ? 1.0f : saturate(reachBg - d + 1.0f);
+        const float dFg = i == 0 ? 1.0f : saturate(reachFg - d + 0.5f);
+        const float dBg = i == 0 ? 1.0f : saturate(reachBg - d + 0.5f);
         const float alpha = 1.0f / (kPi * std::max(ri * ri, 0.25f));
         const float wf = fgShare * dFg * alpha, wb = (1.0f - fgShare) * dBg * alpha;
         fr += wf * s.r;
@@ -216,6 +221,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
         bg += wb * s.g;
         bb += wb * s.b;
         wsum += wf + wb;
+        if (i > 0 && s.coc < -0.5f * dof::kZoneOfFocusCoc) wfSum += wf;  // blurred foreground
         const float dd = fgShare * dFg + (1.0f - fgShare) * dBg;
         reach += dd;
         spec += dd * s.spec;
@@ -223,6 +229,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
       const float inv = 1.0f / std::max(wsum, 1e-20f);
       gathered.setRgb(x, y, Vec3((fr + br) * inv, (fg + bg) * inv, (fb + bb) * inv));
       bokeh.at(x, y)[0] = reach > 0 ? spec / reach : 0.0f;
+      bokeh.at(x, y)[1] = wsum > 0 ? wfSum / wsum : 0.0f;
     }
   });
 

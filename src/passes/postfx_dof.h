@@ -11,12 +11,13 @@
 //     (D(0, i)), the background's CoC clamped to the centre's so it never blurs over sharper
 //     foreground; foreground (nearer by more than depth_range) and background weighted by the
 //     sample alpha 1 / (π r²) and combined by eq. 1's normalised weighted sum (not Jimenez's
-//     alpha, §3.1); the bokeh intensity is the share of reaching taps that are high-specular;
+//     alpha, §3.1); the bokeh intensity is the share of reaching taps that are highlights;
 //     the ring pattern turns by a per-frame angle (the paper jitters; TAA resolves it);
 //  5. 3x3 median, then a bilinear upscale to the frame.
 // With apertureBlades >= 3 (beyond the paper, parameter `polygon`) D(0, i) tests the tap against
 // the aperture polygon's bokeh instead of a disk, as the reference's lens samples spread.
-// Inputs: hdr (sharp colour), coc, specular. Outputs: postfx (colour), bokeh (intensity).
+// Inputs: hdr (sharp colour), coc, specular. Outputs: postfx (colour), bokeh (intensity, and the
+// share of the gather's weight from foreground taps: where a blurred foreground spreads).
 #pragma once
 #include "pipeline/pass.h"
 
@@ -35,7 +36,7 @@ class PostfxDofPass : public Pass {
             {"specular", 4, BufferKind::Material}};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"postfx", 3}, {"bokeh", 1, BufferKind::Mask}};
+    return {{"postfx", 3}, {"bokeh", 2, BufferKind::Mask}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;

@@ -208,3 +208,20 @@ TEST(BadInput, ObjectHeuristics) {
   expectLoadError("oh3.json", R"({"base": "cornell", "objectHeuristics": [1]})",
                   {"objectHeuristics", "expected an object"});
 }
+
+// Bad lens values (seed 000's thin lens) name the field.
+TEST(BadInput, LensFields) {
+  expectLoadError("l1.json", R"({"objects": [{"shape": "cube"}], "camera": {"aperture": -0.1}})",
+                  {"camera.aperture"});
+  expectLoadError("l2.json",
+                  R"({"objects": [{"shape": "cube"}], "camera": {"focusDistance": 0}})",
+                  {"camera.focusDistance"});
+  expectLoadError("l3.json",
+                  R"({"objects": [{"shape": "cube"}], "camera": {"focusDistance": -2}})",
+                  {"camera.focusDistance"});
+  for (int blades : {1, 2})
+    expectLoadError("l4.json",
+                    R"({"objects": [{"shape": "cube"}], "camera": {"apertureBlades": )" +
+                        std::to_string(blades) + "}}",
+                    {"camera.apertureBlades", "at least 3"});
+}
