@@ -9,6 +9,7 @@
 
 #include "cli_options.h"
 #include "core/error.h"
+#include "eval/experiment_dof.h"
 #include "eval/experiment_heuristic.h"
 #include "eval/experiment_sweep.h"
 #include "eval/experiment_taa.h"
@@ -90,8 +91,20 @@ struct ExperimentVerb {
       if (pathFrames != -1) to.pathFrames = pathFrames;
       return runTaaExperiment(to);
     }
+    if (runner == "hybrid-dof") {
+      DofExperimentOptions d = dofOptionsFromJson(j, file.string());
+      d.out = o.out.empty() ? "out/experiment-" + file.stem().string() : o.out;
+      d.cache = o.noCache ? "" : o.cache;
+      if (o.width) d.width = o.width;
+      if (o.height) d.height = o.height;
+      if (o.warmup >= 0) d.warmup = o.warmup;
+      if (o.frames) d.frames = o.frames;
+      if (o.spp) d.referenceSpp = d.pathReferenceSpp = o.spp;
+      return runDofExperiment(d);
+    }
     if (runner != "sweep")
-      throw InputError(file.string(), "runner", "'" + runner + "' is not sweep, heuristic or taa");
+      throw InputError(file.string(), "runner",
+                       "'" + runner + "' is not sweep, heuristic, taa or hybrid-dof");
     if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
       throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
                        "apply to the heuristic runner only");
