@@ -15,6 +15,23 @@ std::vector<ParamDesc> DofReconstructionPass::params() const {
           {"median", ParamType::Bool, 1, 0, 1, "3x3 median before the reconstruction", {}}};
 }
 
+namespace {
+
+// Bilinear sample of all N channels, clamped to the edge (inline: 25 taps per pixel).
+template <int N>
+inline void bilinearN(const Buffer& b, float x, float y, float* out) {
+  const float fx = std::clamp(x - 0.5f, 0.0f, float(b.width - 1));
+  const float fy = std::clamp(y - 0.5f, 0.0f, float(b.height - 1));
+  const int x0 = int(fx), y0 = int(fy);
+  const int x1 = std::min(x0 + 1, b.width - 1), y1 = std::min(y0 + 1, b.height - 1);
+  const float tx = fx - float(x0), ty = fy - float(y0);
+  const float w00 = (1 - tx) * (1 - ty), w10 = tx * (1 - ty), w01 = (1 - tx) * ty, w11 = tx * ty;
+  const float *p00 = b.at(x0, y0), *p10 = b.at(x1, y0), *p01 = b.at(x0, y1), *p11 = b.at(x1, y1);
+  for (int c = 0; c < N; ++c) out[c] = w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c];
+}
+
+}  // namespace
+
 void DofReconstructionPass::execute(FrameContext& ctx) {
   const Buffer& in = ctx.input(*this, "rt_color");
   const Buffer& variance = ctx.input(*this, "dof_variance");
@@ -34,6 +51,7 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
   while (mips.size() < 4 && mips.back().width > 1 && mips.back().height > 1)
     mips.push_back(downsampleBox(mips.back()));
   const float vw = float(param("variance_weight")), lodScale = float(param("lod_scale"));
+  auto bilinear = [](const Buffer& b, float x, float y, float* out) { bilinearN<N>(b, x, y, out); };
   const float scale = float(ctx.width) / float(w);  // CoC is in frame pixels
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
@@ -43,7 +61,9 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
       if (c0[kCov] <= 0) continue;
       const float b = std::clamp(variance.at(x, y)[0] * vw, 0.0f, 0.9f);  // eq. 5
       const float radius = 0.5f * c0[3] / scale;  // this resolution's pixels
-      if (b <= 0 || radius < 0.5f) continue;
+      // Below 1/256 the lerp cannot change an 8-bit display value by more than one step of the
+      // difference: skip the gather.
+      if (b < 1.0f / 256.0f || radius < 0.5f) continue;
       const float lod = std::clamp(c0[3] * lodScale, 0.0f, float(mips.size() - 1));  // eq. 8
       const int level = int(lod);
       const Buffer& mip = mips[size_t(level)];
@@ -56,7 +76,7 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
           const float a = 2.0f * kPi * (float(k) + 0.5f * float(ring & 1)) / float(n);
           const float sx = float(x) + 0.5f + r * std::cos(a), sy = float(y) + 0.5f + r * std::sin(a);
           float s[N];
-          sampleBilinear(mip, sx * ms, sy * ms, s);
+          bilinear(mip, sx * ms, sy * ms, s);
           if (s[kCov] <= 1e-4f) continue;
           // Reject a tap whose own blur does not reach the centre.
           if (ring > 0 && 0.5f * (s[3] / s[kCov]) / scale < r) continue;

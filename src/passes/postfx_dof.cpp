@@ -52,10 +52,30 @@ constexpr int kTile = 8;  // half-res pixels per tile side (16 frame pixels)
 
 struct HalfSample {
   float r, g, b;
-  float coc;   // signed, in half-res pixels (diameter)
-  float z;     // view depth, metres (infinity: sky)
-  float spec;  // 1: high-specular
+  float coc;     // signed, in half-res pixels (diameter)
+  float z;       // view depth, metres (the sky: 1e30)
+  float spec;    // 1: a bright specular highlight
+  float radius;  // |coc| / 2
+  float alpha;   // sample alpha: 1 / (π r²), r at least half a pixel
 };
+
+// Bilinear RGB of a 3-channel buffer at continuous coordinates (pixel centres at +0.5), clamped
+// to the edge; inline for the prefilter's 9 taps per pixel.
+inline void bilinearRgb(const Buffer& b, float x, float y, float out[3]) {
+  const float fx = std::clamp(x - 0.5f, 0.0f, float(b.width - 1));
+  const float fy = std::clamp(y - 0.5f, 0.0f, float(b.height - 1));
+  const int x0 = int(fx), y0 = int(fy);
+  const int x1 = std::min(x0 + 1, b.width - 1), y1 = std::min(y0 + 1, b.height - 1);
+  const float tx = fx - float(x0), ty = fy - float(y0);
+  const float* p00 = b.at(x0, y0);
+  const float* p10 = b.at(x1, y0);
+  const float* p01 = b.at(x0, y1);
+  const float* p11 = b.at(x1, y1);
+  for (int c = 0; c < 3; ++c) {
+    const float top = p00[c] + (p10[c] - p00[c]) * tx, bottom = p01[c] + (p11[c] - p01[c]) * tx;
+    out[c] = top + (bottom - top) * ty;
+  }
+}
 
 // The 81 taps: the centre, then rings k = 1..4 of 8k taps at radius k/4 (unit kernel).
 struct Tap {
@@ -117,7 +137,9 @@ void PostfxDofPass::execute(FrameContext& ctx) {
               dof::luma(hdr.rgb(sx, sy)) >= bokehLuminance)
             highlight = 1.0f;
         }
-      half[size_t(y) * hw + x] = {0, 0, 0, 0.5f * cmin, depthOf(cmin), highlight};
+      const float radius = 0.25f * std::abs(cmin);
+      half[size_t(y) * hw + x] = {0,         0,         0, 0.5f * cmin, depthOf(cmin), highlight,
+                                  radius, 1.0f / (kPi * std::max(radius * radius, 0.25f))};
     }
   });
 
@@ -158,7 +180,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
         const float px = t == 8 ? cx : cx + radius * std::cos(a);
         const float py = t == 8 ? cy : cy + radius * std::sin(a);
         float rgb[3];
-        sampleBilinear(hdr, px, py, rgb);
+        bilinearRgb(hdr, px, py, rgb);
         const float tc = 0.5f * cocIn.at(std::clamp(int(px), 0, W - 1), std::clamp(int(py), 0, H - 1))[0];
         const float w = 1.0f / (1.0f + std::abs(tc - c0.coc));
         r += w * rgb[0];
@@ -178,56 +200,69 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   const float rotation = 2.0f * kPi * float((uint32_t(ctx.frameIndex) * 2654435769u) >> 8) /
                          float(1u << 24) / 81.0f;
   const std::array<Tap, 81> taps = ringTaps(rotation);
-  std::array<float, 81> tapAngle{};
-  for (size_t i = 0; i < taps.size(); ++i) tapAngle[i] = std::atan2(-taps[i].y, -taps[i].x);
+  // The polygon's extent along each tap's direction, for far- and near-field spots.
+  std::array<float, 81> extentFar{}, extentNear{};
+  for (size_t i = 0; i < taps.size(); ++i) {
+    const float angle = std::atan2(-taps[i].y, -taps[i].x);  // from the tap to the centre
+    extentFar[i] = polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, false) : 1.0f;
+    extentNear[i] = polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, true) : 1.0f;
+  }
+  const float invRange = depthRange > 0 ? 1.0f / depthRange : 0.0f;
+  const float nearFieldCoc = -0.5f * dof::kZoneOfFocusCoc;  // half-res pixels
   Buffer gathered(hw, hh, 3), bokeh(hw, hh, 2);
   parallelRows(hh, [&](int y) {
+    // Tap offsets for the current tile's kernel radius (recomputed when it changes).
+    int dx[81], dy[81];
+    float dist[81];
+    float lastR = -1.0f;
+    int reachX = 0, reachY = 0;
     for (int x = 0; x < hw; ++x) {
       const HalfSample& c0 = pre[size_t(y) * hw + x];
-      const float maxCoc = neighbourMax[size_t(y / kTile) * tw + size_t(x / kTile)];
-      const float R = 0.5f * maxCoc;  // kernel radius, half-res pixels
-      if (R < 0.5f) {
+      const float R = 0.5f * neighbourMax[size_t(y / kTile) * tw + size_t(x / kTile)];
+      if (R < 0.5f) {  // the whole neighbourhood is sharp
         gathered.setRgb(x, y, Vec3(c0.r, c0.g, c0.b));
         continue;
       }
-      const float r0 = 0.5f * std::abs(c0.coc);
-      float fr = 0, fg = 0, fb = 0, br = 0, bg = 0, bb = 0, wsum = 0, wfSum = 0, spec = 0,
-            reach = 0;
+      if (R != lastR) {
+        lastR = R;
+        reachX = reachY = 0;
+        for (size_t i = 0; i < taps.size(); ++i) {
+          dx[i] = int(std::lround(taps[i].x * R));
+          dy[i] = int(std::lround(taps[i].y * R));
+          dist[i] = taps[i].dist * R;
+          reachX = std::max(reachX, std::abs(dx[i]));
+          reachY = std::max(reachY, std::abs(dy[i]));
+        }
+      }
+      const bool inside = x >= reachX && y >= reachY && x + reachX < hw && y + reachY < hh;
+      const HalfSample* row = &pre[size_t(y) * hw + x];
+      const float r0 = c0.radius;
+      float fr = 0, fg = 0, fb = 0, wsum = 0, wfSum = 0, spec = 0, reach = 0;
       for (size_t i = 0; i < taps.size(); ++i) {
-        const float ox = taps[i].x * R, oy = taps[i].y * R, d = taps[i].dist * R;
         const HalfSample& s =
-            pre[size_t(std::clamp(int(std::lround(float(y) + oy)), 0, hh - 1)) * hw +
-                size_t(std::clamp(int(std::lround(float(x) + ox)), 0, hw - 1))];
-        const float ri = 0.5f * std::abs(s.coc);
+            inside ? row[ptrdiff_t(dy[i]) * hw + dx[i]]
+                   : pre[size_t(std::clamp(y + dy[i], 0, hh - 1)) * hw +
+                         size_t(std::clamp(x + dx[i], 0, hw - 1))];
         // Foreground: nearer than the centre by more than the depth range (soft over one range).
         const float fgShare =
-            depthRange > 0 ? saturate((c0.z - s.z) / depthRange - 1.0f) : (s.z < c0.z ? 1.f : 0.f);
-        // A background tap spreads no further than the centre's own blur.
-        float reachFg = ri, reachBg = std::min(ri, r0);
-        if (polygon && i > 0) {
-          const float e = dof::apertureExtent(lens.blades, lens.rotationDeg, tapAngle[i],
-                                              s.coc < 0);
-          reachFg *= e;
-          reachBg *= e;
-        }
-        const float dFg = i == 0 ? 1.0f : saturate(reachFg - d + 0.5f);
-        const float dBg = i == 0 ? 1.0f : saturate(reachBg - d + 0.5f);
-        const float alpha = 1.0f / (kPi * std::max(ri * ri, 0.25f));
-        const float wf = fgShare * dFg * alpha, wb = (1.0f - fgShare) * dBg * alpha;
-        fr += wf * s.r;
-        fg += wf * s.g;
-        fb += wf * s.b;
-        br += wb * s.r;
-        bg += wb * s.g;
-        bb += wb * s.b;
-        wsum += wf + wb;
-        if (i > 0 && s.coc < -0.5f * dof::kZoneOfFocusCoc) wfSum += wf;  // blurred foreground
-        const float dd = fgShare * dFg + (1.0f - fgShare) * dBg;
+            depthRange > 0 ? saturate((c0.z - s.z) * invRange - 1.0f) : (s.z < c0.z ? 1.f : 0.f);
+        // A background tap spreads no further than the centre's own blur; D(0, i) has a soft
+        // edge of one pixel centred on the CoC radius.
+        const float e = s.coc < 0 ? extentNear[i] : extentFar[i];
+        const float dFg = i == 0 ? 1.0f : saturate(s.radius * e - dist[i] + 0.5f);
+        const float dBg = i == 0 ? 1.0f : saturate(std::min(s.radius, r0) * e - dist[i] + 0.5f);
+        const float dd = dBg + fgShare * (dFg - dBg);  // fgShare·dFg + (1 − fgShare)·dBg
+        const float w = dd * s.alpha;
+        fr += w * s.r;
+        fg += w * s.g;
+        fb += w * s.b;
+        wsum += w;
+        if (i > 0 && s.coc < nearFieldCoc) wfSum += fgShare * dFg * s.alpha;  // blurred foreground
         reach += dd;
         spec += dd * s.spec;
       }
       const float inv = 1.0f / std::max(wsum, 1e-20f);
-      gathered.setRgb(x, y, Vec3((fr + br) * inv, (fg + bg) * inv, (fb + bb) * inv));
+      gathered.setRgb(x, y, Vec3(fr * inv, fg * inv, fb * inv));
       bokeh.at(x, y)[0] = reach > 0 ? spec / reach : 0.0f;
       bokeh.at(x, y)[1] = wsum > 0 ? wfSum / wsum : 0.0f;
     }
