@@ -31,7 +31,7 @@ std::vector<ParamDesc> RayMaskPass::params() const {
            {}},
           {"dilate",
            ParamType::Bool,
-           1,
+           0,
            0,
            1,
            "one ray within the near field's CoC radius around it (beyond the paper, Fig. 8b)",

@@ -7,7 +7,8 @@
 // and at least one ray in every near-field pixel (CoC < −√2).
 // Beyond the paper: `dilate` also gives one ray to every pixel within the neighbourhood's largest
 // near-field CoC radius of a near-field pixel (§5.3's fix for the tiling of Fig. 8b: a blurred
-// foreground spreads that far over the background). `mode = all` gives every pixel m rays (the
+// foreground spreads that far over the background; off: at the paper's variance weight the mask
+// is already full there, measured no gain). `mode = all` gives every pixel m rays (the
 // rt-dof baseline).
 // Inputs: position, normal, depth, coc; history: dof_variance. Output: ray_mask (rays per pixel,
 // at half the frame's resolution or the frame's: `resolution`).
