@@ -51,7 +51,7 @@ std::vector<ParamDesc> DofAccumulationPass::params() const {
            {}},
           {"adaptive_alpha",
            ParamType::Bool,
-           0,
+           1,
            0,
            1,
            "per-pixel blend factor from the temporal gradient (Schied 2018; beyond the paper)",

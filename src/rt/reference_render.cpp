@@ -103,7 +103,7 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
     if (!h.valid()) return scene.skyRadiance(d);
     const float tuv[3] = {h.t, h.u, h.v};
     const SurfaceSample s = resolveSurface(*rt.frame(), h.object, h.prim, o, d, tau, tuv);
-    return whitted.shadePrimary(s, d);
+    return tau > 0.0f ? whitted.atTime(tau).shadePrimary(s, d) : whitted.shadePrimary(s, d);
   };
   const bool cameraMoves = std::memcmp(&open.desc.position, &close.desc.position, sizeof(Vec3)) ||
                            std::memcmp(&open.desc.lookAt, &close.desc.lookAt, sizeof(Vec3));

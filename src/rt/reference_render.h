@@ -47,7 +47,7 @@ struct ReferenceSettings {
   double timeLimitS = 0.0;  // > 0: stop at the last whole batch that fits in this time
   Integrator integrator = Integrator::Path;
   PathSettings path;
-  WhittedSettings whitted;  // Integrator::Whitted (secondary rays see objects at the frame time)
+  WhittedSettings whitted;  // Integrator::Whitted
   uint64_t seed = 0;
   bool progress = false;  // draw a progress bar on stderr (rank 0, terminals only)
 };

@@ -39,6 +39,7 @@ bool Whitted::shadowRay(const SurfaceSample& s, size_t light, Ray& r) const {
     return false;  // unlit anyway
   r.origin = offsetRayOrigin(s, ls.wi);
   r.dir = ls.wi;
+  r.time = time_;
   r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
                                    : ls.distance * (1.0f - 1e-4f);
   return true;
@@ -81,10 +82,11 @@ Vec3 Whitted::traceSecondary(Vec3 origin, Vec3 dir, int depth, float importance)
   Ray r;
   r.origin = origin;
   r.dir = dir;
+  r.time = time_;
   Hit h = rt_.intersect(r);
   if (!h.valid()) return scene_.skyRadiance(dir);  // Listing 8d
   const float tuv[3] = {h.t, h.u, h.v};            // Embree's own hit: no second intersection
-  SurfaceSample s = resolveSurface(*rt_.frame(), h.object, h.prim, origin, dir, 0.0f, tuv);
+  SurfaceSample s = resolveSurface(*rt_.frame(), h.object, h.prim, origin, dir, time_, tuv);
   const float om = s.reflectivity, orr = 1.0f - s.opacity;
   // Listing 8c: lighting only where the surface is not purely a mirror or clear glass.
   Vec3 lighting(0.0f);

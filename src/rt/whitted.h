@@ -59,6 +59,14 @@ class Whitted {
           WhittedSettings settings)
       : rt_(rt), scene_(scene), shading_(shading), settings_(settings) {}
 
+  // The same tracer with every ray it makes (shadow, reflection, refraction) at shutter
+  // fraction `time`: the motion-blurred surfaces of a sample at that time (reference renders).
+  Whitted atTime(float time) const {
+    Whitted w = *this;
+    w.time_ = time;
+    return w;
+  }
+
   // Per-light RGB transmittance from the surface point to each light (1 where a light casts no
   // shadows or does not face the point). `vis` has one entry per scene light.
   void lightVisibility(const SurfaceSample& s, Vec3* vis) const;
@@ -88,6 +96,7 @@ class Whitted {
   const Scene& scene_;
   const ShadingContext& shading_;
   WhittedSettings settings_;
+  float time_ = 0.0f;  // shutter fraction of every ray this tracer makes
 };
 
 }  // namespace tandem

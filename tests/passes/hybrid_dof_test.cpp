@@ -221,6 +221,7 @@ struct AccumulationRig {
 // is younger than the moving average's horizon every frame weighs the same).
 TEST(HybridDof, AccumulationOfAStaticShotIsTheMeanOfItsInputs) {
   AccumulationRig rig(8, 6, lensDesc());
+  rig.pass.setParam("adaptive_alpha", 0);  // the paper's moving average
   Vec3 sumNear(0.0f), sumFar(0.0f);
   const int frames = 12;
   for (int k = 1; k <= frames; ++k) {
@@ -240,6 +241,22 @@ TEST(HybridDof, AccumulationOfAStaticShotIsTheMeanOfItsInputs) {
   // Frames without rays keep the history as it is.
   rig.frame(Vec3(9.0f), Vec3(9.0f), 1.0f, 0.0f);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(rig.ctx.input("rt_color").at(3, 3)[k], expect[k], 1e-5f);
+}
+
+// Per-pixel blend factors (Schied 2018): after a converged history, a sudden change of the
+// content is taken up at once instead of fading in over ~20 frames (no ghost); with the paper's
+// moving average the old value lingers.
+TEST(HybridDof, AdaptiveBlendFactorsDropStaleHistory) {
+  float after[2];
+  for (int adaptive = 0; adaptive < 2; ++adaptive) {
+    AccumulationRig rig(4, 4, lensDesc());
+    rig.pass.setParam("adaptive_alpha", adaptive);
+    for (int k = 0; k < 40; ++k) rig.frame(Vec3(0.2f), Vec3(0.2f), 0.0f, 4.0f);
+    rig.frame(Vec3(1.0f), Vec3(1.0f), 0.0f, 4.0f);
+    after[adaptive] = rig.ctx.input("rt_color").at(1, 1)[0];
+  }
+  EXPECT_LT(after[0], 0.3f);  // 0.95 of the old value stays
+  EXPECT_GT(after[1], 0.8f);  // the gradient took most of the new value at once
 }
 
 // Reprojection of a translated camera maps the history exactly: the far field through the mean
