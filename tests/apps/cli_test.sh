@@ -7,6 +7,7 @@ D="$1"
 rm -rf "$D" && mkdir -p "$D"
 fail=0
 check() { if ! eval "$2"; then echo "FAIL: $1"; fail=1; else echo "ok: $1"; fi; }
+SRC="$(cd "$(dirname "$0")/../.." && pwd)"
 
 # Expect a non-zero exit, a message containing $2, and an empty output folder.
 expect_error() {
@@ -25,6 +26,11 @@ for v in render reference info compare bench experiment export view; do "$T" $v 
 check "render writes png+exr+aovs" "[ -s $D/demo/cornell_deferred.png ] && [ -s $D/demo/cornell_deferred.exr ] && [ -s $D/demo/cornell_deferred_object_id.png ]"
 "$T" render cornell --width 160 --height 90 --pipeline deferred-rt-gbuffer --out "$D/rt.png" >/dev/null
 check "rt pipeline renders" "[ -s $D/rt.png ]"
+"$T" render "$SRC/scenes/dof_fg.json" --pipeline hybrid-dof --width 96 --height 54 --frames 3 \
+  --aov coc,ray_mask,rt_hit --out "$D/dof/" >/dev/null
+check "hybrid-dof renders with its buffers" "[ -s $D/dof/dof_fg_hybrid-dof.png ] && [ -s $D/dof/dof_fg_hybrid-dof_ray_mask.png ]"
+out=$("$T" reference --scene "$SRC/scenes/dof_fg.json" --integrator whitted --spp 2 --width 48 --height 27 --no-cache --quiet --out "$D/dofref.png" 2>&1)
+check "whitted reference renders" "[ -s $D/dofref.png ] && grep -q '2 spp' <<<\"\$out\""
 out=$("$T" compare "$D/demo/cornell_deferred.png" "$D/rt.png" --heatmap "$D/heat.png" --flip-map "$D/flip.png")
 check "compare raster vs rt output" "grep -q ssim <<<\"\$out\" && grep -q '^flip ' <<<\"\$out\" && [ -s $D/heat.png ] && [ -s $D/flip.png ]"
 ssim=$(awk '/^ssim/ {print $2}' <<<"$out")
@@ -38,7 +44,6 @@ check "bench writes json" "grep -q median_ms $D/bench.json"
   --camera-pos -0.017,0.13,0.30 --look-at -0.017,0.11,-0.0015 --vfov 45 --out "$D/bunny.png" >/dev/null
 check "camera and light overrides" "[ -s $D/bunny.png ]"
 
-SRC="$(cd "$(dirname "$0")/../.." && pwd)"
 "$T" render "$SRC/scenes/cornell_bunny.json" --width 96 --height 54 --out "$D/cb.png" >/dev/null
 check "shipped scene file renders" "[ -s $D/cb.png ]"
 
@@ -135,6 +140,12 @@ out=$(env -u DISPLAY -u WAYLAND_DISPLAY "$T" view --scene cornell 2>&1); rc=$?
 check "view without a display fails and suggests render" "[ $rc -ne 0 ] && grep -q 'tandem render' <<<\"\$out\""
 expect_error "reference bad spp" "--spp" "$T" reference --spp 0 --out "$D/err/r/"
 expect_error "reference bad blades" "--blades" "$T" reference --blades 2 --out "$D/err/r/"
+expect_error "negative aperture" "--aperture" "$T" render --pipeline hybrid-dof --aperture -0.1 --out "$D/err/x.png"
+expect_error "zero focus distance" "--focus" "$T" render --pipeline hybrid-dof --focus 0 --out "$D/err/x.png"
+expect_error "negative blades" "--blades" "$T" render --pipeline postfx-dof --blades -4 --out "$D/err/x.png"
+expect_error "reference bad integrator" "--integrator" "$T" reference --integrator direct --out "$D/err/r/"
+echo '{"base": "cornell", "camera": {"aperture": 0.1, "focusDistance": -1}}' > "$D/badlens.json"
+expect_error "scene focus distance" "camera.focusDistance" "$T" render --scene "$D/badlens.json" --pipeline hybrid-dof --out "$D/err/x.png"
 expect_error "reference negative shutter" "--shutter" "$T" reference --shutter -1 --out "$D/err/r/"
 expect_error "--set unknown parameter" "unknown parameter" "$T" render --pipeline hybrid-heuristic --set heuristic.nope=1 --out "$D/err/x.png"
 expect_error "--set out of range" "out of range" "$T" render --pipeline hybrid-heuristic --set heuristic.budget_ms=-3 --out "$D/err/x.png"
