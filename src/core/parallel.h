@@ -25,9 +25,10 @@ void parallelRange(size_t n, Body&& body, size_t grain = 1024) {
 // body(y) once per row y in [0, height), rows handed out in groups of `grain`.
 template <class Body>
 void parallelRows(int height, Body&& body, int grain = 4) {
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, grain), [&](const tbb::blocked_range<int>& r) {
-    for (int y = r.begin(); y < r.end(); ++y) body(y);
-  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, grain),
+                    [&](const tbb::blocked_range<int>& r) {
+                      for (int y = r.begin(); y < r.end(); ++y) body(y);
+                    });
 }
 
 }  // namespace tandem

@@ -88,15 +88,14 @@ DofExperimentOptions dofOptionsFromJson(const nlohmann::json& j, const std::stri
 namespace {
 
 struct StaticRun {
-  Buffer image;                       // the displayed image after warm-up and the timed frames
-  std::map<std::string, double> ms;   // median per pass
+  Buffer image;                      // the displayed image after warm-up and the timed frames
+  std::map<std::string, double> ms;  // median per pass
   double frameMs = 0;
   double raysPerPixel = 0, maskedShare = 0;
 };
 
 StaticRun renderStatic(const Scene& scene, const std::string& pipeline,
-                       const std::vector<std::string>& sets, int w, int h, int warmup,
-                       int frames) {
+                       const std::vector<std::string>& sets, int w, int h, int warmup, int frames) {
   Pipeline p = Pipeline::load(pipeline);
   for (const std::string& s : sets) p.setParam(s, "experiment");
   Renderer r(scene, std::move(p), RenderSettings{.width = w, .height = h});
@@ -232,7 +231,8 @@ int runDofExperiment(const DofExperimentOptions& o) {
   std::printf("experiment hybrid-dof: Figure 7, shot %s, references\n", figLabel.c_str());
   std::fflush(stdout);
   const CameraDesc figCam = defaultCamera(fig);
-  const Buffer ref = referenceFor(fig, figCam, sw, sh, o.referenceSpp, Integrator::Whitted, o.cache);
+  const Buffer ref =
+      referenceFor(fig, figCam, sw, sh, o.referenceSpp, Integrator::Whitted, o.cache);
   const Buffer refPt =
       referenceFor(fig, figCam, sw, sh, o.pathReferenceSpp, Integrator::Path, o.cache);
   const StaticRun postfx = renderStatic(fig, "postfx-dof", {}, sw, sh, o.warmup, o.frames);
@@ -294,8 +294,7 @@ int runDofExperiment(const DofExperimentOptions& o) {
                       fmt(hybridMs10, 1) + " ms a frame; postfx-dof: SSIM " + fmt(postfxSsim, 4) +
                       " (hybrid − postfx = " + fmt(hybridSsim10 - postfxSsim, 4) + ")\n";
   speed += rtEqualMs > 0 ? "- the cheapest rt-dof with at least that SSIM: " + fmt(rtEqualMs, 1) +
-                               " ms a frame, " + fmt(rtEqualMs / hybridMs10, 2) +
-                               "x hybrid-dof's\n"
+                               " ms a frame, " + fmt(rtEqualMs / hybridMs10, 2) + "x hybrid-dof's\n"
                          : "- no rt-dof budget in the sweep reaches hybrid-dof's SSIM at m = 10\n";
   speed += "- against the path-traced reference (" + std::to_string(o.pathReferenceSpp) +
            " spp; includes global illumination, which none of the three models): SSIM hybrid " +
@@ -304,8 +303,10 @@ int runDofExperiment(const DofExperimentOptions& o) {
   report.markdown(speed);
 
   // Figure 6: crops and FLIP maps.
-  const std::vector<std::pair<std::string, const Buffer*>> crops = {
-      {"reference", &ref}, {"postfx-dof", &postfx.image}, {"hybrid-dof", &hybrid10}, {"rt-dof", &rt10}};
+  const std::vector<std::pair<std::string, const Buffer*>> crops = {{"reference", &ref},
+                                                                    {"postfx-dof", &postfx.image},
+                                                                    {"hybrid-dof", &hybrid10},
+                                                                    {"rt-dof", &rt10}};
   for (const auto& [name, img] : crops) {
     const std::string file = "figure6_" + name + ".png";
     writePng((fs::path(o.out) / file).string(), cropOf(*img, o.crop));
@@ -339,8 +340,8 @@ int runDofExperiment(const DofExperimentOptions& o) {
         const CameraDesc c = pathCamera(scene, base, f, o.temporalFrames);
         r.renderFrame(f, c);
         if (f == 0 || f % o.temporalEvery) continue;
-        const Buffer fr = referenceFor(scene, c, o.temporalWidth, o.temporalHeight,
-                                       o.temporalSpp, Integrator::Whitted, o.cache);
+        const Buffer fr = referenceFor(scene, c, o.temporalWidth, o.temporalHeight, o.temporalSpp,
+                                       Integrator::Whitted, o.cache);
         const double v = ssim(r.output(), fr);
         sum += v;
         worst = std::min(worst, v);
@@ -353,9 +354,9 @@ int runDofExperiment(const DofExperimentOptions& o) {
   if (!temporalRows.empty()) {
     report.markdown("### Temporal: the camera path (" + std::to_string(o.temporalFrames) +
                     " frames, every " + std::to_string(o.temporalEvery) +
-                    "-th against its own reference at " + std::to_string(o.temporalSpp) +
-                    " spp, " + std::to_string(o.temporalWidth) + "x" +
-                    std::to_string(o.temporalHeight) + ")\n\n");
+                    "-th against its own reference at " + std::to_string(o.temporalSpp) + " spp, " +
+                    std::to_string(o.temporalWidth) + "x" + std::to_string(o.temporalHeight) +
+                    ")\n\n");
     report.table("temporal_ssim",
                  {"shot", "per-pixel blend factors", "mean SSIM", "worst-frame SSIM", "frames"},
                  temporalRows);

@@ -24,15 +24,15 @@ struct DofExperimentOptions {
   std::string out = "out/experiment-hybrid-dof";
   std::string cache;  // reference cache folder ("" = none)
   std::vector<std::string> shots, shotLabels;
-  int width = 960, height = 540;              // Table 2 (timings)
-  int sweepWidth = 480, sweepHeight = 270;    // Figure 7 and 6 (quality)
-  int warmup = 24, frames = 8;                // static shots (quality)
-  int tableWarmup = 4, tableFrames = 4;       // Table 2 (timings need no converged image)
-  std::vector<int> tableBudgets{1, 30, 50};   // m for Table 2
+  int width = 960, height = 540;             // Table 2 (timings)
+  int sweepWidth = 480, sweepHeight = 270;   // Figure 7 and 6 (quality)
+  int warmup = 24, frames = 8;               // static shots (quality)
+  int tableWarmup = 4, tableFrames = 4;      // Table 2 (timings need no converged image)
+  std::vector<int> tableBudgets{1, 30, 50};  // m for Table 2
   std::vector<int> sweepBudgets{1, 2, 5, 10, 20, 30, 50};
-  int figureShot = -1;                        // index of the shot for Figures 6-7 (-1: last)
+  int figureShot = -1;  // index of the shot for Figures 6-7 (-1: last)
   int referenceSpp = 256, pathReferenceSpp = 256;
-  int crop[4] = {0, 0, 0, 0};                 // Figure 6 crop at the sweep size (0: centre third)
+  int crop[4] = {0, 0, 0, 0};  // Figure 6 crop at the sweep size (0: centre third)
   int temporalWidth = 240, temporalHeight = 135, temporalFrames = 30, temporalEvery = 3;
   int temporalSpp = 64;
 };

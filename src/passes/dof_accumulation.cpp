@@ -88,7 +88,6 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
   Buffer& accMoments = ctx.output(*this, "acc_moments", w, h);
   Buffer& color = ctx.output(*this, "rt_color", w, h);
   Buffer variance(w, h, 1, 0.0f, BufferKind::Variance);
-  const View& view = ctx.views.front();
   const float scale = float(ctx.width) / float(w);
   const float minAlpha = 1.0f - float(param("history_weight"));
   const float motionPx = float(param("motion_pixels"));
@@ -97,6 +96,8 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const float fx = (float(x) + 0.5f) * scale, fy = (float(y) + 0.5f) * scale;
+      const View& view =
+          viewAt(ctx.views, std::min(int(fx), ctx.width - 1), std::min(int(fy), ctx.height - 1));
       const float* mv =
           motion.at(std::min(int(fx), motion.width - 1), std::min(int(fy), motion.height - 1));
       const float nx = (fx - mv[0]) / scale, ny = (fy - mv[1]) / scale;  // near: motion vector
@@ -118,8 +119,8 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       }
       Vec2 prevPixel;
       if (farW > 0 && view.prevCamera.project(farP, prevPixel)) {
-        fxp = prevPixel.x / scale;
-        fyp = prevPixel.y / scale;
+        fxp = (prevPixel.x + float(view.x)) / scale;  // the view's pixel -> the frame's
+        fyp = (prevPixel.y + float(view.y)) / scale;
       }
       float hn[5] = {}, hf[5] = {}, hm[3] = {};
       const bool haveNear = history(prevNear, nx, ny, hn) && history(prevMoments, nx, ny, hm);

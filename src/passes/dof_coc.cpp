@@ -19,12 +19,12 @@ void DofCocPass::execute(FrameContext& ctx) {
       for (int x = x0; x < x1; ++x) {
         float c = 0.0f;
         if (lens.active()) {
-          const float z = depth.at(x, y)[0] > 0
-                              ? dot(Vec3(position.at(x, y)[0], position.at(x, y)[1],
-                                         position.at(x, y)[2]) -
-                                        eye,
-                                    fwd)
-                              : std::numeric_limits<float>::infinity();
+          const float z =
+              depth.at(x, y)[0] > 0
+                  ? dot(Vec3(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]) -
+                            eye,
+                        fwd)
+                  : std::numeric_limits<float>::infinity();
           c = lens.coc(z);
         }
         coc.at(x, y)[0] = c;

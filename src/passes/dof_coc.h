@@ -17,9 +17,7 @@ class DofCocPass : public Pass {
   std::vector<BufferSlot> inputs() const override {
     return {{"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth}};
   }
-  std::vector<BufferSlot> outputs() const override {
-    return {{"coc", 1, BufferKind::Signed}};
-  }
+  std::vector<BufferSlot> outputs() const override { return {{"coc", 1, BufferKind::Signed}}; }
   void execute(FrameContext& ctx) override;
 };
 

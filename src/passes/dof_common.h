@@ -18,12 +18,16 @@ struct RtChannels {
   static constexpr int kRgb = 0, kCoc = 3, kHit = 4, kCoverage = 5, kNear = 6, kCount = 9;
 };
 
-inline float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
+inline float saturate(float x) {
+  return std::clamp(x, 0.0f, 1.0f);
+}
 inline float smoothstep(float a, float b, float x) {
   const float t = saturate((x - a) / (b - a));
   return t * t * (3.0f - 2.0f * t);
 }
-inline float luma(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+inline float luma(Vec3 c) {
+  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 
 // Share of a sample that belongs to the near field, from its signed CoC (§3.2.2 splits by the
 // distance to the focus plane, smoothly): 0 behind the focus plane and inside the zone of focus,

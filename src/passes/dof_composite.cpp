@@ -10,23 +10,24 @@
 namespace tandem {
 
 std::vector<ParamDesc> DofCompositePass::params() const {
-  return {{"mode",
-           ParamType::Enum,
-           0,
-           0,
-           1,
-           "hybrid: eq. 7; rt: the ray-traced colour wherever there is one (rt-dof)",
-           {"hybrid", "rt"}},
-          {"far_blend", ParamType::Float, 0.3, 0.001, 1, "eq. 7: smoothstep(0, far_blend, h)", {}},
-          {"bokeh", ParamType::Bool, 1, 0, 1, "near field: post-process colour on bright bokeh", {}},
-          {"silhouette",
-           ParamType::Enum,
-           1,
-           0,
-           1,
-           "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) or "
-           "sharp_background: the raster colour and the traced near field by hit ratio",
-           {"eq7", "sharp_background"}}};
+  return {
+      {"mode",
+       ParamType::Enum,
+       0,
+       0,
+       1,
+       "hybrid: eq. 7; rt: the ray-traced colour wherever there is one (rt-dof)",
+       {"hybrid", "rt"}},
+      {"far_blend", ParamType::Float, 0.3, 0.001, 1, "eq. 7: smoothstep(0, far_blend, h)", {}},
+      {"bokeh", ParamType::Bool, 1, 0, 1, "near field: post-process colour on bright bokeh", {}},
+      {"silhouette",
+       ParamType::Enum,
+       1,
+       0,
+       1,
+       "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) or "
+       "sharp_background: the raster colour and the traced near field by hit ratio",
+       {"eq7", "sharp_background"}}};
 }
 
 namespace {
@@ -46,7 +47,8 @@ void DofCompositePass::execute(FrameContext& ctx) {
   const float farBlend = float(param("far_blend"));
   const bool sharpBackground = param("silhouette") == 1;
   const int W = sharp.width, H = sharp.height;
-  const float sx = rt ? float(rt->width) / float(W) : 1.0f, sy = rt ? float(rt->height) / float(H) : 1.0f;
+  const float sx = rt ? float(rt->width) / float(W) : 1.0f,
+              sy = rt ? float(rt->height) / float(H) : 1.0f;
   parallelRows(H, [&](int y) {
     for (int x = 0; x < W; ++x) {
       const float c = coc.at(x, y)[0];
@@ -62,8 +64,8 @@ void DofCompositePass::execute(FrameContext& ctx) {
       const bool inFocus = std::abs(c) < dof::kZoneOfFocusCoc;
       // A blurred foreground reaches over this pixel: some of its lens rays hit the near field,
       // or (without rays) the gather drew from foreground taps.
-      const bool silhouette = coverage > 0 ? hit > kSilhouette
-                                           : bokehIn && bokehIn->at(x, y)[1] > kSilhouette;
+      const bool silhouette =
+          coverage > 0 ? hit > kSilhouette : bokehIn && bokehIn->at(x, y)[1] > kSilhouette;
       const Vec3 pp = postfx.rgb(x, y);
       Vec3 col;
       if (rtMode) {

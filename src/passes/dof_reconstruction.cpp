@@ -74,7 +74,8 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
         const float r = radius * float(ring) / 2.0f;
         for (int k = 0; k < n; ++k) {
           const float a = 2.0f * kPi * (float(k) + 0.5f * float(ring & 1)) / float(n);
-          const float sx = float(x) + 0.5f + r * std::cos(a), sy = float(y) + 0.5f + r * std::sin(a);
+          const float sx = float(x) + 0.5f + r * std::cos(a),
+                      sy = float(y) + 0.5f + r * std::sin(a);
           float s[N];
           bilinear(mip, sx * ms, sy * ms, s);
           if (s[kCov] <= 1e-4f) continue;

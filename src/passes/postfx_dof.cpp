@@ -138,8 +138,14 @@ void PostfxDofPass::execute(FrameContext& ctx) {
             highlight = 1.0f;
         }
       const float radius = 0.25f * std::abs(cmin);
-      half[size_t(y) * hw + x] = {0,         0,         0, 0.5f * cmin, depthOf(cmin), highlight,
-                                  radius, 1.0f / (kPi * std::max(radius * radius, 0.25f))};
+      half[size_t(y) * hw + x] = {0,
+                                  0,
+                                  0,
+                                  0.5f * cmin,
+                                  depthOf(cmin),
+                                  highlight,
+                                  radius,
+                                  1.0f / (kPi * std::max(radius * radius, 0.25f))};
     }
   });
 
@@ -181,7 +187,8 @@ void PostfxDofPass::execute(FrameContext& ctx) {
         const float py = t == 8 ? cy : cy + radius * std::sin(a);
         float rgb[3];
         bilinearRgb(hdr, px, py, rgb);
-        const float tc = 0.5f * cocIn.at(std::clamp(int(px), 0, W - 1), std::clamp(int(py), 0, H - 1))[0];
+        const float tc =
+            0.5f * cocIn.at(std::clamp(int(px), 0, W - 1), std::clamp(int(py), 0, H - 1))[0];
         const float w = 1.0f / (1.0f + std::abs(tc - c0.coc));
         r += w * rgb[0];
         g += w * rgb[1];
@@ -197,15 +204,17 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   });
 
   // 4. 81-tap gather, eq. 1.
-  const float rotation = 2.0f * kPi * float((uint32_t(ctx.frameIndex) * 2654435769u) >> 8) /
-                         float(1u << 24) / 81.0f;
+  const float rotation =
+      2.0f * kPi * float((uint32_t(ctx.frameIndex) * 2654435769u) >> 8) / float(1u << 24) / 81.0f;
   const std::array<Tap, 81> taps = ringTaps(rotation);
   // The polygon's extent along each tap's direction, for far- and near-field spots.
   std::array<float, 81> extentFar{}, extentNear{};
   for (size_t i = 0; i < taps.size(); ++i) {
     const float angle = std::atan2(-taps[i].y, -taps[i].x);  // from the tap to the centre
-    extentFar[i] = polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, false) : 1.0f;
-    extentNear[i] = polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, true) : 1.0f;
+    extentFar[i] =
+        polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, false) : 1.0f;
+    extentNear[i] =
+        polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, true) : 1.0f;
   }
   const float invRange = depthRange > 0 ? 1.0f / depthRange : 0.0f;
   const float nearFieldCoc = -0.5f * dof::kZoneOfFocusCoc;  // half-res pixels
@@ -239,10 +248,9 @@ void PostfxDofPass::execute(FrameContext& ctx) {
       const float r0 = c0.radius;
       float fr = 0, fg = 0, fb = 0, wsum = 0, wfSum = 0, spec = 0, reach = 0;
       for (size_t i = 0; i < taps.size(); ++i) {
-        const HalfSample& s =
-            inside ? row[ptrdiff_t(dy[i]) * hw + dx[i]]
-                   : pre[size_t(std::clamp(y + dy[i], 0, hh - 1)) * hw +
-                         size_t(std::clamp(x + dx[i], 0, hw - 1))];
+        const HalfSample& s = inside ? row[ptrdiff_t(dy[i]) * hw + dx[i]]
+                                     : pre[size_t(std::clamp(y + dy[i], 0, hh - 1)) * hw +
+                                           size_t(std::clamp(x + dx[i], 0, hw - 1))];
         // Foreground: nearer than the centre by more than the depth range (soft over one range).
         const float fgShare =
             depthRange > 0 ? saturate((c0.z - s.z) * invRange - 1.0f) : (s.z < c0.z ? 1.f : 0.f);

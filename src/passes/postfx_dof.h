@@ -31,9 +31,7 @@ class PostfxDofPass : public Pass {
            "(eq. 1), bokeh intensity, 3x3 median (seed 000 §3.1)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"hdr", 3},
-            {"coc", 1, BufferKind::Signed},
-            {"specular", 4, BufferKind::Material}};
+    return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, {"specular", 4, BufferKind::Material}};
   }
   std::vector<BufferSlot> outputs() const override {
     return {{"postfx", 3}, {"bokeh", 2, BufferKind::Mask}};

@@ -99,7 +99,8 @@ void RayMaskPass::execute(FrameContext& ctx) {
       float c = 0.0f;
       for (int j = 0; j < scale; ++j)
         for (int i = 0; i < scale; ++i)
-          c = std::min(c, coc.at(std::min(x * scale + i, W - 1), std::min(y * scale + j, H - 1))[0]);
+          c = std::min(c,
+                       coc.at(std::min(x * scale + i, W - 1), std::min(y * scale + j, H - 1))[0]);
       nearRadius.at(x, y)[0] = c < -dof::kZoneOfFocusCoc ? -0.5f * c / float(scale) : 0.0f;
     }
   });
@@ -114,10 +115,9 @@ void RayMaskPass::execute(FrameContext& ctx) {
     sat.assign(size_t(w + 1) * (h + 1), 0);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
-        sat[size_t(y + 1) * (w + 1) + x + 1] = (nearRadius.at(x, y)[0] > 0 ? 1 : 0) +
-                                                sat[size_t(y) * (w + 1) + x + 1] +
-                                                sat[size_t(y + 1) * (w + 1) + x] -
-                                                sat[size_t(y) * (w + 1) + x];
+        sat[size_t(y + 1) * (w + 1) + x + 1] =
+            (nearRadius.at(x, y)[0] > 0 ? 1 : 0) + sat[size_t(y) * (w + 1) + x + 1] +
+            sat[size_t(y + 1) * (w + 1) + x] - sat[size_t(y) * (w + 1) + x];
     std::vector<float> t(size_t(tw) * th, 0.0f);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
@@ -129,7 +129,8 @@ void RayMaskPass::execute(FrameContext& ctx) {
       for (int tx = 0; tx < tw; ++tx)
         for (int j = std::max(ty - 1, 0); j <= std::min(ty + 1, th - 1); ++j)
           for (int i = std::max(tx - 1, 0); i <= std::min(tx + 1, tw - 1); ++i)
-            tileR[size_t(ty) * tw + tx] = std::max(tileR[size_t(ty) * tw + tx], t[size_t(j) * tw + i]);
+            tileR[size_t(ty) * tw + tx] =
+                std::max(tileR[size_t(ty) * tw + tx], t[size_t(j) * tw + i]);
   }
 
   const Buffer* variance = ctx.previous(*this, "dof_variance");
@@ -144,7 +145,7 @@ void RayMaskPass::execute(FrameContext& ctx) {
         const float* gn = gradients[c].at(x, y);
         nn += gn[0] * gn[0] + gn[1] * gn[1];
       }
-      const float xe = (dd + std::sqrt(nn) / 48.0f) * s;   // eq. 2
+      const float xe = (dd + std::sqrt(nn) / 48.0f) * s;          // eq. 2
       const float xn = dof::saturate(1.0f - 1.0f / (xe + 1.0f));  // eq. 3
       const float var = variance ? variance->at(x, y)[0] : 0.0f;
       float rays = std::round(dof::saturate(xn + var * vw) * m);  // eq. 4

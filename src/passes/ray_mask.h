@@ -1,17 +1,16 @@
 // ray_mask: how many lens rays each pixel of the ray-traced DoF gets (seed 000 §3.2.1).
 // The G-buffer's inverse view depth (d / z with d the focus distance: like a depth buffer, and
-// independent of the scene's units) and normals are Gaussian-filtered (σ = 1 px), reduced to the mask's resolution
-// and differentiated by a 5x5 Sobel: x = (δ_d + δ_n)·s (eq. 2), x_n = saturate(1 − 1/(x + 1))
-// (eq. 3), x_f = saturate(x_n + σ²·variance_weight)·m (eq. 4) with σ² last frame's blurred
-// luminance variance of the accumulated ray-traced image (history input dof_variance); rounded,
-// and at least one ray in every near-field pixel (CoC < −√2).
-// Beyond the paper: `dilate` also gives one ray to every pixel within the neighbourhood's largest
-// near-field CoC radius of a near-field pixel (§5.3's fix for the tiling of Fig. 8b: a blurred
-// foreground spreads that far over the background; off: at the paper's variance weight the mask
-// is already full there, measured no gain). `mode = all` gives every pixel m rays (the
-// rt-dof baseline).
-// Inputs: position, normal, depth, coc; history: dof_variance. Output: ray_mask (rays per pixel,
-// at half the frame's resolution or the frame's: `resolution`).
+// independent of the scene's units) and normals are Gaussian-filtered (σ = 1 px), reduced to the
+// mask's resolution and differentiated by a 5x5 Sobel: x = (δ_d + δ_n)·s (eq. 2), x_n = saturate(1
+// − 1/(x + 1)) (eq. 3), x_f = saturate(x_n + σ²·variance_weight)·m (eq. 4) with σ² last frame's
+// blurred luminance variance of the accumulated ray-traced image (history input dof_variance);
+// rounded, and at least one ray in every near-field pixel (CoC < −√2). Beyond the paper: `dilate`
+// also gives one ray to every pixel within the neighbourhood's largest near-field CoC radius of a
+// near-field pixel (§5.3's fix for the tiling of Fig. 8b: a blurred foreground spreads that far
+// over the background; off: at the paper's variance weight the mask is already full there, measured
+// no gain). `mode = all` gives every pixel m rays (the rt-dof baseline). Inputs: position, normal,
+// depth, coc; history: dof_variance. Output: ray_mask (rays per pixel, at half the frame's
+// resolution or the frame's: `resolution`).
 #pragma once
 #include "pipeline/pass.h"
 

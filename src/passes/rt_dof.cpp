@@ -37,27 +37,30 @@ void RTDofPass::execute(FrameContext& ctx) {
   Buffer& farOut = ctx.output(*this, "rt_far", w, h);
   Buffer& hitOut = ctx.output(*this, "rt_hit", w, h);
   Buffer& farPosOut = ctx.output(*this, "rt_far_position", w, h);
-  const View& view = ctx.views.front();
   // Without the TAA jitter: the rays jitter over the pixel themselves, and the accumulation
-  // reprojects by motion vectors that carry no jitter, so a jittered view would blur it.
-  const Camera cam = Camera::make(view.camera.desc, view.camera.width, view.camera.height);
+  // reprojects by motion vectors that carry no jitter, so a jittered view would blur it. One
+  // camera per view (stereo: both eyes in one dispatch).
+  std::vector<Camera> cams;
+  for (const View& v : ctx.views)
+    cams.push_back(Camera::make(v.camera.desc, v.camera.width, v.camera.height));
   const float scale = float(ctx.width) / float(w);  // frame pixels per mask pixel
   RayTracer& rt = ctx.rayTracer();
   const uint64_t before = rt.raysTraced();
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   const Whitted whitted(rt, scene, shading, whittedSettings(*this));
-  const ThinLens lens = ThinLens::of(cam);
-  const float spread = ctx.pixelSpread(view) * scale;
-  const uint64_t seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex) * 0xD1B54A32D192ED03ull;
-  const float nearT = cam.desc.nearPlane;
+  const ThinLens lens = ThinLens::of(cams.front());  // the same lens in every view
+  const float spread = ctx.pixelSpread(ctx.views.front()) * scale;
+  const uint64_t seed =
+      ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex) * 0xD1B54A32D192ED03ull;
+  const float nearT = cams.front().desc.nearPlane;
 
   parallelTiles(w, h, [&](int x0, int y0, int x1, int y1) {
     const int tw = x1 - x0;
     std::vector<PixelSums> sums(size_t(tw) * size_t(y1 - y0));
     // An 8-ray packet: rays of consecutive pixels (a pixel's own rays are coherent).
     Ray rays[8];
-    int owner[8], n = 0;
+    int owner[8], camOf[8], n = 0;
     auto flush = [&] {
       if (n == 0) return;
       Hit hits[8];
@@ -73,10 +76,11 @@ void RTDofPass::execute(FrameContext& ctx) {
           continue;
         }
         const float tuv[3] = {hits[k].t, hits[k].u, hits[k].v};
-        s[m] = resolveSurface(ctx.frame, hits[k].object, hits[k].prim, rays[k].origin,
-                              rays[k].dir, 0.0f, tuv, spread);
+        s[m] = resolveSurface(ctx.frame, hits[k].object, hits[k].prim, rays[k].origin, rays[k].dir,
+                              0.0f, tuv, spread);
         d[m] = rays[k].dir;
-        z[k] = dot(s[m].position - cam.eye, cam.forward);
+        const Camera& c = cams[size_t(camOf[k])];
+        z[k] = dot(s[m].position - c.eye, c.forward);
         at[m++] = k;
       }
       Vec3 shaded[8];
@@ -102,14 +106,23 @@ void RTDofPass::execute(FrameContext& ctx) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const int count = int(mask.at(x, y)[0]);
+        if (count <= 0) continue;
         const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
+        // The view this mask pixel's frame pixels belong to, and the position in it.
+        const int fx = std::min(int((float(x) + 0.5f) * scale), ctx.width - 1);
+        const int fy = std::min(int((float(y) + 0.5f) * scale), ctx.height - 1);
+        const View& view = viewAt(ctx.views, fx, fy);
+        const int vi = int(&view - ctx.views.data());
+        const Camera& cam = cams[size_t(vi)];
         for (int i = 0; i < count; ++i) {
           SobolSampler sampler(seed, pixel, uint32_t(i));
           const Vec2 j = sampler.get2D(), l = sampler.get2D();
           Ray& r = rays[n];
-          cam.generateThinLensRay((float(x) + j.x) * scale, (float(y) + j.y) * scale, l.x, l.y,
-                                  r.origin, r.dir);
+          cam.generateThinLensRay((float(x) + j.x) * scale - float(view.x),
+                                  (float(y) + j.y) * scale - float(view.y), l.x, l.y, r.origin,
+                                  r.dir);
           r.tnear = nearT / std::max(dot(r.dir, cam.forward), 1e-6f);
+          camOf[n] = vi;
           r.tfar = 1e30f;
           r.time = 0.0f;
           owner[n] = (y - y0) * tw + (x - x0);
@@ -120,7 +133,8 @@ void RTDofPass::execute(FrameContext& ctx) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const PixelSums& p = sums[size_t((y - y0) * tw + (x - x0))];
-        const float in = p.nearW > 0 ? 1.0f / p.nearW : 0.0f, inf = p.farW > 0 ? 1.0f / p.farW : 0.0f;
+        const float in = p.nearW > 0 ? 1.0f / p.nearW : 0.0f,
+                    inf = p.farW > 0 ? 1.0f / p.farW : 0.0f;
         float* o = nearOut.at(x, y);
         o[0] = p.nearRgb.x * in, o[1] = p.nearRgb.y * in, o[2] = p.nearRgb.z * in;
         o[3] = p.nearCoc * in;

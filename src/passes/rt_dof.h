@@ -5,10 +5,11 @@
 // footprint and both come from the Sobol sampler, new every frame. Hits are shaded by the one
 // shading function with ray-traced shadows, mirrors and glass (rt/whitted.h, as rt-only), rays
 // traced in 8-wide packets. Each ray's colour and CoC are split into the near and far field by
-// its hit's CoC (dof::nearShare: out-of-focus near field; sharp hits count as far); the hit ratio is the near share of the
-// pixel's rays, and the mean far-field world position is kept for the far field's reprojection.
-// Input: ray_mask. Outputs (the mask's size): rt_near and rt_far (rgb, mean |CoC| in frame
-// pixels), rt_hit (hit ratio, rays), rt_far_position (mean far hit, 1 where there is one).
+// its hit's CoC (dof::nearShare: out-of-focus near field; sharp hits count as far); the hit ratio
+// is the near share of the pixel's rays, and the mean far-field world position is kept for the far
+// field's reprojection. Input: ray_mask. Outputs (the mask's size): rt_near and rt_far (rgb, mean
+// |CoC| in frame pixels), rt_hit (hit ratio, rays), rt_far_position (mean far hit, 1 where there is
+// one).
 #pragma once
 #include "pipeline/pass.h"
 

@@ -84,7 +84,8 @@ Buffer visualizeBuffer(const Buffer& b, float scale) {
     for (size_t i = 0; i < n; ++i) m = std::max(m, std::abs(b.data[i * b.channels]));
     for (size_t i = 0; i < n; ++i) {
       const float v = b.data[i * b.channels] / m;
-      set(i, b.kind == BufferKind::Count ? Vec3(v) : Vec3(std::max(v, 0.0f), 0.0f, std::max(-v, 0.0f)));
+      set(i, b.kind == BufferKind::Count ? Vec3(v)
+                                         : Vec3(std::max(v, 0.0f), 0.0f, std::max(-v, 0.0f)));
     }
     return out;
   }

@@ -11,8 +11,8 @@
 #include "passes/heuristic.h"
 #include "passes/postfx_dof.h"
 #include "passes/pt_reference.h"
-#include "passes/ray_mask.h"
 #include "passes/raster_gbuffer.h"
+#include "passes/ray_mask.h"
 #include "passes/rt_dof.h"
 #include "passes/rt_gbuffer.h"
 #include "passes/rt_secondary.h"
@@ -26,13 +26,27 @@
 namespace tandem {
 
 const std::vector<std::string>& passTypes() {
-  static const std::vector<std::string> types = {
-      "raster_gbuffer", "vbuffer_shading", "rt_gbuffer",  "deferred_shading",
-      "heuristic",      "rt_secondary",    "ss_fallback", "blend",
-      "rt_whitted",     "pt_reference",    "taa",         "accumulation",
-      "downsample",     "dof_coc",         "postfx_dof",  "ray_mask",
-      "rt_dof",         "dof_accumulation", "dof_reconstruction", "dof_composite",
-      "tonemap"};
+  static const std::vector<std::string> types = {"raster_gbuffer",
+                                                 "vbuffer_shading",
+                                                 "rt_gbuffer",
+                                                 "deferred_shading",
+                                                 "heuristic",
+                                                 "rt_secondary",
+                                                 "ss_fallback",
+                                                 "blend",
+                                                 "rt_whitted",
+                                                 "pt_reference",
+                                                 "taa",
+                                                 "accumulation",
+                                                 "downsample",
+                                                 "dof_coc",
+                                                 "postfx_dof",
+                                                 "ray_mask",
+                                                 "rt_dof",
+                                                 "dof_accumulation",
+                                                 "dof_reconstruction",
+                                                 "dof_composite",
+                                                 "tonemap"};
   return types;
 }
 

@@ -225,7 +225,8 @@ TEST(HybridDof, AccumulationOfAStaticShotIsTheMeanOfItsInputs) {
   Vec3 sumNear(0.0f), sumFar(0.0f);
   const int frames = 12;
   for (int k = 1; k <= frames; ++k) {
-    const Vec3 nearC(0.1f * float(k), 0.2f, 0.05f * float(k % 3)), farC(1.0f / float(k), 0.5f, 0.3f);
+    const Vec3 nearC(0.1f * float(k), 0.2f, 0.05f * float(k % 3)),
+        farC(1.0f / float(k), 0.5f, 0.3f);
     sumNear = sumNear + nearC;
     sumFar = sumFar + farC;
     rig.frame(nearC, farC, 0.25f, 4.0f);
@@ -365,7 +366,8 @@ TEST(HybridDof, CompositeKeepsRasterInTheZoneOfFocus) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const bool inFocus = std::abs(coc.at(x, y)[0]) < dof::kZoneOfFocusCoc;
-      const bool same = out.rgb(x, y).x == sharp.rgb(x, y).x && out.rgb(x, y).y == sharp.rgb(x, y).y;
+      const bool same =
+          out.rgb(x, y).x == sharp.rgb(x, y).x && out.rgb(x, y).y == sharp.rgb(x, y).y;
       EXPECT_EQ(same, inFocus) << x;
       if (!inFocus) {
         EXPECT_NEAR(out.rgb(x, y).x, 0.9f, 1e-6f);  // traced, h = 0: eq. 7 takes rt
@@ -400,7 +402,8 @@ Scene nearSphereOverTexture() {
   Material wall;
   wall.diffuse = {1, 1, 1};
   wall.specular = {0.05f, 0.05f, 0.05f};
-  wall.diffuseTexture = s.addTexture(checkerTexture(256, 16, {0.9f, 0.85f, 0.7f}, {0.1f, 0.15f, 0.3f}));
+  wall.diffuseTexture =
+      s.addTexture(checkerTexture(256, 16, {0.9f, 0.85f, 0.7f}, {0.1f, 0.15f, 0.3f}));
   wall.tiling = {4, 4};
   Material ball;
   ball.diffuse = {0.8f, 0.2f, 0.1f};
@@ -464,4 +467,64 @@ TEST(HybridDof, NearSphereOverTextureBeatsPostProcess) {
               postfx);
   EXPECT_GT(hybrid, postfx + 0.0045);
   EXPECT_GT(hybrid, 0.9);
+}
+
+// The gather's polygonal bokeh matches the thin lens the reference samples: a bright far-field
+// (and near-field) point is spread over exactly the pixels whose lens rays can reach it — those
+// for which the lens point that joins the pixel's focus point to the point lies inside the
+// aperture's pentagon (odd, so an upside-down spot would not match). Intersection over union of
+// the lit pixels and that set above 0.8 in both fields.
+TEST(HybridDof, PolygonalBokehMatchesTheLens) {
+  const int w = 128, h = 128;
+  for (float sign : {1.0f, -1.0f}) {
+    CameraDesc d = lensDesc(0.2f, 4.0f);
+    d.apertureBlades = 5;
+    d.apertureRotationDeg = 10;
+    FrameContext ctx = context(w, h, d);
+    const Camera& cam = ctx.camera();
+    const ThinLens lens = ThinLens::of(cam);
+    const float cocPx = 40.0f * sign;
+    // The depth of that CoC, and the world point seen at the image centre at that depth.
+    const float z = lens.aperture * lens.pixelsPerSlope * lens.focus /
+                    (lens.aperture * lens.pixelsPerSlope - cocPx * lens.focus);
+    Vec3 o, dir;
+    cam.generateRay(64.5f, 64.5f, o, dir);
+    const Vec3 P = o + dir * (z / dot(dir, cam.forward));
+    ctx.buffers["hdr"] = Buffer(w, h, 3, 0.0f);
+    ctx.buffers["hdr"].setRgb(64, 64, Vec3(1000.0f));
+    ctx.buffers["coc"] = Buffer(w, h, 1, cocPx, BufferKind::Signed);
+    ctx.buffers["specular"] = Buffer(w, h, 4, 0.0f, BufferKind::Material);
+    PostfxDofPass pass;
+    pass.setParam("median", 0);
+    pass.execute(ctx);
+    const Buffer& out = ctx.input("postfx");
+    // Pentagon of the lens: corners at rotation + 2πk/5 on the aperture circle.
+    const float R = 0.5f * d.apertureDiameter;
+    auto insideLens = [&](Vec2 l) {
+      for (int k = 0; k < 5; ++k) {
+        const float a0 = radians(d.apertureRotationDeg) + 2.0f * kPi * float(k) / 5.0f;
+        const float a1 = a0 + 2.0f * kPi / 5.0f;
+        const Vec2 c0{R * std::cos(a0), R * std::sin(a0)}, c1{R * std::cos(a1), R * std::sin(a1)};
+        if ((c1.x - c0.x) * (l.y - c0.y) - (c1.y - c0.y) * (l.x - c0.x) < 0) return false;
+      }
+      return true;
+    };
+    const float lit = 0.25f * 1000.0f / (kPi * 20.0f * 20.0f);
+    int both = 0, either = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        // The pixel's focus point F; the lens point l on the line through F and P.
+        Vec3 po, pd;
+        cam.generateRay(float(x) + 0.5f, float(y) + 0.5f, po, pd);
+        const Vec3 F = po + pd * (lens.focus / dot(pd, cam.forward));
+        const float t = lens.focus / (lens.focus - z);  // l = F + (P - F) * t, at depth 0
+        const Vec3 l = F + (P - F) * t - cam.eye;
+        const bool ref = insideLens({dot(l, cam.right), dot(l, cam.upVec)});
+        const bool got = out.at(x, y)[0] > lit;
+        both += ref && got;
+        either += ref || got;
+      }
+    std::printf("IoU %s %.3f\n", sign > 0 ? "far" : "near", double(both) / double(either));
+    EXPECT_GT(double(both) / double(either), 0.8) << (sign > 0 ? "far" : "near") << " field";
+  }
 }

@@ -213,11 +213,9 @@ TEST(BadInput, ObjectHeuristics) {
 TEST(BadInput, LensFields) {
   expectLoadError("l1.json", R"({"objects": [{"shape": "cube"}], "camera": {"aperture": -0.1}})",
                   {"camera.aperture"});
-  expectLoadError("l2.json",
-                  R"({"objects": [{"shape": "cube"}], "camera": {"focusDistance": 0}})",
+  expectLoadError("l2.json", R"({"objects": [{"shape": "cube"}], "camera": {"focusDistance": 0}})",
                   {"camera.focusDistance"});
-  expectLoadError("l3.json",
-                  R"({"objects": [{"shape": "cube"}], "camera": {"focusDistance": -2}})",
+  expectLoadError("l3.json", R"({"objects": [{"shape": "cube"}], "camera": {"focusDistance": -2}})",
                   {"camera.focusDistance"});
   for (int blades : {1, 2})
     expectLoadError("l4.json",
