@@ -21,6 +21,20 @@ std::string sceneLabel(const std::string& spec) {
   return fs::path(spec).stem().string();
 }
 
+Buffer cropOf(const Buffer& b, const int c[4]) {
+  int x = c[0], y = c[1], w = c[2], h = c[3];
+  if (w == 0 || h == 0) x = b.width / 3, y = b.height / 3, w = b.width / 3, h = b.height / 3;
+  x = std::min(x, b.width - 1);
+  y = std::min(y, b.height - 1);
+  w = std::min(w, b.width - x);
+  h = std::min(h, b.height - y);
+  Buffer out(w, h, b.channels, 0.0f, b.kind);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      for (int k = 0; k < b.channels; ++k) out.at(i, j)[k] = b.at(x + i, y + j)[k];
+  return out;
+}
+
 ExperimentReport::ExperimentReport(fs::path dir, std::string title)
     : dir_(std::move(dir)), title_(std::move(title)), machine_(machineInfo()) {
   if (!dir_.empty()) fs::create_directories(dir_);

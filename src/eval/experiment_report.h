@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/buffer.h"
 #include "eval/machine_info.h"
 
 namespace tandem {
@@ -14,6 +15,8 @@ namespace tandem {
 std::string fmt(double v, int decimals = 2);
 // A short label for a scene spec (file stem or built-in name).
 std::string sceneLabel(const std::string& spec);
+// A crop (x, y, width, height; width or height 0: the centre third) of an image, clamped to it.
+Buffer cropOf(const Buffer& b, const int crop[4]);
 
 struct PlotSeries {
   std::string label;

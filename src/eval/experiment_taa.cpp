@@ -69,20 +69,6 @@ double meanAbsDiff(const Buffer& a, const Buffer& b) {
   return a.data.empty() ? 0 : s / double(a.data.size());
 }
 
-Buffer cropOf(const Buffer& b, const int c[4]) {
-  int x = c[0], y = c[1], w = c[2], h = c[3];
-  if (w == 0 || h == 0) x = b.width / 3, y = b.height / 3, w = b.width / 3, h = b.height / 3;
-  x = std::min(x, b.width - 1);
-  y = std::min(y, b.height - 1);
-  w = std::min(w, b.width - x);
-  h = std::min(h, b.height - y);
-  Buffer out(w, h, b.channels, 0.0f, b.kind);
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i)
-      for (int k = 0; k < b.channels; ++k) out.at(i, j)[k] = b.at(x + i, y + j)[k];
-  return out;
-}
-
 // Flicker: the mean absolute change of the displayed image after last frame's image is moved
 // along this frame's motion vectors (what motion explains is taken out; shimmer is left).
 // Pixels whose source lies outside the image are skipped.
