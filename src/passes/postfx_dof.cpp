@@ -204,8 +204,9 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   });
 
   // 4. 81-tap gather, eq. 1.
+  // A new ring rotation every executed frame (a static shot repeats its frame index).
   const float rotation =
-      2.0f * kPi * float((uint32_t(ctx.frameIndex) * 2654435769u) >> 8) / float(1u << 24) / 81.0f;
+      2.0f * kPi * float((uint32_t(ctx.serial) * 2654435769u) >> 8) / float(1u << 24) / 81.0f;
   const std::array<Tap, 81> taps = ringTaps(rotation);
   // The polygon's extent along each tap's direction, for far- and near-field spots.
   std::array<float, 81> extentFar{}, extentNear{};

@@ -51,8 +51,9 @@ void RTDofPass::execute(FrameContext& ctx) {
   const Whitted whitted(rt, scene, shading, whittedSettings(*this));
   const ThinLens lens = ThinLens::of(cams.front());  // the same lens in every view
   const float spread = ctx.pixelSpread(ctx.views.front()) * scale;
+  // New lens samples every executed frame (a static shot repeats its frame index).
   const uint64_t seed =
-      ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex) * 0xD1B54A32D192ED03ull;
+      ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.serial) * 0xD1B54A32D192ED03ull;
   const float nearT = cams.front().desc.nearPlane;
 
   parallelTiles(w, h, [&](int x0, int y0, int x1, int y1) {

@@ -432,7 +432,7 @@ Scene nearSphereOverTexture() {
 
 // Hybrid DoF against distributed ray tracing of the same shading (the Whitted reference): closer
 // than the post-process alone, which cannot show the wall through the sphere's blurred rim.
-// Measured at 160 x 120 (seed 0, 24 frames, reference 64 spp): SSIM hybrid 0.939, postfx 0.930;
+// Measured at 160 x 120 (seed 0, 24 frames, reference 64 spp): SSIM hybrid 0.947, postfx 0.930;
 // the margin asked for is half the measured one.
 TEST(HybridDof, NearSphereOverTextureBeatsPostProcess) {
   const Scene s = nearSphereOverTexture();
@@ -465,7 +465,7 @@ TEST(HybridDof, NearSphereOverTextureBeatsPostProcess) {
   writePng((dir / "postfx.png").string(), postfxImage);
   std::printf("SSIM against the Whitted reference: hybrid-dof %.4f, postfx-dof %.4f\n", hybrid,
               postfx);
-  EXPECT_GT(hybrid, postfx + 0.0045);
+  EXPECT_GT(hybrid, postfx + 0.008);
   EXPECT_GT(hybrid, 0.9);
 }
 
