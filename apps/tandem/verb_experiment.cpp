@@ -1,7 +1,8 @@
 // tandem experiment NAME: regenerates an experiment in one command. An experiment is data: a
 // JSON file (experiments/NAME.json in the source tree, or any path) whose "runner" picks the
-// procedure — "sweep" (scenes x pipelines x a parameter sweep against cached references) or
-// "heuristic" (seed 002's Tables 5 and 6 and the ms-budget tracking). Command-line options
+// procedure — "sweep" (scenes x pipelines x a parameter sweep against cached references),
+// "heuristic" (seed 002's Tables 5 and 6 and the ms-budget tracking), "taa" (TAA against a
+// supersampled render) or "hybrid-dof" (seed 000's Table 2 and Figures 6-7). Command-line options
 // override the file's settings. Every run writes results.md, CSV, PNG plots and index.html.
 #include <filesystem>
 #include <fstream>
