@@ -16,7 +16,16 @@
 namespace tandem {
 
 std::vector<ParamDesc> RTDofPass::params() const {
-  return whittedParams();
+  std::vector<ParamDesc> p = whittedParams();
+  p.push_back({"reuse_raster",
+               ParamType::Bool,
+               0,
+               0,
+               1,
+               "hits the sharp image shows take its colour instead of being shaded (beyond the "
+               "paper)",
+               {}});
+  return p;
 }
 
 namespace {
@@ -56,8 +65,33 @@ void RTDofPass::execute(FrameContext& ctx) {
       ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.serial) * 0xD1B54A32D192ED03ull;
   const float nearT = cams.front().desc.nearPlane;
 
+  // Beyond the paper (`reuse_raster`): a lens ray that hits a surface the sharp image shows at
+  // the hit's projection (the depth there within 1 %) takes the sharp colour from there instead
+  // of being shaded — only rays that see behind the raster's surfaces (the see-through rims) are
+  // shaded. Exact for diffuse surfaces; view-dependent terms are the pinhole's, not the lens
+  // point's (a few centimetres away).
+  const Buffer* sharp = ctx.optionalInput(*this, "hdr");
+  const Buffer* depth = ctx.optionalInput(*this, "depth");
+  const bool reuse = param("reuse_raster") != 0 && sharp && depth;
+  auto rasterColour = [&](int vi, Vec3 hit, float zHit, Vec3& out) {
+    const View& v = ctx.views[size_t(vi)];
+    if (cams[size_t(vi)].desc.projection != Projection::Perspective) return false;
+    Vec2 px;
+    if (!cams[size_t(vi)].project(hit, px)) return false;
+    const int ix = int(px.x), iy = int(px.y);
+    if (px.x < 0 || px.y < 0 || ix >= v.width() || iy >= v.height()) return false;
+    const float d = depth->at(ix + v.x, iy + v.y)[0];
+    if (d <= 0) return false;
+    const float zRaster = cams[size_t(vi)].desc.nearPlane / d;  // reversed-Z: near / z
+    if (std::abs(zRaster - zHit) > 0.01f * zHit) return false;
+    out = sharp->rgb(ix + v.x, iy + v.y);
+    return true;
+  };
+
+  std::atomic<uint64_t> reusedTotal{0};
   parallelTiles(w, h, [&](int x0, int y0, int x1, int y1) {
     const int tw = x1 - x0;
+    uint64_t reused = 0;
     std::vector<PixelSums> sums(size_t(tw) * size_t(y1 - y0));
     // An 8-ray packet: rays of consecutive pixels (a pixel's own rays are coherent).
     Ray rays[8];
@@ -76,12 +110,17 @@ void RTDofPass::execute(FrameContext& ctx) {
           rgb[k] = scene.skyRadiance(rays[k].dir);
           continue;
         }
+        const Camera& c = cams[size_t(camOf[k])];
+        const Vec3 hit = rays[k].origin + rays[k].dir * hits[k].t;
+        z[k] = dot(hit - c.eye, c.forward);
+        if (reuse && rasterColour(camOf[k], hit, z[k], rgb[k])) {
+          ++reused;
+          continue;
+        }
         const float tuv[3] = {hits[k].t, hits[k].u, hits[k].v};
         s[m] = resolveSurface(ctx.frame, hits[k].object, hits[k].prim, rays[k].origin, rays[k].dir,
                               0.0f, tuv, spread);
         d[m] = rays[k].dir;
-        const Camera& c = cams[size_t(camOf[k])];
-        z[k] = dot(s[m].position - c.eye, c.forward);
         at[m++] = k;
       }
       Vec3 shaded[8];
@@ -131,6 +170,7 @@ void RTDofPass::execute(FrameContext& ctx) {
         }
       }
     flush();
+    reusedTotal += reused;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const PixelSums& p = sums[size_t((y - y0) * tw + (x - x0))];
@@ -155,6 +195,8 @@ void RTDofPass::execute(FrameContext& ctx) {
   double lensRays = 0;
   for (size_t i = 0; i < mask.pixelCount(); ++i) lensRays += mask.data[i];
   ctx.counters["rt_dof/lens_rays"] = lensRays;
+  // Share of lens rays that took the sharp image's colour (reuse_raster) instead of shading.
+  ctx.counters["rt_dof/reused_share"] = lensRays > 0 ? double(reusedTotal.load()) / lensRays : 0.0;
 }
 
 }  // namespace tandem

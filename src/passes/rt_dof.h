@@ -23,7 +23,9 @@ class RTDofPass : public Pass {
            "§3.2.2)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"ray_mask", 1, BufferKind::Count, Extent::any()}};
+    BufferSlot sharp{"hdr", 3}, depth{"depth", 1, BufferKind::Depth};
+    sharp.optional = depth.optional = true;  // reuse_raster only
+    return {{"ray_mask", 1, BufferKind::Count, Extent::any()}, sharp, depth};
   }
   std::vector<BufferSlot> outputs() const override {
     return {{"rt_near", 4, BufferKind::Color, Extent::any()},

@@ -528,3 +528,27 @@ TEST(HybridDof, PolygonalBokehMatchesTheLens) {
     EXPECT_GT(double(both) / double(either), 0.8) << (sign > 0 ? "far" : "near") << " field";
   }
 }
+
+// reuse_raster: lens rays whose hits the sharp image shows take its colour. In a shot where most
+// rays see what the pinhole sees, most are reused, and the accumulated ray-traced image matches
+// the one shaded ray by ray (same Whitted shading, the view-dependent part from the pinhole).
+TEST(HybridDof, RasterReuseMatchesShadedRays) {
+  Scene s = makeSpheresScene();
+  CameraDesc cam = s.camera;
+  cam.apertureDiameter = 0.3f;
+  cam.focusDistance = 12.0f;
+  Buffer images[2];
+  double reused = 0;
+  for (int reuse = 0; reuse < 2; ++reuse) {
+    Pipeline p = Pipeline::load("hybrid-dof");
+    p.setParam(std::string("rt_dof.reuse_raster=") + (reuse ? "true" : "false"), "test");
+    p.setParam("ray_mask.mode=all", "test");  // every pixel traced, so every kind of hit counts
+    Renderer r(s, std::move(p), RenderSettings{.width = 96, .height = 64});
+    for (int f = 0; f < 8; ++f) r.renderFrame(0, cam);
+    images[reuse] = visualizeBuffer(r.context().input("rt_color"));
+    if (reuse) reused = r.context().counters.at("rt_dof/reused_share");
+  }
+  EXPECT_GT(reused, 0.5);
+  EXPECT_LT(reused, 1.0);  // rays behind the spheres' blurred rims are still shaded
+  EXPECT_GT(ssim(images[1], images[0]), 0.97);
+}
