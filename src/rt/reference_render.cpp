@@ -133,11 +133,12 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
             SobolSampler sampler(settings.seed, pixel, uint32_t(i));
             const Vec2 jitter = sampler.get2D(), lens = sampler.get2D();
             const float tau = sampler.uniform();  // shutter time
-            Vec3 o, d;
-            const Camera cam = cameraMoves ? cameraAtShutter(open, close, tau) : Camera();
-            const Camera& c = cameraMoves ? cam : open;
-            c.generateThinLensRay(x + jitter.x, y + jitter.y, lens.x, lens.y, o, d);
-            Vec3 L = drt ? whittedRadiance(c, o, d, tau) : pt.radiance(o, d, tau, sampler);
+            auto sample = [&](const Camera& c) {
+              Vec3 o, d;
+              c.generateThinLensRay(x + jitter.x, y + jitter.y, lens.x, lens.y, o, d);
+              return drt ? whittedRadiance(c, o, d, tau) : pt.radiance(o, d, tau, sampler);
+            };
+            Vec3 L = cameraMoves ? sample(cameraAtShutter(open, close, tau)) : sample(open);
             // A NaN or infinite sample (a degenerate pdf) must not poison the pixel.
             if (!(std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z))) L = Vec3(0.0f);
             const double lum = luminance(L);
