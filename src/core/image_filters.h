@@ -4,6 +4,7 @@
 // borders; separable filters run row by row over the flat float array (one contiguous inner
 // loop the compiler vectorises), and rows are spread over threads.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -40,6 +41,21 @@ std::vector<Buffer> mipChain(const Buffer& in);
 // Bilinear sample at continuous pixel coordinates (pixel centres at +0.5), clamp to edge; writes
 // `channels` values to out.
 void sampleBilinear(const Buffer& b, float x, float y, float* out);
+// sampleBilinear for a buffer of exactly N channels, inline (per-pixel gathers of a few taps).
+template <int N>
+inline void sampleBilinearN(const Buffer& b, float x, float y, float* out) {
+  // Below -1 every tap clamps to the first texel anyway; from -1 on, truncation of fx + 1 is the
+  // floor (std::floor is a library call without SSE4.1).
+  const float fx = std::max(x - 0.5f, -1.0f), fy = std::max(y - 0.5f, -1.0f);
+  const int x0 = int(fx + 1.0f) - 1, y0 = int(fy + 1.0f) - 1;
+  const float tx = fx - float(x0), ty = fy - float(y0);
+  const int xa = std::clamp(x0, 0, b.width - 1), xb = std::clamp(x0 + 1, 0, b.width - 1);
+  const int ya = std::clamp(y0, 0, b.height - 1), yb = std::clamp(y0 + 1, 0, b.height - 1);
+  const float *p00 = b.at(xa, ya), *p10 = b.at(xb, ya), *p01 = b.at(xa, yb), *p11 = b.at(xb, yb);
+  for (int c = 0; c < N; ++c)
+    out[c] = (p00[c] * (1 - tx) + p10[c] * tx) * (1 - ty) + (p01[c] * (1 - tx) + p11[c] * tx) * ty;
+}
+
 // Catmull-Rom (bicubic, 4x4 taps) sample; sharper than bilinear for reprojection (TAA).
 void sampleCatmullRom(const Buffer& b, float x, float y, float* out);
 

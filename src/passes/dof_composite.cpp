@@ -53,7 +53,9 @@ void DofCompositePass::execute(FrameContext& ctx) {
     for (int x = 0; x < W; ++x) {
       const float c = coc.at(x, y)[0];
       float r[dof::RtChannels::kCount] = {};
-      if (rt) sampleBilinear(*rt, (float(x) + 0.5f) * sx, (float(y) + 0.5f) * sy, r);
+      if (rt)
+        sampleBilinearN<dof::RtChannels::kCount>(*rt, (float(x) + 0.5f) * sx,
+                                                 (float(y) + 0.5f) * sy, r);
       const float coverage = dof::saturate(r[5]);
       Vec3 rtc(0.0f);
       if (coverage > 0) rtc = Vec3(r[0], r[1], r[2]) * (1.0f / std::max(r[5], 1e-6f));

@@ -15,23 +15,6 @@ std::vector<ParamDesc> DofReconstructionPass::params() const {
           {"median", ParamType::Bool, 1, 0, 1, "3x3 median before the reconstruction", {}}};
 }
 
-namespace {
-
-// Bilinear sample of all N channels, clamped to the edge (inline: 25 taps per pixel).
-template <int N>
-inline void bilinearN(const Buffer& b, float x, float y, float* out) {
-  const float fx = std::clamp(x - 0.5f, 0.0f, float(b.width - 1));
-  const float fy = std::clamp(y - 0.5f, 0.0f, float(b.height - 1));
-  const int x0 = int(fx), y0 = int(fy);
-  const int x1 = std::min(x0 + 1, b.width - 1), y1 = std::min(y0 + 1, b.height - 1);
-  const float tx = fx - float(x0), ty = fy - float(y0);
-  const float w00 = (1 - tx) * (1 - ty), w10 = tx * (1 - ty), w01 = (1 - tx) * ty, w11 = tx * ty;
-  const float *p00 = b.at(x0, y0), *p10 = b.at(x1, y0), *p01 = b.at(x0, y1), *p11 = b.at(x1, y1);
-  for (int c = 0; c < N; ++c) out[c] = w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c];
-}
-
-}  // namespace
-
 void DofReconstructionPass::execute(FrameContext& ctx) {
   const Buffer& in = ctx.input(*this, "rt_color");
   const Buffer& variance = ctx.input(*this, "dof_variance");
@@ -51,7 +34,6 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
   while (mips.size() < 4 && mips.back().width > 1 && mips.back().height > 1)
     mips.push_back(downsampleBox(mips.back()));
   const float vw = float(param("variance_weight")), lodScale = float(param("lod_scale"));
-  auto bilinear = [](const Buffer& b, float x, float y, float* out) { bilinearN<N>(b, x, y, out); };
   const float scale = float(ctx.width) / float(w);  // CoC is in frame pixels
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
@@ -77,7 +59,7 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
           const float sx = float(x) + 0.5f + r * std::cos(a),
                       sy = float(y) + 0.5f + r * std::sin(a);
           float s[N];
-          bilinear(mip, sx * ms, sy * ms, s);
+          sampleBilinearN<N>(mip, sx * ms, sy * ms, s);
           if (s[kCov] <= 1e-4f) continue;
           // Reject a tap whose own blur does not reach the centre.
           if (ring > 0 && 0.5f * (s[3] / s[kCov]) / scale < r) continue;

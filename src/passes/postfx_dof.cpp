@@ -59,24 +59,6 @@ struct HalfSample {
   float alpha;   // sample alpha: 1 / (π r²), r at least half a pixel
 };
 
-// Bilinear RGB of a 3-channel buffer at continuous coordinates (pixel centres at +0.5), clamped
-// to the edge; inline for the prefilter's 9 taps per pixel.
-inline void bilinearRgb(const Buffer& b, float x, float y, float out[3]) {
-  const float fx = std::clamp(x - 0.5f, 0.0f, float(b.width - 1));
-  const float fy = std::clamp(y - 0.5f, 0.0f, float(b.height - 1));
-  const int x0 = int(fx), y0 = int(fy);
-  const int x1 = std::min(x0 + 1, b.width - 1), y1 = std::min(y0 + 1, b.height - 1);
-  const float tx = fx - float(x0), ty = fy - float(y0);
-  const float* p00 = b.at(x0, y0);
-  const float* p10 = b.at(x1, y0);
-  const float* p01 = b.at(x0, y1);
-  const float* p11 = b.at(x1, y1);
-  for (int c = 0; c < 3; ++c) {
-    const float top = p00[c] + (p10[c] - p00[c]) * tx, bottom = p01[c] + (p11[c] - p01[c]) * tx;
-    out[c] = top + (bottom - top) * ty;
-  }
-}
-
 // The 81 taps: the centre, then rings k = 1..4 of 8k taps at radius k/4 (unit kernel).
 struct Tap {
   float x, y, dist;
@@ -186,7 +168,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
         const float px = t == 8 ? cx : cx + radius * std::cos(a);
         const float py = t == 8 ? cy : cy + radius * std::sin(a);
         float rgb[3];
-        bilinearRgb(hdr, px, py, rgb);
+        sampleBilinearN<3>(hdr, px, py, rgb);
         const float tc =
             0.5f * cocIn.at(std::clamp(int(px), 0, W - 1), std::clamp(int(py), 0, H - 1))[0];
         const float w = 1.0f / (1.0f + std::abs(tc - c0.coc));

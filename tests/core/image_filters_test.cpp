@@ -119,3 +119,17 @@ TEST(ImageFilters, MipChainAndSamplers) {
   sampleCatmullRom(ramp, 4.5f, 2.5f, &v);  // a pixel centre: the pixel itself
   EXPECT_NEAR(v, 4.0f + 20.0f, 1e-5f);
 }
+
+// The inline fixed-channel bilinear sample agrees with sampleBilinear, inside and outside the
+// image (clamp to edge).
+TEST(ImageFilters, SampleBilinearNAgreesWithSampleBilinear) {
+  Buffer b(7, 5, 3);
+  for (size_t i = 0; i < b.data.size(); ++i) b.data[i] = float((i * 37) % 11) * 0.1f;
+  for (float y = -3.0f; y < 8.0f; y += 0.37f)
+    for (float x = -3.0f; x < 10.0f; x += 0.41f) {
+      float a[3], c[3];
+      sampleBilinear(b, x, y, a);
+      sampleBilinearN<3>(b, x, y, c);
+      for (int k = 0; k < 3; ++k) ASSERT_NEAR(a[k], c[k], 1e-6f) << x << "," << y;
+    }
+}
