@@ -37,8 +37,8 @@ struct ReferenceVerb {
     if (maxDepth < 1 || maxDepth > 1024)
       throw InputError("command line", "--max-depth", "must be in [1, 1024]");
     if (!(timeLimit >= 0)) throw InputError("command line", "--time-limit", "must be >= 0 seconds");
-    if (integrator != "path" && integrator != "whitted")
-      throw InputError("command line", "--integrator", "expected path or whitted");
+    if (integrator != "path" && integrator != "whitted" && integrator != "diffuse-gi")
+      throw InputError("command line", "--integrator", "expected path, whitted or diffuse-gi");
     if (!std::isfinite(time)) throw InputError("command line", "--time", "must be finite");
   }
 
@@ -68,6 +68,7 @@ struct ReferenceVerb {
       job.settings.integrator = Integrator::Whitted;
       job.settings.whitted.maxDepth = std::min(maxDepth, 64);
     }
+    if (integrator == "diffuse-gi") job.settings.integrator = Integrator::DiffuseGI;
     job.settings.seed = opts.seed;
     job.settings.progress = !quiet;
     const fs::path dir = isFile ? fs::path(out).parent_path() : fs::path(out);
@@ -114,9 +115,11 @@ VerbRunner addReferenceVerb(CLI::App& app) {
                   "Maximum path length in bounces (default 16); whitted: recursion depth (default "
                   "10, as rt-only; at most 64)");
   sub->add_option("--integrator", v->integrator,
-                  "path (global illumination, default) or whitted: distributed ray tracing of the "
+                  "path (global illumination, default); whitted: distributed ray tracing of the "
                   "hybrids' shading (shadows, mirrors, glass), the ground truth of a technique "
-                  "such as depth of field with the same light transport");
+                  "such as depth of field with the same light transport; diffuse-gi: the "
+                  "foveated pipelines' path tracer (one random light, one diffuse bounce) at "
+                  "pixel centres, their ground truth");
   sub->add_option("--time", v->time, "Scene time in seconds (animation)");
   sub->add_flag("--camera-path", v->cameraPath,
                 "Camera from the scene's camera path at --time (moving while the shutter is open)");

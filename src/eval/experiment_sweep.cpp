@@ -88,9 +88,11 @@ SweepSpec parse(const Json& j, const std::string& file) {
     JsonFields r(f.raw("reference"), file, "reference");
     s.reference.spp = r.integer("spp", 256, 1, 1 << 20);
     const std::string integrator = r.string("integrator", "path");
-    if (integrator != "path" && integrator != "whitted")
-      r.fail("integrator", "expected path or whitted");
-    s.reference.integrator = integrator == "whitted" ? Integrator::Whitted : Integrator::Path;
+    if (integrator != "path" && integrator != "whitted" && integrator != "diffuse-gi")
+      r.fail("integrator", "expected path, whitted or diffuse-gi");
+    s.reference.integrator = integrator == "whitted"      ? Integrator::Whitted
+                             : integrator == "diffuse-gi" ? Integrator::DiffuseGI
+                                                          : Integrator::Path;
     s.reference.path.maxDepth = r.integer("maxDepth", 16, 1, 1024);
     s.reference.whitted.maxDepth = r.integer("whittedDepth", 10, 1, 64);
     s.reference.seed = uint64_t(r.integer("seed", 0, 0, 1 << 30));

@@ -23,6 +23,7 @@ std::string referenceKey(const ReferenceJob& job) {
   h.pod(s.spp).pod(s.timeLimitS).pod(s.path.maxDepth).pod(s.path.rouletteDepth).pod(s.seed);
   if (s.integrator == Integrator::Whitted)  // keeps the keys of path-traced references
     h.pod(int(s.integrator)).pod(s.whitted.maxDepth).pod(s.whitted.importanceCutoff);
+  if (s.integrator == Integrator::DiffuseGI) h.pod(int(s.integrator));
   if (job.stereo.enabled)  // keeps the keys of mono references as they were
     h.pod(job.stereo.ipd).pod(job.stereo.converged).pod(job.stereo.convergence);
   return h.hex();
@@ -70,8 +71,8 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   p.setParam("pt_reference.spp=" + std::to_string(s.spp), "reference");
   p.setParam("pt_reference.time_limit=" + std::to_string(s.timeLimitS), "reference");
   p.setParam("pt_reference.max_depth=" + std::to_string(s.path.maxDepth), "reference");
+  p.setParam(std::string("pt_reference.integrator=") + integratorName(s.integrator), "reference");
   if (s.integrator == Integrator::Whitted) {
-    p.setParam("pt_reference.integrator=whitted", "reference");
     p.setParam("pt_reference.whitted_depth=" + std::to_string(s.whitted.maxDepth), "reference");
   }
   p.setParam(std::string("pt_reference.progress=") + (s.progress ? "true" : "false"), "reference");
@@ -102,7 +103,7 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
                         {"targetSpp", s.spp},
                         {"timeLimit", s.timeLimitS},
                         {"maxDepth", s.path.maxDepth},
-                        {"integrator", s.integrator == Integrator::Whitted ? "whitted" : "path"},
+                        {"integrator", integratorName(s.integrator)},
                         {"seed", s.seed},
                         {"time", job.time},
                         {"shutter", job.shutter},

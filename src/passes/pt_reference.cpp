@@ -35,10 +35,11 @@ std::vector<ParamDesc> PTReferencePass::params() const {
            ParamType::Enum,
            0,
            0,
-           1,
+           2,
            "path: path tracing (global illumination); whitted: distributed ray tracing of the "
-           "hybrids' shading (shadows, mirrors, glass; the same light transport as rt-only)",
-           {"path", "whitted"},
+           "hybrids' shading (shadows, mirrors, glass; the same light transport as rt-only); "
+           "diffuse-gi: the foveated pipelines' path tracer, converged",
+           {"path", "whitted", "diffuse-gi"},
            /*invalidatesHistory=*/true},
           {"whitted_depth",
            ParamType::Int,
@@ -58,7 +59,7 @@ void PTReferencePass::execute(FrameContext& ctx) {
   settings.spp = int(param("spp"));
   settings.timeLimitS = param("time_limit");
   settings.path.maxDepth = int(param("max_depth"));
-  settings.integrator = param("integrator") == 1 ? Integrator::Whitted : Integrator::Path;
+  settings.integrator = Integrator(int(param("integrator")));
   settings.whitted.maxDepth = int(param("whitted_depth"));
   settings.progress = param("progress") != 0;
   settings.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);

@@ -13,6 +13,9 @@
 #include "passes/pt_reference.h"
 #include "passes/raster_gbuffer.h"
 #include "passes/ray_mask.h"
+#include "passes/foveation.h"
+#include "passes/foveated_pt.h"
+#include "passes/nh_denoise.h"
 #include "passes/rt_dof.h"
 #include "passes/rt_gbuffer.h"
 #include "passes/rt_secondary.h"
@@ -46,6 +49,9 @@ const std::vector<std::string>& passTypes() {
                                                  "dof_accumulation",
                                                  "dof_reconstruction",
                                                  "dof_composite",
+                                                 "foveation",
+                                                 "foveated_pt",
+                                                 "nh_denoise",
                                                  "tonemap"};
   return types;
 }
@@ -71,6 +77,9 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "dof_accumulation") return std::make_unique<DofAccumulationPass>();
   if (type == "dof_reconstruction") return std::make_unique<DofReconstructionPass>();
   if (type == "dof_composite") return std::make_unique<DofCompositePass>();
+  if (type == "foveation") return std::make_unique<FoveationPass>();
+  if (type == "foveated_pt") return std::make_unique<FoveatedPTPass>();
+  if (type == "nh_denoise") return std::make_unique<NHDenoisePass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

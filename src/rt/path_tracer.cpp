@@ -34,11 +34,6 @@ Vec3 toWorld(Vec3 local, Vec3 n) {
   return t * local.x + b * local.y + n * local.z;
 }
 
-Vec3 sampleCosine(Vec3 n, float u1, float u2) {
-  float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
-  return toWorld({r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))}, n);
-}
-
 // Half vector with density (e + 1) / (2 pi) cos^e(theta_h) around n.
 Vec3 sampleBlinnHalf(Vec3 n, float e, float u1, float u2) {
   float cosT = std::pow(u1, 1.0f / (e + 1.0f));
@@ -73,6 +68,12 @@ Vec3 blinnPhongBrdf(Vec3 n, Vec3 wo, Vec3 wi, Vec3 kd, Vec3 ks, float e) {
 }
 
 }  // namespace
+
+Vec3 sampleCosine(Vec3 n, float u1, float u2) {
+  float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+  return toWorld({r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))}, n);
+}
+
 
 EmitterTable::EmitterTable(const FrameScene& fs) : frame_(&fs) {
   const Scene& scene = *fs.scene;

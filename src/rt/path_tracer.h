@@ -19,6 +19,9 @@
 
 namespace tandem {
 
+// A direction about unit n with density cos(theta) / pi, from two uniform numbers.
+Vec3 sampleCosine(Vec3 n, float u1, float u2);
+
 struct PathSettings {
   int maxDepth = 16;      // [1, 1024] bounces
   int rouletteDepth = 3;  // Russian roulette from this bounce on

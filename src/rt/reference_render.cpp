@@ -91,6 +91,27 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
   PathTracer pt(rt, scene, shading, settings.path);
   const Whitted whitted(rt, scene, shading, settings.whitted);
   const bool drt = settings.integrator == Integrator::Whitted;
+  const bool diffuseGI = settings.integrator == Integrator::DiffuseGI;
+  const DiffuseGI gi(rt, scene, shading);
+  // The foveated path tracer's estimate at the surface its G-buffer holds: pixel centre, no lens,
+  // the primary hit's texture level of detail as rt_gbuffer filters it.
+  auto diffuseGIRadiance = [&](const Camera& cam, float px, float py, SobolSampler& rng) {
+    Vec3 o, d;
+    cam.generateRay(px, py, o, d);
+    Ray r;
+    r.origin = o;
+    r.dir = d;
+    r.tnear = cam.desc.projection == Projection::Perspective
+                  ? cam.desc.nearPlane / std::max(dot(d, cam.forward), 1e-6f)
+                  : cam.desc.nearPlane;
+    const Hit h = rt.intersect(r, /*cullBackfaces=*/true);
+    if (!h.valid()) return scene.skyRadiance(d);
+    const float tuv[3] = {h.t, h.u, h.v};
+    const SurfaceSample s =
+        resolveSurface(*rt.frame(), h.object, h.prim, o, d, 0.0f, tuv, pixelSpreadAngle(cam));
+    uint64_t rays = 0;
+    return gi.radiance(s, -d, rng, 0.0f, rays);
+  };
   // Distributed ray tracing of the hybrids' shading: the camera ray starts at the near plane
   // and culls back faces as the rasterizer does, then Whitted shading of the hit.
   auto whittedRadiance = [&](const Camera& cam, Vec3 o, Vec3 d, float tau) {
@@ -138,7 +159,9 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
               c.generateThinLensRay(x + jitter.x, y + jitter.y, lens.x, lens.y, o, d);
               return drt ? whittedRadiance(c, o, d, tau) : pt.radiance(o, d, tau, sampler);
             };
-            Vec3 L = cameraMoves ? sample(cameraAtShutter(open, close, tau)) : sample(open);
+            Vec3 L = diffuseGI     ? diffuseGIRadiance(open, x + 0.5f, y + 0.5f, sampler)
+                     : cameraMoves ? sample(cameraAtShutter(open, close, tau))
+                                   : sample(open);
             // A NaN or infinite sample (a degenerate pdf) must not poison the pixel.
             if (!(std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z))) L = Vec3(0.0f);
             const double lum = luminance(L);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/buffer.h"
+#include "rt/diffuse_gi.h"
 #include "rt/path_tracer.h"
 #include "rt/whitted.h"
 #include "scene/camera.h"
@@ -40,7 +41,14 @@ class SampleCluster {
 // ray-traced shadows, mirror and glass recursion (rt-only's and hybrid-all's light transport) —
 // so a technique's error against it measures the technique (depth of field, motion blur), not a
 // difference of light transport (seed 000 §5.1 compares against exactly this).
-enum class Integrator { Path, Whitted };
+// DiffuseGI: seed 004's foveated path tracer (rt/diffuse_gi.h: one random-light shadow ray, one
+// cosine bounce, Lambert) through pixel centres of a pinhole, as its 1-spp G-buffer sees them:
+// the converged image of the foveated pipelines without foveation or denoising (§6's reference).
+enum class Integrator { Path, Whitted, DiffuseGI };
+// "path", "whitted", "diffuse-gi": the names the CLI, pass parameters and experiment files use.
+inline const char* integratorName(Integrator i) {
+  return i == Integrator::Whitted ? "whitted" : i == Integrator::DiffuseGI ? "diffuse-gi" : "path";
+}
 
 struct ReferenceSettings {
   int spp = 1024;           // target samples per pixel

@@ -1,0 +1,153 @@
+#include "passes/atrous.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace tandem {
+
+void AtrousImage::resize(int w, int h) {
+  width = w;
+  height = h;
+  const size_t n = size_t(w) * size_t(h);
+  for (int k = 0; k < 3; ++k) {
+    c[k].assign(n, 0.0f);
+    this->n[k].assign(n, 0.0f);
+    x[k].assign(n, 0.0f);
+  }
+  positionScale.assign(n, 1.0f);
+  sampled.assign(n, 0.0f);
+  known.assign(n, 0.0f);
+}
+
+float sampledMeanLuminance(const AtrousImage& img) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < img.sampled.size(); ++i)
+    if (img.sampled[i] > 0) {
+      sum += 0.2126 * img.c[0][i] + 0.7152 * img.c[1][i] + 0.0722 * img.c[2][i];
+      ++count;
+    }
+  return std::max(float(count ? sum / double(count) : 0.0), 1e-4f);
+}
+
+namespace {
+
+constexpr float kSpline[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
+
+// exp(-e) for e >= 0 without a library call (relative error < 2e-5), so the tap loop vectorises.
+inline float expNeg(float e) {
+  float x = -e * 1.44269504f;  // log2 of the result
+  x = x < -126.0f ? -126.0f : x;
+  const int xi = int(x);  // toward zero: f in (-1, 0]
+  const float f = (x - float(xi)) * 0.69314718f;
+  const float p =
+      1.0f +
+      f * (1.0f + f * (0.5f + f * (1.0f / 6 + f * (1.0f / 24 + f * (1.0f / 120 + f * (1.0f / 720))))));
+  return p * std::bit_cast<float>((xi + 127) << 23);
+}
+
+struct TapPlanes {
+  const float *c0, *c1, *c2, *n0, *n1, *n2, *x0, *x1, *x2, *b;
+};
+
+// Accumulates one tap row segment: centres u = [0, count) of the span (pointers at the span's
+// first centre), neighbours at offset `offset` from each centre.
+__attribute__((target_clones("avx2", "default"))) void accumulateTap(
+    const TapPlanes& p, ptrdiff_t offset, int count, float kernel, float invColor, float invNormal,
+    const float* __restrict scale, const float* __restrict known, float* __restrict sr,
+    float* __restrict sg, float* __restrict sb, float* __restrict sw) {
+  const float *__restrict c0 = p.c0, *__restrict c1 = p.c1, *__restrict c2 = p.c2;
+  const float *__restrict n0 = p.n0, *__restrict n1 = p.n1, *__restrict n2 = p.n2;
+  const float *__restrict x0 = p.x0, *__restrict x1 = p.x1, *__restrict x2 = p.x2;
+  const float* __restrict b = p.b;
+  for (int i = 0; i < count; ++i) {
+    const ptrdiff_t j = i + offset;
+    const float dr = c0[j] - c0[i], dg = c1[j] - c1[i], db = c2[j] - c2[i];
+    const float dnx = n0[j] - n0[i], dny = n1[j] - n1[i], dnz = n2[j] - n2[i];
+    const float dxx = x0[j] - x0[i], dxy = x1[j] - x1[i], dxz = x2[j] - x2[i];
+    // The colour term only where the centre has an estimate to compare with.
+    const float e = (dr * dr + dg * dg + db * db) * invColor * known[i] +
+                    (dnx * dnx + dny * dny + dnz * dnz) * invNormal +
+                    (dxx * dxx + dxy * dxy + dxz * dxz) * scale[i];
+    const float w = kernel * b[j] * expNeg(e);
+    sr[i] += w * c0[j];
+    sg[i] += w * c1[j];
+    sb[i] += w * c2[j];
+    sw[i] += w;
+  }
+}
+
+}  // namespace
+
+void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int iteration,
+                 float meanLuminance, const AtrousWeights& w) {
+  // Each span's results go to its own slice of `out` (4 floats per pixel: r, g, b, weight) and
+  // are written back after every span is done, so every tap reads the values before this level.
+  std::vector<size_t> first(region.spans.size() + 1, 0);
+  for (size_t s = 0; s < region.spans.size(); ++s)
+    first[s + 1] = first[s] + size_t(region.spans[s].x1 - region.spans[s].x0);
+  std::vector<float> out(first.back() * 4, 0.0f);
+  const float sc = w.sigmaColor * meanLuminance;
+  const float invColor = 1.0f / std::max(sc * sc * std::ldexp(1.0f, -iteration), 1e-20f);
+  const float invNormal = 1.0f / std::max(w.sigmaNormal * w.sigmaNormal, 1e-20f);
+  tbb::parallel_for(size_t(0), region.spans.size(), [&](size_t s) {
+    const AtrousSpan& sp = region.spans[s];
+    const int count = sp.x1 - sp.x0;
+    float* acc = &out[first[s] * 4];
+    float *sr = acc, *sg = acc + count, *sb = acc + 2 * count, *sw = acc + 3 * count;
+    const size_t u0 = img.index(sp.x0, sp.y);
+    for (int ty = 0; ty < 5; ++ty) {
+      const int dy = (ty - 2) * step;
+      if (sp.y + dy < sp.vy0 || sp.y + dy >= sp.vy1) continue;
+      for (int tx = 0; tx < 5; ++tx) {
+        const int dx = (tx - 2) * step;
+        // Centres whose neighbour lies inside the view: [xa, xb).
+        const int xa = std::max(sp.x0, sp.vx0 - dx), xb = std::min(sp.x1, sp.vx1 - dx);
+        if (xb <= xa) continue;
+        const size_t u = u0 + size_t(xa - sp.x0);
+        const TapPlanes p{&img.c[0][u], &img.c[1][u], &img.c[2][u], &img.n[0][u], &img.n[1][u],
+                          &img.n[2][u], &img.x[0][u], &img.x[1][u], &img.x[2][u], &img.sampled[u]};
+        const int o = xa - sp.x0;
+        accumulateTap(p, ptrdiff_t(dy) * img.width + dx, xb - xa, kSpline[ty] * kSpline[tx],
+                      invColor, invNormal, &img.positionScale[u], &img.known[u], sr + o, sg + o,
+                      sb + o, sw + o);
+      }
+    }
+  });
+  tbb::parallel_for(size_t(0), region.spans.size(), [&](size_t s) {
+    const AtrousSpan& sp = region.spans[s];
+    const int count = sp.x1 - sp.x0;
+    const float* acc = &out[first[s] * 4];
+    const size_t u0 = img.index(sp.x0, sp.y);
+    for (int i = 0; i < count; ++i) {
+      const float wsum = acc[3 * count + i];
+      // No usable tap (or weights so small their reciprocal would overflow): keep the value.
+      if (!(wsum > 1e-30f)) continue;
+      const float inv = 1.0f / wsum;
+      img.c[0][u0 + i] = acc[i] * inv;
+      img.c[1][u0 + i] = acc[count + i] * inv;
+      img.c[2][u0 + i] = acc[2 * count + i] * inv;
+      img.known[u0 + i] = 1.0f;
+    }
+  });
+}
+
+std::vector<std::pair<int, int>> nonHomogeneousAtrous(AtrousImage& img,
+                                                      const std::vector<AtrousRegion>& regions,
+                                                      const AtrousWeights& w) {
+  std::vector<std::pair<int, int>> log;
+  const float mean = sampledMeanLuminance(img);
+  for (size_t r = 0; r < regions.size(); ++r) {
+    if (regions[r].spans.empty()) continue;
+    for (int level = regions[r].levels - 1, k = 0; level >= 0; --level, ++k) {
+      atrousLevel(img, regions[r], 1 << level, k, mean, w);
+      log.push_back({int(r), 1 << level});
+    }
+  }
+  return log;
+}
+
+}  // namespace tandem

@@ -1,0 +1,25 @@
+// foveated_pt: path tracing over the coordinate buffer only (seed 004 §4.3): for every listed
+// pixel of both eyes (one parallel dispatch over the list twice, the right eye offset by the left
+// eye's width) and each of its samples, one path of rt/diffuse_gi.h from the G-buffer's primary
+// surface: a shadow ray to a random light, one cosine-weighted bounce with its own shadow ray,
+// Lambertian BRDF. Pixels not listed stay empty (0) for the denoiser to fill; the sky is seen in
+// the pixel's camera direction. Samples are Owen-scrambled Sobol, seeded per frame, so each frame
+// draws fresh noise. Inputs: the G-buffer (position, normal, geo_normal, diffuse, emission,
+// depth), fov_coords. Output: pt_noisy (the mean of the pixel's samples).
+#pragma once
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class FoveatedPTPass : public Pass {
+ public:
+  std::string type() const override { return "foveated_pt"; }
+  std::string description() const override {
+    return "Path tracing over the coordinate buffer: NEE + one diffuse bounce (seed 004 §4.3)";
+  }
+  std::vector<BufferSlot> inputs() const override;
+  std::vector<BufferSlot> outputs() const override { return {{"pt_noisy", 3, BufferKind::Color}}; }
+  void execute(FrameContext& ctx) override;
+};
+
+}  // namespace tandem

@@ -1,0 +1,115 @@
+#include "passes/nh_denoise.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "passes/atrous.h"
+#include "pipeline/frame_context.h"
+
+namespace tandem {
+
+std::vector<BufferSlot> NHDenoisePass::inputs() const {
+  return {{"pt_noisy", 3, BufferKind::Color},  {"normal", 3, BufferKind::Normal},
+          {"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth},
+          {"diffuse", 4, BufferKind::Material},  {"emission", 3, BufferKind::Color},
+          {"fov_mask", 1, BufferKind::Mask},     {"fov_layer", 1, BufferKind::Id}};
+}
+
+std::vector<ParamDesc> NHDenoisePass::params() const {
+  using T = ParamType;
+  return {
+      {"regions", T::Enum, 2, 0, 2, "one: whole frame (Base); two: inner + rest (NH2LD); three: NH3LD", {"one", "two", "three"}},
+      {"levels_inner", T::Int, 2, 0, 10, "M: levels of the inner layer (regions two, three)", {}},
+      {"levels_middle", T::Int, 3, 0, 10, "N: levels of the middle ring (regions three)", {}},
+      {"levels_outer", T::Int, 5, 0, 10, "P: levels of the outer layer (two: middle + outer; one: the frame)", {}},
+      {"sigma_color", T::Float, 16.0, 0.001, 1000, "colour edge-stopping σ, relative to mean luminance", {}},
+      {"sigma_normal", T::Float, 0.3, 0.001, 10, "normal edge-stopping σ", {}},
+      {"sigma_position", T::Float, 0.05, 0.0001, 10, "position edge-stopping σ, relative to eye distance", {}},
+      {"demodulate", T::Bool, 1, 0, 1, "filter illumination (divided by the diffuse albedo)", {}},
+  };
+}
+
+void NHDenoisePass::execute(FrameContext& ctx) {
+  const Buffer& noisy = ctx.input(*this, "pt_noisy");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& depth = ctx.input(*this, "depth");
+  const Buffer& diffuse = ctx.input(*this, "diffuse");
+  const Buffer& emission = ctx.input(*this, "emission");
+  const Buffer& mask = ctx.input(*this, "fov_mask");
+  const Buffer& layer = ctx.input(*this, "fov_layer");
+  Buffer& out = ctx.output(*this, "denoised");
+  const int W = ctx.width, H = ctx.height;
+  const bool demodulate = param("demodulate") != 0;
+  const AtrousWeights weights{float(param("sigma_color")), float(param("sigma_normal")),
+                              float(param("sigma_position"))};
+  // The albedo the illumination is divided by (sky and black surfaces: 1, left as colour).
+  auto albedoAt = [&](int x, int y, int k) {
+    const float a = diffuse.at(x, y)[k];
+    return demodulate && depth.at(x, y)[0] > 0 && a > 0.01f ? std::min(a, 1.0f) : 1.0f;
+  };
+  auto emissionAt = [&](int x, int y, int k) {
+    return demodulate && depth.at(x, y)[0] > 0 ? emission.at(x, y)[k] : 0.0f;
+  };
+  AtrousImage& img = image_;
+  if (img.width != W || img.height != H) img.resize(W, H);
+  for (const View& v : ctx.views) {
+    const Vec3 eye = v.camera.desc.position;
+    tbb::parallel_for(0, v.height(), [&](int row) {
+      const int y = row + v.y;
+      for (int x = v.x; x < v.x + v.width(); ++x) {
+        const size_t i = img.index(x, y);
+        const bool sampled = mask.at(x, y)[0] > 0.0f;
+        for (int k = 0; k < 3; ++k) {
+          // An unsampled pixel's colour is never read: it starts empty, whatever it holds.
+          img.c[k][i] = sampled ? (noisy.at(x, y)[k] - emissionAt(x, y, k)) / albedoAt(x, y, k) : 0;
+          img.n[k][i] = normal.at(x, y)[k];
+          img.x[k][i] = position.at(x, y)[k];
+        }
+        img.sampled[i] = img.known[i] = sampled ? 1.0f : 0.0f;
+        const float z = depth.at(x, y)[0] > 0
+                            ? length(Vec3(img.x[0][i], img.x[1][i], img.x[2][i]) - eye)
+                            : 1.0f;
+        const float s = weights.sigmaPosition * std::max(z, 1e-6f);
+        img.positionScale[i] = 1.0f / (s * s);
+      }
+    });
+  }
+  // Regions as row spans of the layer map, per view (taps never cross into the other eye).
+  const int mode = int(param("regions"));
+  const int levels[3] = {int(param("levels_inner")), int(param("levels_middle")),
+                         int(param("levels_outer"))};
+  const int count = mode + 1;
+  std::vector<AtrousRegion> regions(static_cast<size_t>(count));
+  auto regionOf = [&](int L) { return mode == 0 ? 0 : mode == 1 ? std::min(L, 1) : L; };
+  for (int r = 0; r < count; ++r)
+    regions[size_t(r)].levels = mode == 0 ? levels[2] : (mode == 1 && r == 1) ? levels[2] : levels[r];
+  for (const View& v : ctx.views)
+    for (int y = v.y; y < v.y + v.height(); ++y) {
+      int x = v.x;
+      while (x < v.x + v.width()) {
+        const int r = regionOf(std::clamp(int(layer.at(x, y)[0]), 0, 2));
+        int end = x + 1;
+        while (end < v.x + v.width() && regionOf(std::clamp(int(layer.at(end, y)[0]), 0, 2)) == r)
+          ++end;
+        regions[size_t(r)].spans.push_back(
+            {y, x, end, v.x, v.y, v.x + v.width(), v.y + v.height()});
+        x = end;
+      }
+    }
+  steps_ = nonHomogeneousAtrous(img, regions, weights);
+  for (const View& v : ctx.views)
+    tbb::parallel_for(0, v.height(), [&](int row) {
+      const int y = row + v.y;
+      for (int x = v.x; x < v.x + v.width(); ++x) {
+        const size_t i = img.index(x, y);
+        for (int k = 0; k < 3; ++k)
+          out.at(x, y)[k] = img.c[k][i] * albedoAt(x, y, k) + emissionAt(x, y, k);
+      }
+    });
+  ctx.counters["nh_denoise/levels_run"] = double(steps_.size());
+}
+
+}  // namespace tandem

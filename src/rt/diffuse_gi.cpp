@@ -1,0 +1,76 @@
+#include "rt/diffuse_gi.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rt/path_tracer.h"
+#include "rt/whitted.h"
+#include "scene/scene.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+DiffuseGI::DiffuseGI(const RayTracer& rt, const Scene& scene, const ShadingContext& shading)
+    : rt_(rt), scene_(scene), shading_(shading) {
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (!scene.lights[i].fromEmissiveMesh) lights_.push_back(int(i));
+}
+
+Vec3 DiffuseGI::albedo(const SurfaceSample& s) {
+  return vmin(vmax(s.diffuse, Vec3(0.0f)), Vec3(1.0f));
+}
+
+Vec3 DiffuseGI::emitted(const SurfaceSample& s, Vec3 wo) {
+  return dot(s.geoNormal, wo) > 0.0f ? s.emission : Vec3(0.0f);
+}
+
+Vec3 DiffuseGI::oneLight(const SurfaceSample& s, Vec3 n, float u, float time,
+                         uint64_t& rays) const {
+  if (lights_.empty()) return Vec3(0.0f);
+  const int count = int(lights_.size());
+  const int i = lights_[size_t(std::min(int(u * float(count)), count - 1))];
+  const LightSample ls = sampleLight(shading_.lights[size_t(i)], s.position);
+  const float cosI = dot(n, ls.wi);
+  if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) return Vec3(0.0f);
+  if (scene_.lights[size_t(i)].castsShadows) {
+    Ray r;
+    r.origin = offsetRayOrigin(s, ls.wi);
+    r.dir = ls.wi;
+    r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
+                                     : ls.distance * (1.0f - 1e-4f);
+    r.time = time;
+    ++rays;
+    if (rt_.occluded(r)) return Vec3(0.0f);
+  }
+  return ls.radiance * (cosI * float(count) / kPi);
+}
+
+Vec3 DiffuseGI::reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
+                          uint64_t& rays) const {
+  // Double-sided: shade the side the viewer sees.
+  const Vec3 n = dot(s.normal, wo) < 0.0f ? -s.normal : s.normal;
+  const Vec2 u0 = rng.get2D(), u1 = rng.get2D(), u2 = rng.get2D();
+  Vec3 sum = oneLight(s, n, u0.x, time, rays);
+  // Cosine-weighted bounce: Lambert's cos / π cancels the density, leaving the incident radiance.
+  Ray r;
+  r.dir = normalize(sampleCosine(n, u1.x, u1.y));
+  if (dot(r.dir, s.geoNormal) * dot(n, s.geoNormal) <= 0.0f) return sum;  // below the surface
+  r.origin = offsetRayOrigin(s, r.dir);
+  r.time = time;
+  ++rays;
+  const Hit h = rt_.intersect(r);
+  if (!h.valid()) return sum + scene_.skyRadiance(r.dir);
+  const float tuv[3] = {h.t, h.u, h.v};
+  const SurfaceSample hs = resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, r.dir, time, tuv);
+  const Vec3 wh = -r.dir;
+  const Vec3 nh = dot(hs.normal, wh) < 0.0f ? -hs.normal : hs.normal;
+  return sum + emitted(hs, wh) + albedo(hs) * oneLight(hs, nh, u2.x, time, rays);
+}
+
+Vec3 DiffuseGI::radiance(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
+                         uint64_t& rays) const {
+  return emitted(s, wo) + albedo(s) * reflected(s, wo, rng, time, rays);
+}
+
+}  // namespace tandem

@@ -1,0 +1,47 @@
+// The foveated path tracer's light transport (seed 004 §4.3, Wyman et al. 2018's diffuse global
+// illumination): at the primary surface one shadow ray to a light chosen uniformly at random
+// (next-event estimation), one cosine-weighted indirect ray, and at the indirect hit its emission
+// plus one more random-light shadow ray; an indirect miss sees the sky. The BRDF is Lambert's
+// (diffuse albedo / π) everywhere: specular lobes, mirrors and glass are not part of this
+// transport. Lights standing in for emissive meshes are skipped (their mesh's emission is seen
+// by the indirect ray instead). The foveated_pt pass and the reference's diffuse-gi integrator
+// both call it, so the reference is the same path tracer, only converged.
+#pragma once
+#include <vector>
+
+#include "rt/ray_tracer.h"
+#include "rt/sampler.h"
+#include "shading/blinn_phong.h"
+
+namespace tandem {
+
+class DiffuseGI {
+ public:
+  DiffuseGI(const RayTracer& rt, const Scene& scene, const ShadingContext& shading);
+
+  // One path's estimate of the light the primary surface `s` reflects towards wo (unit, surface
+  // -> viewer), divided by its diffuse albedo: the outgoing radiance is s.emission (front side)
+  // + albedo x reflected(). Uses three sample pairs of `rng` at shutter fraction `time`; adds the
+  // rays it traced to `rays`.
+  Vec3 reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
+                 uint64_t& rays) const;
+  // The whole outgoing radiance: emission + albedo x reflected().
+  Vec3 radiance(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
+                uint64_t& rays) const;
+  // Lambert's albedo as the transport uses it (the diffuse colour, clamped to [0, 1]).
+  static Vec3 albedo(const SurfaceSample& s);
+  // Emission seen from wo: emitters light their front side only, as in the path tracer.
+  static Vec3 emitted(const SurfaceSample& s, Vec3 wo);
+
+ private:
+  // Irradiance / π at s from one light chosen uniformly (its visibility tested), over the
+  // light's selection probability.
+  Vec3 oneLight(const SurfaceSample& s, Vec3 n, float u, float time, uint64_t& rays) const;
+
+  const RayTracer& rt_;
+  const Scene& scene_;
+  const ShadingContext& shading_;
+  std::vector<int> lights_;  // lights the estimator samples (not emissive-mesh stand-ins)
+};
+
+}  // namespace tandem
