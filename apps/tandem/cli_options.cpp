@@ -81,6 +81,19 @@ void addSceneOptions(CLI::App* app, RenderOptions& o) {
                   "Scene: .gltf/.glb/.obj/.json file or built-in (cornell, spheres, atrium)");
   app->add_option("--width", o.width, "Image width in pixels");
   app->add_option("--height", o.height, "Image height in pixels");
+  app->add_option_function<std::string>(
+      "--resolution",
+      [&o](const std::string& name) {
+        // Seed 004's Table 2 sizes are per eye of a head-mounted display: stereo.
+        if (name == "fhd") {
+          o.width = 960, o.height = 1080, o.stereo = true;
+        } else if (name == "quest2") {
+          o.width = 1832, o.height = 1920, o.stereo = true;
+        }
+        o.resolution = name;  // validateRenderOptions refuses an unknown name
+      },
+      "Named size: fhd (960x1080 per eye) or quest2 (1832x1920 per eye), both stereo; sets "
+      "--width, --height and --stereo");
   app->add_option("--out", o.out, "Output image (.png/.exr) or folder");
   app->add_option("--seed", o.seed, "Random seed");
   app->add_option("--threads", o.threads, "Worker threads (0 = all cores)");
@@ -149,6 +162,9 @@ Pipeline loadPipelineFor(const RenderOptions& o) {
 }
 
 void validateRenderOptions(const RenderOptions& o) {
+  if (!o.resolution.empty() && o.resolution != "fhd" && o.resolution != "quest2")
+    throw InputError("command line", "--resolution",
+                     "expected fhd or quest2, got '" + o.resolution + "'");
   if (o.width < 1 || o.width > 16384)
     throw InputError("command line", "--width", "must be in [1, 16384]");
   if (o.height < 1 || o.height > 16384)

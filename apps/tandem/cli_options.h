@@ -17,6 +17,7 @@ struct RenderOptions {
   std::string scene = "cornell";  // path or built-in name
   std::string pipeline = "deferred";
   int width = 1280, height = 720;  // [1, 16384]
+  std::string resolution;          // --resolution: a named size (fhd, quest2), applied when parsed
   std::string out;                 // image file or folder
   std::string aov;                 // comma-separated buffer names
   int frames = 1;                  // [1, 1000000]
