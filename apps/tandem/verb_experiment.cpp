@@ -11,6 +11,7 @@
 #include "cli_options.h"
 #include "core/error.h"
 #include "eval/experiment_dof.h"
+#include "eval/experiment_foveated.h"
 #include "eval/experiment_heuristic.h"
 #include "eval/experiment_sweep.h"
 #include "eval/experiment_taa.h"
@@ -103,9 +104,20 @@ struct ExperimentVerb {
       if (o.spp) d.referenceSpp = d.pathReferenceSpp = o.spp;
       return runDofExperiment(d);
     }
+    if (runner == "foveated") {
+      FoveatedExperimentOptions fo = foveatedOptionsFromJson(j, file.string());
+      fo.out = o.out.empty() ? "out/experiment-" + file.stem().string() : o.out;
+      fo.cache = o.noCache ? "" : o.cache;
+      if (o.width) fo.qualityWidth = o.width;
+      if (o.height) fo.qualityHeight = o.height;
+      if (o.warmup >= 0) fo.warmup = o.warmup;
+      if (o.frames) fo.fhdFrames = fo.quest2Frames = o.frames;
+      if (o.spp) fo.referenceSpp = o.spp;
+      return runFoveatedExperiment(fo);
+    }
     if (runner != "sweep")
       throw InputError(file.string(), "runner",
-                       "'" + runner + "' is not sweep, heuristic, taa or hybrid-dof");
+                       "'" + runner + "' is not sweep, heuristic, taa, hybrid-dof or foveated");
     if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
       throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
                        "apply to the heuristic runner only");

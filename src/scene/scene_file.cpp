@@ -348,6 +348,8 @@ Scene loadSceneFile(const std::string& path) {
     if (!objs.is_array()) f.fail("objects", "expected an array");
     for (size_t i = 0; i < objs.size(); ++i) readObject(c, objs[i], i);
   }
+  // "baseLights": false drops the base scene's lights (the file's own "lights" replace them).
+  if (!f.boolean("baseLights", true)) s.lights.clear();
   if (f.has("lights")) {
     const Json& lights = f.raw("lights");
     if (!lights.is_array()) f.fail("lights", "expected an array");

@@ -1,0 +1,298 @@
+#include "eval/experiment_foveated.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/image_io.h"
+#include "core/json_fields.h"
+#include "eval/experiment_report.h"
+#include "eval/flip.h"
+#include "eval/metrics.h"
+#include "eval/reference_cache.h"
+#include "passes/foveation_map.h"
+#include "pipeline/aov.h"
+#include "pipeline/renderer.h"
+#include "scene/loaders.h"
+#include "scene/scene_camera.h"
+
+namespace tandem {
+
+namespace fs = std::filesystem;
+
+FoveatedExperimentOptions foveatedOptionsFromJson(const nlohmann::json& j,
+                                                  const std::string& file) {
+  JsonFields f(j, file, "");
+  FoveatedExperimentOptions o;
+  f.string("title", "");
+  f.string("description", "");
+  f.string("runner", "foveated");
+  if (!f.has("scenes") || !f.raw("scenes").is_array() || f.raw("scenes").empty())
+    f.fail("scenes", "expected an array of [label, scene] pairs");
+  const fs::path base = fs::path(file).parent_path();
+  for (const Json& s : f.raw("scenes")) {
+    if (!s.is_array() || s.size() != 2 || !s[0].is_string() || !s[1].is_string())
+      f.fail("scenes", "each scene is [label, scene name or file]");
+    std::string path = s[1].get<std::string>();
+    if (path.find('.') != std::string::npos && fs::path(path).is_relative())
+      path = (base / path).string();
+    o.sceneLabels.push_back(s[0].get<std::string>());
+    o.scenes.push_back(path);
+  }
+  if (f.has("resolutions")) {
+    o.resolutions.clear();
+    for (const Json& r : f.raw("resolutions")) {
+      if (!r.is_string() || (r != "fhd" && r != "quest2"))
+        f.fail("resolutions", "expected names out of fhd, quest2");
+      o.resolutions.push_back(r.get<std::string>());
+    }
+  }
+  o.warmup = f.integer("warmup", o.warmup, 0, 100000);
+  o.fhdFrames = f.integer("fhdFrames", o.fhdFrames, 1, 100000);
+  o.quest2Frames = f.integer("quest2Frames", o.quest2Frames, 1, 100000);
+  o.qualityWidth = f.integer("qualityWidth", o.qualityWidth, 8, 16384);
+  o.qualityHeight = f.integer("qualityHeight", o.qualityHeight, 8, 16384);
+  o.referenceSpp = f.integer("referenceSpp", o.referenceSpp, 1, 1 << 20);
+  if (f.has("crop")) {
+    const Json& c = f.raw("crop");
+    if (!c.is_array() || c.size() != 4) f.fail("crop", "expected [x, y, width, height]");
+    for (int k = 0; k < 4; ++k) {
+      if (!c[size_t(k)].is_number_integer() || c[size_t(k)].get<int>() < 0)
+        f.fail("crop", "expected non-negative integers");
+      o.crop[k] = c[size_t(k)].get<int>();
+    }
+  }
+  f.finish();
+  return o;
+}
+
+namespace {
+
+struct Resolution {
+  std::string name;
+  int width, height;  // per eye
+  float r0, r1;       // the thesis' radii at that size
+};
+
+Resolution resolutionNamed(const std::string& n) {
+  if (n == "quest2") return {"quest2", 1832, 1920, 265, 530};
+  return {"fhd", 960, 1080, 144, 288};
+}
+
+const char* kConfigs[3] = {"foveated-base", "foveated-nh2ld", "foveated-nh3ld"};
+const char* kConfigLabels[3] = {"Base", "NH2LD", "NH3LD"};
+
+Renderer makeRenderer(const Scene& scene, const char* pipeline, int w, int h,
+                      const std::vector<std::string>& sets) {
+  Pipeline p = Pipeline::load(pipeline);
+  for (const std::string& s : sets) p.setParam(s, "experiment");
+  RenderSettings rs{.width = w, .height = h};
+  rs.stereo = scene.stereo;
+  rs.stereo.enabled = true;
+  return Renderer(scene, std::move(p), rs);
+}
+
+// Mean of `map` (1 channel or the first) over the pixels of both eyes whose layer is `layer`.
+double meanOverLayer(const Buffer& map, const FoveationMap& fm, int layer) {
+  double sum = 0;
+  size_t n = 0;
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x) {
+      if (fm.layer[size_t(y) * size_t(fm.width) + size_t(x % fm.width)] != layer) continue;
+      sum += map.at(x, y)[0];
+      ++n;
+    }
+  return n ? sum / double(n) : 0.0;
+}
+
+// Per-pixel squared error averaged over channels (for RMSE per layer).
+Buffer squaredError(const Buffer& a, const Buffer& b) {
+  Buffer e(a.width, a.height, 1);
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      double s = 0;
+      for (int k = 0; k < 3; ++k) s += std::pow(double(a.at(x, y)[k]) - b.at(x, y)[k], 2);
+      e.at(x, y)[0] = float(s / 3.0);
+    }
+  return e;
+}
+
+}  // namespace
+
+int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
+  std::vector<Scene> scenes;
+  for (const std::string& s : o.scenes) scenes.push_back(loadScene(s));
+  for (const char* p : kConfigs) Pipeline::load(p);
+  fs::create_directories(o.out);
+  ExperimentReport report(o.out, "Seed 004: foveated stereo path tracing, non-homogeneous denoising");
+
+  // Table 2: the distribution of each resolution (the pipelines' defaults: p = 0.5, 4/3/2 spp).
+  std::vector<std::vector<std::string>> t2;
+  for (const std::string& rn : o.resolutions) {
+    const Resolution r = resolutionNamed(rn);
+    FoveationDesc d;
+    d.r0 = r.r0;
+    d.r1 = r.r1;
+    const FoveationMap m = computeFoveation(r.width, r.height, d);
+    const char* names[3] = {"Inner", "Middle", "Outer"};
+    for (int L = 0; L < 3; ++L) {
+      const FoveationLayerStats& s = m.layers[L];
+      t2.push_back({rn + " (" + std::to_string(r.width) + "x" + std::to_string(r.height) + ")",
+                    names[L], L < 2 ? fmt(s.radius, 0) : "-", std::to_string(s.area),
+                    std::to_string(s.tableSamples()), std::to_string(s.spp),
+                    std::to_string(s.listed), std::to_string(s.samples())});
+    }
+  }
+  report.markdown(
+      "### Table 2: region distribution per eye (p = 0.5)\n\nArea: the pixels of the layer "
+      "(round(π r²) for the inner disc, the ring between for the middle). Samples and spp as the "
+      "thesis prints them (samples = area x spp); listed and traced: what the selection toss "
+      "keeps (the middle ring falls linearly from 1 at r0 to p at r1, the outer layer is p).\n\n");
+  report.table("table2_distribution",
+               {"resolution", "region", "radius (px)", "area (px)", "samples (area x spp)", "spp",
+                "listed pixels", "traced samples"},
+               t2);
+
+  // Table 4: mean ms per frame along the camera path.
+  std::vector<std::vector<std::string>> t4;
+  std::string summary;
+  std::vector<double> speedups;
+  for (const std::string& rn : o.resolutions) {
+    const Resolution r = resolutionNamed(rn);
+    const int frames = rn == "quest2" ? o.quest2Frames : o.fhdFrames;
+    const std::vector<std::string> radii = {"foveation.scale_radii=false",
+                                            "foveation.r0=" + fmt(r.r0, 0),
+                                            "foveation.r1=" + fmt(r.r1, 0)};
+    for (size_t s = 0; s < scenes.size(); ++s) {
+      double baseMs = 0;
+      for (int c = 0; c < 3; ++c) {
+        std::printf("experiment foveated: Table 4, %s, %s, %s\n", rn.c_str(),
+                    o.sceneLabels[s].c_str(), kConfigLabels[c]);
+        std::fflush(stdout);
+        Renderer rd = makeRenderer(scenes[s], kConfigs[c], r.width, r.height, radii);
+        const CameraDesc base = defaultCamera(scenes[s]);
+        std::vector<double> ms, pt, dn;
+        for (int f = 0; f < o.warmup + frames; ++f) {
+          const CameraDesc cam = pathCamera(scenes[s], base, f, o.warmup + frames);
+          const FrameTimings ft = rd.renderFrame(f, cam);
+          if (f < o.warmup) continue;
+          ms.push_back(ft.totalMs);
+          for (const PassTiming& t : ft.passes) {
+            if (t.name == "foveated_pt") pt.push_back(t.ms);
+            if (t.name == "nh_denoise") dn.push_back(t.ms);
+          }
+        }
+        const double mean = summarize(ms).mean;
+        if (c == 0) baseMs = mean;
+        const double speedup = baseMs / mean;
+        if (c == 2) speedups.push_back(speedup);
+        t4.push_back({rn, o.sceneLabels[s], kConfigLabels[c], fmt(mean, 1),
+                      fmt(summarize(pt).mean, 1), fmt(summarize(dn).mean, 1),
+                      c == 0 ? "-" : fmt(speedup, 2), std::to_string(frames)});
+      }
+    }
+  }
+  report.markdown("### Table 4 shape: mean ms per frame along the camera path (after " +
+                  std::to_string(o.warmup) + " untimed frame(s))\n\n");
+  report.table("table4_ms_per_frame",
+               {"resolution", "scene", "renderer", "frame ms", "path tracing ms", "denoising ms",
+                "speed-up over Base", "frames"},
+               t4);
+
+  // Table 5 and Figures 17-18: quality at the quality size against the converged reference.
+  const int qw = o.qualityWidth, qh = o.qualityHeight;
+  std::vector<std::vector<std::string>> t5;
+  FoveationDesc qd;  // the NH layers at the quality size (radii scaled from FHD by height)
+  qd.r0 = 144.0f * float(qh) / 1080.0f;
+  qd.r1 = 288.0f * float(qh) / 1080.0f;
+  const FoveationMap qm = computeFoveation(qw, qh, qd);
+  for (size_t s = 0; s < scenes.size(); ++s) {
+    std::printf("experiment foveated: Table 5, %s, reference (%d spp)\n", o.sceneLabels[s].c_str(),
+                o.referenceSpp);
+    std::fflush(stdout);
+    const CameraDesc cam = defaultCamera(scenes[s]);
+    ReferenceJob job;
+    job.scene = &scenes[s];
+    job.camera = job.shutterCamera = cam;
+    job.width = qw;
+    job.height = qh;
+    job.stereo = scenes[s].stereo;
+    job.stereo.enabled = true;
+    job.settings.spp = o.referenceSpp;
+    job.settings.integrator = Integrator::DiffuseGI;
+    job.settings.progress = true;
+    const Buffer ref = visualizeBuffer(referenceImage(job, o.cache).hdr);
+    const std::string label = sceneLabel(o.scenes[s]);
+    writePng((fs::path(o.out) / ("reference_" + label + ".png")).string(), ref);
+    report.image("reference_" + label + ".png",
+                 o.sceneLabels[s] + ": reference (" + std::to_string(o.referenceSpp) + " spp)");
+    std::vector<Buffer> images;
+    double baseSsim = 0, baseFovea = 0;
+    for (int c = 0; c < 3; ++c) {
+      Renderer rd = makeRenderer(scenes[s], kConfigs[c], qw, qh, {});
+      rd.renderFrame(0, cam);
+      const Buffer img = rd.output();
+      images.push_back(img);
+      Buffer ssimMap;
+      const ImageMetrics m = compareImages(img, ref, &ssimMap);
+      const Buffer err = squaredError(img, ref);
+      const double fovea = meanOverLayer(ssimMap, qm, 0), periphery = meanOverLayer(ssimMap, qm, 2);
+      if (c == 0) baseSsim = m.ssim, baseFovea = fovea;
+      t5.push_back({o.sceneLabels[s], kConfigLabels[c], fmt(100.0 * m.rmse, 4), fmt(m.ssim, 6),
+                    fmt(m.psnr, 4), fmt(fovea, 4), fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 0)), 3),
+                    fmt(periphery, 4), fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 2)), 3),
+                    fmt(flip(ref, img), 4)});
+      if (c == 2)
+        summary += "- " + o.sceneLabels[s] + ": NH3LD SSIM − Base = " + fmt(m.ssim - baseSsim, 4) +
+                   " (fovea " + fmt(fovea - baseFovea, 4) + ")\n";
+      const std::string file = "image_" + label + "_" + kConfigLabels[c] + ".png";
+      writePng((fs::path(o.out) / file).string(), img);
+      report.image(file, o.sceneLabels[s] + ": " + kConfigLabels[c]);
+    }
+    // Figure 17: the same crop of the left eye; Figure 18: FLIP maps side by side.
+    const int crop[4] = {o.crop[0], o.crop[1], o.crop[2] ? o.crop[2] : qw / 2,
+                         o.crop[3] ? o.crop[3] : qh / 3};
+    const int cx = o.crop[2] ? crop[0] : qw / 4, cy = o.crop[3] ? crop[1] : qh / 3;
+    const int box[4] = {cx, cy, crop[2], crop[3]};
+    Buffer strip(box[2] * 4, box[3], 3), maps(qw * 2 * 3, qh, 3);
+    auto paste = [](Buffer& dst, const Buffer& src, int ox) {
+      for (int y = 0; y < src.height; ++y)
+        for (int x = 0; x < src.width; ++x)
+          for (int k = 0; k < 3; ++k) dst.at(ox + x, y)[k] = src.at(x, y)[k];
+    };
+    paste(strip, cropOf(ref, box), 0);
+    for (int c = 0; c < 3; ++c) {
+      paste(strip, cropOf(images[size_t(c)], box), box[2] * (c + 1));
+      Buffer map;
+      flip(ref, images[size_t(c)], &map);
+      paste(maps, flipColorMap(map), qw * 2 * c);
+    }
+    writePng((fs::path(o.out) / ("figure17_" + label + ".png")).string(), strip);
+    report.image("figure17_" + label + ".png",
+                 o.sceneLabels[s] + ": reference, Base, NH2LD, NH3LD (same crop, left eye)");
+    writePng((fs::path(o.out) / ("figure18_" + label + ".png")).string(), maps);
+    report.image("figure18_" + label + ".png",
+                 o.sceneLabels[s] + ": FLIP against the reference, Base | NH2LD | NH3LD");
+  }
+  report.markdown("### Table 5 shape: quality against the same path tracer converged (" +
+                  std::to_string(o.referenceSpp) + " spp, no foveation, no denoising), " +
+                  std::to_string(qw) + "x" + std::to_string(qh) +
+                  " per eye (radii " + fmt(qd.r0, 0) + " / " + fmt(qd.r1, 0) +
+                  "); fovea = inner layer, periphery = outer layer, both eyes\n\n");
+  report.table("table5_quality",
+               {"scene", "renderer", "RMSE (%)", "SSIM", "PSNR (dB)", "fovea SSIM",
+                "fovea RMSE (%)", "periphery SSIM", "periphery RMSE (%)", "FLIP"},
+               t5);
+  std::string sp = "- NH3LD speed-up over Base:";
+  for (double v : speedups) sp += " " + fmt(v, 2);
+  report.markdown(sp + " (per resolution and scene, in Table 4's order)\n" + summary + "\n");
+  char settings[256];
+  std::snprintf(settings, sizeof settings,
+                "timings: %d untimed + %d (fhd) / %d (quest2) frames along each camera path; "
+                "quality %dx%d per eye, reference %d spp",
+                o.warmup, o.fhdFrames, o.quest2Frames, qw, qh, o.referenceSpp);
+  report.write(settings);
+  return 0;
+}
+
+}  // namespace tandem
