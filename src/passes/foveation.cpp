@@ -2,6 +2,7 @@
 
 #include "core/profiler.h"
 #include "pipeline/frame_context.h"
+#include "scene/scene.h"
 
 namespace tandem {
 
@@ -16,6 +17,7 @@ std::vector<ParamDesc> FoveationPass::params() const {
       {"spp_inner", T::Int, 4, 1, 1024, "samples per listed pixel, inner layer", {}},
       {"spp_middle", T::Int, 3, 1, 1024, "samples per listed pixel, middle ring", {}},
       {"spp_outer", T::Int, 2, 1, 1024, "samples per listed pixel, outer layer", {}},
+      {"gaze", T::Enum, 0, 0, 1, "trace: the scene's gazeTrace at the frame time when it has one; fixed: gaze_x, gaze_y", {"trace", "fixed"}},
       {"gaze_x", T::Float, 0.5, 0, 1, "gaze point, fraction of the eye's width", {}},
       {"gaze_y", T::Float, 0.5, 0, 1, "gaze point, fraction of the eye's height", {}},
       {"scale_radii", T::Bool, 1, 0, 1, "radii are for 1080 rows: scale them to the eye's height", {}},
@@ -42,7 +44,10 @@ FoveationDesc FoveationPass::desc(int width, int height) const {
 
 void FoveationPass::execute(FrameContext& ctx) {
   const View& eye = ctx.views.front();
-  const FoveationDesc d = desc(eye.width(), eye.height());
+  FoveationDesc d = desc(eye.width(), eye.height());
+  // A moving gaze: the distribution is rebuilt only on the frames where the point moves.
+  if (param("gaze") == 0 && ctx.scene && !ctx.scene->gazeTrace.empty())
+    d.gaze = sampleGazeTrace(ctx.scene->gazeTrace, ctx.frame.time);
   d.validate("pass foveation");
   const bool rebuild =
       !valid_ || !(d == built_) || map_.width != eye.width() || map_.height != eye.height();

@@ -5,6 +5,7 @@
 // eyes. Outputs: fov_coords (the coordinate buffer: one eye's listed pixels as (x, y, spp)
 // records), fov_mask (the binary mask over the dual image), fov_layer (0 inner, 1 middle,
 // 2 outer; the overlay view). mode = full is Base: every pixel listed with spp_inner samples.
+// The gaze follows the scene's gazeTrace (at the frame's time) when it has one, else gaze_x/y.
 #pragma once
 #include "passes/foveation_map.h"
 #include "pipeline/pass.h"

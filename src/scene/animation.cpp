@@ -46,4 +46,13 @@ CameraDesc sampleCameraPath(const std::vector<CameraKey>& keys, const CameraDesc
   return d;
 }
 
+Vec2 sampleGazeTrace(const std::vector<GazeKey>& keys, float t) {
+  size_t i;
+  float u;
+  locate(keys, t, i, u);
+  if (u <= 0.0f) return keys[i].gaze;
+  const Vec2 a = keys[i].gaze, b = keys[i + 1].gaze;
+  return Vec2(a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u);
+}
+
 }  // namespace tandem

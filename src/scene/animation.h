@@ -27,9 +27,18 @@ struct CameraKey {
   Vec3 position, lookAt;
 };
 
+// A gaze point (fraction of the eye's viewport, 0,0 top left) at a time: seed 004's fovea
+// follows it (scene file "gazeTrace").
+struct GazeKey {
+  float time = 0;
+  Vec2 gaze{0.5f, 0.5f};
+};
+
 // Interpolated transform at time t; keys must be sorted by time and non-empty.
 Transform sampleTransform(const std::vector<TransformKey>& keys, float t);
 // Camera at time t along a path (position and look-at interpolated); other fields from base.
 CameraDesc sampleCameraPath(const std::vector<CameraKey>& keys, const CameraDesc& base, float t);
+// Gaze at time t along a trace (linear between keys, held beyond the ends); keys non-empty.
+Vec2 sampleGazeTrace(const std::vector<GazeKey>& keys, float t);
 
 }  // namespace tandem

@@ -62,6 +62,7 @@ struct Scene {
   bool hasCamera = false;
   StereoDesc stereo;  // scene file "stereo": {"ipd", "converged", "convergence"}; --stereo
   std::vector<CameraKey> cameraPath;
+  std::vector<GazeKey> gazeTrace;  // scene file "gazeTrace": where the viewer looks over time
   LoadStats stats;
 
   size_t triangleCount() const;

@@ -288,6 +288,26 @@ std::vector<CameraKey> cameraPathFromJson(const Json& p, const std::string& file
   return keys;
 }
 
+std::vector<GazeKey> gazeTraceFromJson(const Json& p, const std::string& file) {
+  if (!p.is_array() || p.empty()) throw InputError(file, "gazeTrace", "expected an array of keys");
+  std::vector<GazeKey> keys;
+  float lastTime = -1e30f;
+  for (size_t i = 0; i < p.size(); ++i) {
+    JsonFields kf(p[i], file, "gazeTrace[" + std::to_string(i) + "]");
+    GazeKey k;
+    k.time = kf.number("time", 0.0f);
+    if (k.time < lastTime) kf.fail("time", "keys must be sorted by time");
+    lastTime = k.time;
+    const Vec2 g = kf.vec2("gaze", k.gaze);
+    if (!(g.x >= 0 && g.x <= 1 && g.y >= 0 && g.y <= 1))
+      kf.fail("gaze", "must be a fraction of the viewport, in [0, 1]");
+    k.gaze = g;
+    kf.finish();
+    keys.push_back(k);
+  }
+  return keys;
+}
+
 Json cameraPathToJson(const std::vector<CameraKey>& keys) {
   Json a = Json::array();
   for (const CameraKey& k : keys)
@@ -377,6 +397,7 @@ Scene loadSceneFile(const std::string& path) {
   if (f.has("camera")) readCamera(c, f.raw("camera"));
   if (f.has("cameraPath")) s.cameraPath = cameraPathFromJson(f.raw("cameraPath"), path, s.camera);
   if (f.has("stereo")) s.stereo = stereoFromJson(f.raw("stereo"), path, s.stereo);
+  if (f.has("gazeTrace")) s.gazeTrace = gazeTraceFromJson(f.raw("gazeTrace"), path);
   f.finish();
   if (s.objects.empty()) throw InputError(path, "objects", "scene has no objects");
   validateScene(s, path);

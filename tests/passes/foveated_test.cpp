@@ -408,3 +408,20 @@ TEST(Foveated, BadValuesNameTheField) {
   Renderer r(s, std::move(q), RenderSettings{.width = 32, .height = 24});
   EXPECT_NE(message([&] { r.renderFrame(0, s.camera); }).find("r1"), std::string::npos);
 }
+
+// A gaze trace moves the fovea: the distribution is rebuilt on the frames where the gaze moved
+// and only then, and the inner layer sits around the traced point.
+TEST(Foveation, GazeTraceRebuildsOnlyWhenTheGazeMoves) {
+  Scene s = makeCornellScene();
+  s.gazeTrace = {{0.0f, {0.25f, 0.5f}}, {1.0f / 30, {0.25f, 0.5f}}, {2.0f / 30, {0.75f, 0.5f}}};
+  Renderer r(s, Pipeline::load("foveated-nh3ld"), RenderSettings{.width = 96, .height = 54});
+  std::vector<double> rebuilt;
+  for (int f = 0; f < 4; ++f) {
+    r.renderFrame(f, s.camera);
+    rebuilt.push_back(r.context().counters.at("foveation/recomputed"));
+    const Buffer& layer = r.context().input("fov_layer");
+    const int gx = f < 2 ? 24 : 72;  // the traced gaze point in pixels
+    EXPECT_EQ(layer.at(gx, 27)[0], 0.0f) << "frame " << f;
+  }
+  EXPECT_EQ(rebuilt, (std::vector<double>{1, 0, 1, 0}));
+}
