@@ -7,7 +7,9 @@
 //  - Table 5 shape: RMSE, SSIM and PSNR of each configuration against the same path tracer
 //    without foveation or denoising (reference integrator diffuse-gi, `referenceSpp`), over the
 //    whole dual image and separately in the fovea (inner layer) and the periphery (outer layer);
-//  - Figures 17 and 18: same-crop comparisons and FLIP heat maps side by side.
+//  - Figures 17 and 18: same-crop comparisons and FLIP heat maps side by side;
+//  - beyond the thesis: NH3LD with the periphery accumulated over frames (timed along the path,
+//    its quality after `temporalFrames` frames of the still camera).
 // Quality is measured at a smaller size (`qualityWidth` x `qualityHeight` per eye, radii scaled
 // from the FHD ones by the eye's height) so the references stay affordable on a CPU.
 #pragma once
@@ -26,6 +28,7 @@ struct FoveatedExperimentOptions {
   int fhdFrames = 4, quest2Frames = 2;         // timed frames along the camera path
   int qualityWidth = 480, qualityHeight = 540;  // per eye
   int referenceSpp = 1024;
+  int temporalFrames = 8;  // still-camera frames before NH3LD + temporal is measured
   int crop[4] = {0, 0, 0, 0};  // Figure 17 crop of the left eye at the quality size (0: centre)
 };
 

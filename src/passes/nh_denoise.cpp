@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "passes/atrous.h"
+#include "core/profiler.h"
 #include "pipeline/frame_context.h"
 
 namespace tandem {
@@ -53,6 +54,7 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   auto emissionAt = [&](int x, int y, int k) {
     return demodulate && depth.at(x, y)[0] > 0 ? emission.at(x, y)[k] : 0.0f;
   };
+  const auto t0 = Clock::now();
   AtrousImage& img = image_;
   if (img.width != W || img.height != H) img.resize(W, H);
   for (const View& v : ctx.views) {
@@ -99,7 +101,10 @@ void NHDenoisePass::execute(FrameContext& ctx) {
         x = end;
       }
     }
+  ctx.passParts.push_back({"setup", msSince(t0), 0});
+  const auto t1 = Clock::now();
   steps_ = nonHomogeneousAtrous(img, regions, weights);
+  ctx.passParts.push_back({"levels", msSince(t1), 0});
   for (const View& v : ctx.views)
     tbb::parallel_for(0, v.height(), [&](int row) {
       const int y = row + v.y;

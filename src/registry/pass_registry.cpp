@@ -16,6 +16,7 @@
 #include "passes/foveation.h"
 #include "passes/foveated_pt.h"
 #include "passes/nh_denoise.h"
+#include "passes/periphery_accumulation.h"
 #include "passes/rt_dof.h"
 #include "passes/rt_gbuffer.h"
 #include "passes/rt_secondary.h"
@@ -52,6 +53,7 @@ const std::vector<std::string>& passTypes() {
                                                  "foveation",
                                                  "foveated_pt",
                                                  "nh_denoise",
+                                                 "periphery_accumulation",
                                                  "tonemap"};
   return types;
 }
@@ -80,6 +82,7 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "foveation") return std::make_unique<FoveationPass>();
   if (type == "foveated_pt") return std::make_unique<FoveatedPTPass>();
   if (type == "nh_denoise") return std::make_unique<NHDenoisePass>();
+  if (type == "periphery_accumulation") return std::make_unique<PeripheryAccumulationPass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

@@ -425,3 +425,49 @@ TEST(Foveation, GazeTraceRebuildsOnlyWhenTheGazeMoves) {
   }
   EXPECT_EQ(rebuilt, (std::vector<double>{1, 0, 1, 0}));
 }
+
+// Periphery accumulation: with a still camera the middle and outer layers average their frames
+// (the error of the accumulated estimate falls well below one frame's), the fovea keeps this
+// frame's samples unchanged, and where the surface under a pixel changes the history restarts.
+TEST(Foveated, PeripheryAccumulationAveragesOutsideTheFovea) {
+  const Scene s = flatLitPlane();
+  const int w = 96, h = 72;
+  const ShadingContext shading = ShadingContext::from(s);
+  Renderer r(s, Pipeline::load("foveated-nh3ld-temporal"), RenderSettings{.width = w, .height = h});
+  const CameraDesc cam = topCamera();
+  for (int f = 0; f < 8; ++f) r.renderFrame(0, cam);
+  const FrameContext& ctx = r.context();
+  const Buffer& noisy = ctx.input("pt_noisy");
+  const Buffer& accum = ctx.input("pt_accum");
+  const Buffer& layer = ctx.input("fov_layer");
+  const Buffer& mask = ctx.input("fov_mask");
+  const Buffer& pos = ctx.input("position");
+  double errAccum = 0, errFrame = 0;
+  int n = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (mask.at(x, y)[0] == 0) continue;
+      if (layer.at(x, y)[0] == 0) {
+        ASSERT_EQ(accum.at(x, y)[0], noisy.at(x, y)[0]);
+        continue;
+      }
+      const Vec3 p = pos.rgb(x, y);
+      float exact = 0;
+      for (const PreparedLight& l : shading.lights) {
+        const LightSample ls = sampleLight(l, p);
+        exact += 0.6f / kPi * ls.radiance.x * std::max(ls.wi.y, 0.0f);
+      }
+      errAccum += std::pow(accum.at(x, y)[0] - exact, 2);
+      errFrame += std::pow(noisy.at(x, y)[0] - exact, 2);
+      ++n;
+    }
+  ASSERT_GT(n, 100);
+  EXPECT_NEAR(ctx.counters.at("periphery_accumulation/mean_frames"), 8.0, 0.01);
+  EXPECT_LT(errAccum, 0.3 * errFrame);  // 8 frames: about 1/8 of the squared error
+  // A camera cut onto another part of the plane: every history restarts.
+  CameraDesc moved = cam;
+  moved.position = moved.position + Vec3(3.5f, 0, 0);
+  moved.lookAt = moved.lookAt + Vec3(3.5f, 0, 0);
+  r.renderFrame(0, moved);
+  EXPECT_LT(r.context().counters.at("periphery_accumulation/mean_frames"), 1.2);
+}
