@@ -194,6 +194,23 @@ int runViewer(const ViewerOptions& o) {
     }
     lastX = mx, lastY = my;
 
+    // Gaze (seed 004): the middle mouse button held puts the fovea under the cursor, in whichever
+    // eye it points at (the distribution is rebuilt only when the point moves).
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS && !io.WantCaptureMouse) {
+      int ww = 1, wh = 1;
+      glfwGetWindowSize(window, &ww, &wh);
+      const double ex = mx / std::max(ww, 1) * eyes;
+      const double gx = std::clamp(ex - std::floor(ex), 0.0, 1.0);
+      const double gy = std::clamp(my / std::max(wh, 1), 0.0, 1.0);
+      for (size_t i = 0; i < s.model.passes.size(); ++i) {
+        auto& pm = s.model.passes[i];
+        if (pm.type != "foveation") continue;
+        if (pm.values["gaze"] != 1) worker.setParam(i, "gaze", pm.values["gaze"] = 1);
+        if (pm.values["gaze_x"] != gx) worker.setParam(i, "gaze_x", pm.values["gaze_x"] = gx);
+        if (pm.values["gaze_y"] != gy) worker.setParam(i, "gaze_y", pm.values["gaze_y"] = gy);
+      }
+    }
+
     // Path playback and recording, in the scene-file path format (seconds).
     if (s.playing && s.path.size() >= 2) {
       const double t = now - s.playStart + s.path.front().time;

@@ -254,7 +254,7 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
         summary += "- " + o.sceneLabels[s] + ": " + kConfigLabels[c] +
                    " SSIM − Base = " + fmt(m.ssim - baseSsim, 4) + " (fovea " +
                    fmt(fovea - baseFovea, 4) + ")\n";
-      const std::string file = "image_" + label + "_" + kConfigLabels[c] + ".png";
+      const std::string file = "image_" + label + "_" + kConfigs[c] + ".png";
       writePng((fs::path(o.out) / file).string(), img);
       report.image(file, o.sceneLabels[s] + ": " + kConfigLabels[c]);
     }
