@@ -1,5 +1,6 @@
 #include "passes/atrous.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -82,43 +83,70 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTap(
 
 }  // namespace
 
+namespace {
+
+// The region's spans cut into pieces of at most kPiece pixels, ordered by column strip, then
+// row: consecutive pieces (one worker's range) read the same few hundred columns of the 5 tap
+// rows, which stay in cache even at a 16-pixel step on a 3664-pixel-wide dual image.
+constexpr int kPiece = 128;
+std::vector<AtrousSpan> cacheOrderedPieces(const AtrousRegion& region) {
+  std::vector<AtrousSpan> pieces;
+  for (const AtrousSpan& sp : region.spans)
+    for (int x = sp.x0; x < sp.x1; x += kPiece) {
+      AtrousSpan p = sp;
+      p.x0 = x;
+      p.x1 = std::min(sp.x1, x + kPiece);
+      pieces.push_back(p);
+    }
+  std::stable_sort(pieces.begin(), pieces.end(), [](const AtrousSpan& a, const AtrousSpan& b) {
+    return a.x0 / kPiece != b.x0 / kPiece ? a.x0 / kPiece < b.x0 / kPiece : a.y < b.y;
+  });
+  return pieces;
+}
+
+}  // namespace
+
 void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int iteration,
                  float meanLuminance, const AtrousWeights& w) {
-  // Each span's results go to its own slice of `out` (4 floats per pixel: r, g, b, weight) and
-  // are written back after every span is done, so every tap reads the values before this level.
-  std::vector<size_t> first(region.spans.size() + 1, 0);
-  for (size_t s = 0; s < region.spans.size(); ++s)
-    first[s + 1] = first[s] + size_t(region.spans[s].x1 - region.spans[s].x0);
+  // Each piece's results go to its own slice of `out` (4 floats per pixel: r, g, b, weight) and
+  // are written back after every piece is done, so every tap reads the values before this level.
+  const std::vector<AtrousSpan> pieces = cacheOrderedPieces(region);
+  std::vector<size_t> first(pieces.size() + 1, 0);
+  for (size_t s = 0; s < pieces.size(); ++s)
+    first[s + 1] = first[s] + size_t(pieces[s].x1 - pieces[s].x0);
   std::vector<float> out(first.back() * 4, 0.0f);
   const float sc = w.sigmaColor * meanLuminance;
   const float invColor = 1.0f / std::max(sc * sc * std::ldexp(1.0f, -iteration), 1e-20f);
   const float invNormal = 1.0f / std::max(w.sigmaNormal * w.sigmaNormal, 1e-20f);
-  tbb::parallel_for(size_t(0), region.spans.size(), [&](size_t s) {
-    const AtrousSpan& sp = region.spans[s];
-    const int count = sp.x1 - sp.x0;
-    float* acc = &out[first[s] * 4];
-    float *sr = acc, *sg = acc + count, *sb = acc + 2 * count, *sw = acc + 3 * count;
-    const size_t u0 = img.index(sp.x0, sp.y);
-    for (int ty = 0; ty < 5; ++ty) {
-      const int dy = (ty - 2) * step;
-      if (sp.y + dy < sp.vy0 || sp.y + dy >= sp.vy1) continue;
-      for (int tx = 0; tx < 5; ++tx) {
-        const int dx = (tx - 2) * step;
-        // Centres whose neighbour lies inside the view: [xa, xb).
-        const int xa = std::max(sp.x0, sp.vx0 - dx), xb = std::min(sp.x1, sp.vx1 - dx);
-        if (xb <= xa) continue;
-        const size_t u = u0 + size_t(xa - sp.x0);
-        const TapPlanes p{&img.c[0][u], &img.c[1][u], &img.c[2][u], &img.n[0][u], &img.n[1][u],
-                          &img.n[2][u], &img.x[0][u], &img.x[1][u], &img.x[2][u], &img.sampled[u]};
-        const int o = xa - sp.x0;
-        accumulateTap(p, ptrdiff_t(dy) * img.width + dx, xb - xa, kSpline[ty] * kSpline[tx],
-                      invColor, invNormal, &img.positionScale[u], &img.known[u], sr + o, sg + o,
-                      sb + o, sw + o);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 16), [&](const auto& range) {
+    for (size_t s = range.begin(); s != range.end(); ++s) {
+      const AtrousSpan& sp = pieces[s];
+      const int count = sp.x1 - sp.x0;
+      float* acc = &out[first[s] * 4];
+      float *sr = acc, *sg = acc + count, *sb = acc + 2 * count, *sw = acc + 3 * count;
+      const size_t u0 = img.index(sp.x0, sp.y);
+      for (int ty = 0; ty < 5; ++ty) {
+        const int dy = (ty - 2) * step;
+        if (sp.y + dy < sp.vy0 || sp.y + dy >= sp.vy1) continue;
+        for (int tx = 0; tx < 5; ++tx) {
+          const int dx = (tx - 2) * step;
+          // Centres whose neighbour lies inside the view: [xa, xb).
+          const int xa = std::max(sp.x0, sp.vx0 - dx), xb = std::min(sp.x1, sp.vx1 - dx);
+          if (xb <= xa) continue;
+          const size_t u = u0 + size_t(xa - sp.x0);
+          const TapPlanes p{&img.c[0][u], &img.c[1][u], &img.c[2][u], &img.n[0][u],
+                            &img.n[1][u], &img.n[2][u], &img.x[0][u], &img.x[1][u],
+                            &img.x[2][u],  &img.sampled[u]};
+          const int o = xa - sp.x0;
+          accumulateTap(p, ptrdiff_t(dy) * img.width + dx, xb - xa, kSpline[ty] * kSpline[tx],
+                        invColor, invNormal, &img.positionScale[u], &img.known[u], sr + o, sg + o,
+                        sb + o, sw + o);
+        }
       }
     }
   });
-  tbb::parallel_for(size_t(0), region.spans.size(), [&](size_t s) {
-    const AtrousSpan& sp = region.spans[s];
+  tbb::parallel_for(size_t(0), pieces.size(), [&](size_t s) {
+    const AtrousSpan& sp = pieces[s];
     const int count = sp.x1 - sp.x0;
     const float* acc = &out[first[s] * 4];
     const size_t u0 = img.index(sp.x0, sp.y);
