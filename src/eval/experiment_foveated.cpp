@@ -81,11 +81,22 @@ Resolution resolutionNamed(const std::string& n) {
 }
 
 // The thesis' three configurations and, beyond it, NH3LD with the periphery accumulated over
-// frames (periphery_accumulation).
-constexpr int kConfigCount = 4;
-const char* kConfigs[kConfigCount] = {"foveated-base", "foveated-nh2ld", "foveated-nh3ld",
-                                      "foveated-nh3ld-temporal"};
-const char* kConfigLabels[kConfigCount] = {"Base", "NH2LD", "NH3LD", "NH3LD + temporal"};
+// frames (periphery_accumulation) and NH3LD with its level counts from the measured noise.
+struct Config {
+  const char *pipeline, *label, *file;
+  std::vector<std::string> sets;
+};
+const std::vector<Config>& configs() {
+  static const std::vector<Config> c = {
+      {"foveated-base", "Base", "base", {}},
+      {"foveated-nh2ld", "NH2LD", "nh2ld", {}},
+      {"foveated-nh3ld", "NH3LD", "nh3ld", {}},
+      {"foveated-nh3ld-temporal", "NH3LD + temporal", "nh3ld-temporal", {}},
+      {"foveated-nh3ld", "NH3LD, levels from variance", "nh3ld-variance",
+       {"nh_denoise.levels_from=variance"}}};
+  return c;
+}
+constexpr int kTemporal = 3;  // the configuration measured after several frames
 
 Renderer makeRenderer(const Scene& scene, const char* pipeline, int w, int h,
                       const std::vector<std::string>& sets) {
@@ -127,7 +138,8 @@ Buffer squaredError(const Buffer& a, const Buffer& b) {
 int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
   std::vector<Scene> scenes;
   for (const std::string& s : o.scenes) scenes.push_back(loadScene(s));
-  for (const char* p : kConfigs) Pipeline::load(p);
+  for (const Config& c : configs()) Pipeline::load(c.pipeline);
+  const int kConfigCount = int(configs().size());
   fs::create_directories(o.out);
   ExperimentReport report(o.out, "Seed 004: foveated stereo path tracing, non-homogeneous denoising");
 
@@ -172,9 +184,12 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
       double baseMs = 0;
       for (int c = 0; c < kConfigCount; ++c) {
         std::printf("experiment foveated: Table 4, %s, %s, %s\n", rn.c_str(),
-                    o.sceneLabels[s].c_str(), kConfigLabels[c]);
+                    o.sceneLabels[s].c_str(), configs()[size_t(c)].label);
         std::fflush(stdout);
-        Renderer rd = makeRenderer(scenes[s], kConfigs[c], r.width, r.height, radii);
+        std::vector<std::string> sets = radii;
+        for (const std::string& x : configs()[size_t(c)].sets) sets.push_back(x);
+        Renderer rd = makeRenderer(scenes[s], configs()[size_t(c)].pipeline, r.width, r.height,
+                                   sets);
         const CameraDesc base = defaultCamera(scenes[s]);
         std::vector<double> ms, pt, dn;
         for (int f = 0; f < o.warmup + frames; ++f) {
@@ -191,7 +206,7 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
         if (c == 0) baseMs = mean;
         const double speedup = baseMs / mean;
         if (c == 2) speedups.push_back(speedup);
-        t4.push_back({rn, o.sceneLabels[s], kConfigLabels[c], fmt(mean, 1),
+        t4.push_back({rn, o.sceneLabels[s], configs()[size_t(c)].label, fmt(mean, 1),
                       fmt(summarize(pt).mean, 1), fmt(summarize(dn).mean, 1),
                       c == 0 ? "-" : fmt(speedup, 2), std::to_string(frames)});
       }
@@ -234,10 +249,11 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
     std::vector<Buffer> images;
     double baseSsim = 0, baseFovea = 0;
     for (int c = 0; c < kConfigCount; ++c) {
-      Renderer rd = makeRenderer(scenes[s], kConfigs[c], qw, qh, {});
+      const Config& cf = configs()[size_t(c)];
+      Renderer rd = makeRenderer(scenes[s], cf.pipeline, qw, qh, cf.sets);
       // The thesis' configurations from one frame; the accumulating one after temporalFrames
       // frames of the still camera.
-      const int frames = c == 3 ? o.temporalFrames : 1;
+      const int frames = c == kTemporal ? o.temporalFrames : 1;
       for (int f = 0; f < frames; ++f) rd.renderFrame(0, cam);
       const Buffer img = rd.output();
       images.push_back(img);
@@ -246,17 +262,17 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
       const Buffer err = squaredError(img, ref);
       const double fovea = meanOverLayer(ssimMap, qm, 0), periphery = meanOverLayer(ssimMap, qm, 2);
       if (c == 0) baseSsim = m.ssim, baseFovea = fovea;
-      t5.push_back({o.sceneLabels[s], kConfigLabels[c], fmt(100.0 * m.rmse, 4), fmt(m.ssim, 6),
+      t5.push_back({o.sceneLabels[s], cf.label, fmt(100.0 * m.rmse, 4), fmt(m.ssim, 6),
                     fmt(m.psnr, 4), fmt(fovea, 4), fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 0)), 3),
                     fmt(periphery, 4), fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 2)), 3),
                     fmt(flip(ref, img), 4)});
       if (c >= 2)
-        summary += "- " + o.sceneLabels[s] + ": " + kConfigLabels[c] +
+        summary += "- " + o.sceneLabels[s] + ": " + cf.label +
                    " SSIM − Base = " + fmt(m.ssim - baseSsim, 4) + " (fovea " +
                    fmt(fovea - baseFovea, 4) + ")\n";
-      const std::string file = "image_" + label + "_" + kConfigs[c] + ".png";
+      const std::string file = "image_" + label + "_" + cf.file + ".png";
       writePng((fs::path(o.out) / file).string(), img);
-      report.image(file, o.sceneLabels[s] + ": " + kConfigLabels[c]);
+      report.image(file, o.sceneLabels[s] + ": " + cf.label);
     }
     // Figure 17: the same crop of the left eye; Figure 18: FLIP maps side by side.
     const int crop[4] = {o.crop[0], o.crop[1], o.crop[2] ? o.crop[2] : qw / 2,
@@ -281,7 +297,8 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
                  o.sceneLabels[s] + ": reference, Base, NH2LD, NH3LD (same crop, left eye)");
     writePng((fs::path(o.out) / ("figure18_" + label + ".png")).string(), maps);
     report.image("figure18_" + label + ".png",
-                 o.sceneLabels[s] + ": FLIP against the reference, Base | NH2LD | NH3LD | NH3LD + temporal");
+                 o.sceneLabels[s] + ": FLIP against the reference, Base | NH2LD | NH3LD | NH3LD + temporal | NH3LD, levels "
+                 "from variance");
   }
   report.markdown("### Table 5 shape: quality against the same path tracer converged (" +
                   std::to_string(o.referenceSpp) + " spp, no foveation, no denoising), " +

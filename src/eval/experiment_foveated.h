@@ -9,7 +9,8 @@
 //    whole dual image and separately in the fovea (inner layer) and the periphery (outer layer);
 //  - Figures 17 and 18: same-crop comparisons and FLIP heat maps side by side;
 //  - beyond the thesis: NH3LD with the periphery accumulated over frames (timed along the path,
-//    its quality after `temporalFrames` frames of the still camera).
+//    its quality after `temporalFrames` frames of the still camera), and NH3LD with each
+//    region's level count from its measured noise (nh_denoise levels_from = variance).
 // Quality is measured at a smaller size (`qualityWidth` x `qualityHeight` per eye, radii scaled
 // from the FHD ones by the eye's height) so the references stay affordable on a CPU.
 #pragma once

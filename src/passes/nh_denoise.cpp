@@ -11,6 +11,51 @@
 
 namespace tandem {
 
+namespace {
+
+struct RegionNoise {
+  double variance = 0;  // of a listed pixel's luminance about its listed 3x3 neighbours' mean
+  double density = 0;   // listed share of the region's pixels
+};
+
+// The noise of a region's estimate, measured on this frame: at a few samples per pixel the
+// difference between a pixel and the mean of its listed neighbours on the same surface (normals
+// within 25°) is noise, not signal.
+RegionNoise measureNoise(const AtrousImage& img, const AtrousRegion& region) {
+  double sum = 0, listed = 0, total = 0, used = 0;
+  auto lum = [&](size_t i) {
+    return 0.2126 * img.c[0][i] + 0.7152 * img.c[1][i] + 0.0722 * img.c[2][i];
+  };
+  for (const AtrousSpan& sp : region.spans)
+    for (int x = sp.x0; x < sp.x1; ++x) {
+      ++total;
+      const size_t u = img.index(x, sp.y);
+      if (img.sampled[u] <= 0) continue;
+      ++listed;
+      double m = 0;
+      int k = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = sp.y + dy;
+          if ((dx == 0 && dy == 0) || nx < sp.vx0 || nx >= sp.vx1 || ny < sp.vy0 || ny >= sp.vy1)
+            continue;
+          const size_t j = img.index(nx, ny);
+          const float cosN = img.n[0][u] * img.n[0][j] + img.n[1][u] * img.n[1][j] +
+                             img.n[2][u] * img.n[2][j];
+          if (img.sampled[j] <= 0 || cosN < 0.9f) continue;
+          m += lum(j);
+          ++k;
+        }
+      if (k == 0) continue;
+      const double d = lum(u) - m / k;
+      sum += d * d;
+      ++used;
+    }
+  return {used > 0 ? sum / used : 0.0, total > 0 ? listed / total : 0.0};
+}
+
+}  // namespace
+
 std::vector<BufferSlot> NHDenoisePass::inputs() const {
   return {{"pt_noisy", 3, BufferKind::Color},  {"normal", 3, BufferKind::Normal},
           {"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth},
@@ -29,6 +74,8 @@ std::vector<ParamDesc> NHDenoisePass::params() const {
       {"sigma_normal", T::Float, 0.3, 0.001, 10, "normal edge-stopping σ", {}},
       {"sigma_position", T::Float, 0.05, 0.0001, 10, "position edge-stopping σ, relative to eye distance", {}},
       {"demodulate", T::Bool, 1, 0, 1, "filter illumination (divided by the diffuse albedo)", {}},
+      {"levels_from", T::Enum, 0, 0, 1, "fixed: the level counts above; variance: per region from its measured noise (beyond the thesis)", {"fixed", "variance"}},
+      {"target_variance", T::Float, 0.001, 1e-6, 10, "variance: the relative noise variance per pixel area each region is filtered down to", {}},
   };
 }
 
@@ -101,6 +148,19 @@ void NHDenoisePass::execute(FrameContext& ctx) {
         x = end;
       }
     }
+  if (param("levels_from") == 1) {
+    const float target = float(param("target_variance"));
+    const float mean = sampledMeanLuminance(img);
+    for (size_t r = 0; r < regions.size(); ++r) {
+      const RegionNoise noise = measureNoise(img, regions[r]);
+      // Each level widens the footprint about fourfold: levels = log4 of the noise per pixel
+      // area (the variance over the listed share) over the target.
+      const double perArea = noise.variance / (double(mean) * mean) / std::max(noise.density, 1e-3);
+      regions[r].levels =
+          std::clamp(int(std::ceil(std::log(std::max(perArea / target, 1.0)) / std::log(4.0))), 1, 10);
+      ctx.counters["nh_denoise/levels_region" + std::to_string(r)] = regions[r].levels;
+    }
+  }
   ctx.passParts.push_back({"setup", msSince(t0), 0});
   const auto t1 = Clock::now();
   steps_ = nonHomogeneousAtrous(img, regions, weights);

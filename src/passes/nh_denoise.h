@@ -5,6 +5,10 @@
 // binary mask marks as sampled are read; the others are filled from them. With `demodulate` the
 // filter runs on the illumination (colour minus emission, over the diffuse albedo; Dammertz's
 // optional diffuse-buffer step) and the albedo is multiplied back after.
+// Beyond the thesis, `levels_from = variance` sets each region's level count from this frame's
+// measured noise: the variance of a listed pixel about its listed neighbours (same surface),
+// relative to the mean luminance, over the region's listed share (the noise per pixel area);
+// each level widens the footprint about fourfold, so levels = ceil(log4(noise / target)).
 // Inputs: pt_noisy, normal, position, depth, diffuse, emission, fov_mask, fov_layer.
 // Output: denoised.
 #pragma once

@@ -471,3 +471,35 @@ TEST(Foveated, PeripheryAccumulationAveragesOutsideTheFovea) {
   r.renderFrame(0, moved);
   EXPECT_LT(r.context().counters.at("periphery_accumulation/mean_frames"), 1.2);
 }
+
+// Levels from measured variance: a region with twice the noise variance at half the sampling
+// density has four times the noise per pixel area (4.4 as measured: its fewer listed neighbours
+// give a noisier mean), so it gets one level more.
+TEST(Atrous, LevelsFromVarianceFollowTheNoisePerArea) {
+  const int w = 128, h = 64;
+  FrameContext ctx = frame(w, h);
+  std::mt19937 g(11);
+  std::normal_distribution<float> noise(0.0f, 1.0f);
+  const std::vector<float> half = randomMask(w * h, 0.5, 12);
+  std::vector<float> mask(size_t(w * h));
+  std::vector<Vec3> color(size_t(w * h)), normal(size_t(w * h), Vec3(0, 0, 1));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y * w + x);
+      const bool right = x >= w / 2;
+      mask[i] = right ? half[i] : 1.0f;
+      color[i] = Vec3(1.0f + (right ? 0.1414f : 0.1f) * noise(g));
+    }
+  wallInputs(ctx, mask, color, normal);
+  Buffer& layer = ctx.buffers["fov_layer"];
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) layer.at(x, y)[0] = x >= w / 2 ? 2.0f : 0.0f;
+  NHDenoisePass pass;
+  pass.setParam("levels_from", 1);
+  pass.setParam("target_variance", 1e-4);
+  pass.execute(ctx);
+  const double inner = ctx.counters.at("nh_denoise/levels_region0");
+  const double outer = ctx.counters.at("nh_denoise/levels_region2");
+  EXPECT_GE(inner, 2);
+  EXPECT_EQ(outer, inner + 1);
+}
