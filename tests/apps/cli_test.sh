@@ -31,6 +31,12 @@ check "rt pipeline renders" "[ -s $D/rt.png ]"
 check "hybrid-dof renders with its buffers" "[ -s $D/dof/dof_fg_hybrid-dof.png ] && [ -s $D/dof/dof_fg_hybrid-dof_ray_mask.png ]"
 out=$("$T" reference --scene "$SRC/scenes/dof_fg.json" --integrator whitted --spp 2 --width 48 --height 27 --no-cache --quiet --out "$D/dofref.png" 2>&1)
 check "whitted reference renders" "[ -s $D/dofref.png ] && grep -q '2 spp' <<<\"\$out\""
+"$T" render "$SRC/scenes/foveated_pink_room.json" --pipeline foveated-nh3ld --width 64 --height 72 \
+  --aov pt_noisy,fov_layer,fov_mask --out "$D/fov/" >/dev/null
+check "foveated-nh3ld renders the dual image with its buffers" \
+  "[ -s $D/fov/foveated_pink_room_foveated-nh3ld.png ] && [ -s $D/fov/foveated_pink_room_foveated-nh3ld_fov_layer.png ]"
+out=$("$T" reference --scene "$SRC/scenes/foveated_pink_room.json" --integrator diffuse-gi --spp 2 --width 32 --height 36 --no-cache --quiet --out "$D/fovref.png" 2>&1)
+check "diffuse-gi reference renders" "[ -s $D/fovref.png ] && grep -q '2 spp' <<<\"\$out\""
 out=$("$T" compare "$D/demo/cornell_deferred.png" "$D/rt.png" --heatmap "$D/heat.png" --flip-map "$D/flip.png")
 check "compare raster vs rt output" "grep -q ssim <<<\"\$out\" && grep -q '^flip ' <<<\"\$out\" && [ -s $D/heat.png ] && [ -s $D/flip.png ]"
 ssim=$(awk '/^ssim/ {print $2}' <<<"$out")
@@ -172,6 +178,9 @@ expect_error "unknown scene field" "objects[0].rotaton: unknown field" "$T" rend
 expect_error "compare size mismatch" "differs" "$T" compare "$D/demo/cornell_deferred.png" "$D/bunny.png"
 expect_error "compare missing file" "not found" "$T" compare "$D/nope.png" "$D/bunny.png"
 expect_error "info missing" "not found" "$T" info /nonexistent.gltf
+expect_error "unknown named resolution" "--resolution" "$T" render cornell --resolution 8k --out "$D/err/x.png"
+expect_error "foveation r1 below r0" "r1" "$T" render cornell --pipeline foveated-nh3ld --width 32 --height 18 \
+  --set foveation.r0=40 --set foveation.r1=20 --out "$D/err/x.png"
 
 if [ $fail -ne 0 ]; then echo "cli tests failed"; exit 1; fi
 echo "cli tests passed"
