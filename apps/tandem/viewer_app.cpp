@@ -196,7 +196,8 @@ int runViewer(const ViewerOptions& o) {
 
     // Gaze (seed 004): the middle mouse button held puts the fovea under the cursor, in whichever
     // eye it points at (the distribution is rebuilt only when the point moves).
-    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS && !io.WantCaptureMouse) {
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS &&
+        !io.WantCaptureMouse) {
       int ww = 1, wh = 1;
       glfwGetWindowSize(window, &ww, &wh);
       const double ex = mx / std::max(ww, 1) * eyes;

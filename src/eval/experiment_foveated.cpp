@@ -92,7 +92,9 @@ const std::vector<Config>& configs() {
       {"foveated-nh2ld", "NH2LD", "nh2ld", {}},
       {"foveated-nh3ld", "NH3LD", "nh3ld", {}},
       {"foveated-nh3ld-temporal", "NH3LD + temporal", "nh3ld-temporal", {}},
-      {"foveated-nh3ld", "NH3LD, levels from variance", "nh3ld-variance",
+      {"foveated-nh3ld",
+       "NH3LD, levels from variance",
+       "nh3ld-variance",
        {"nh_denoise.levels_from=variance"}}};
   return c;
 }
@@ -141,7 +143,8 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
   for (const Config& c : configs()) Pipeline::load(c.pipeline);
   const int kConfigCount = int(configs().size());
   fs::create_directories(o.out);
-  ExperimentReport report(o.out, "Seed 004: foveated stereo path tracing, non-homogeneous denoising");
+  ExperimentReport report(o.out,
+                          "Seed 004: foveated stereo path tracing, non-homogeneous denoising");
 
   // Table 2: the distribution of each resolution (the pipelines' defaults: p = 0.5, 4/3/2 spp).
   std::vector<std::vector<std::string>> t2;
@@ -188,8 +191,8 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
         std::fflush(stdout);
         std::vector<std::string> sets = radii;
         for (const std::string& x : configs()[size_t(c)].sets) sets.push_back(x);
-        Renderer rd = makeRenderer(scenes[s], configs()[size_t(c)].pipeline, r.width, r.height,
-                                   sets);
+        Renderer rd =
+            makeRenderer(scenes[s], configs()[size_t(c)].pipeline, r.width, r.height, sets);
         const CameraDesc base = defaultCamera(scenes[s]);
         std::vector<double> ms, pt, dn;
         for (int f = 0; f < o.warmup + frames; ++f) {
@@ -263,9 +266,9 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
       const double fovea = meanOverLayer(ssimMap, qm, 0), periphery = meanOverLayer(ssimMap, qm, 2);
       if (c == 0) baseSsim = m.ssim, baseFovea = fovea;
       t5.push_back({o.sceneLabels[s], cf.label, fmt(100.0 * m.rmse, 4), fmt(m.ssim, 6),
-                    fmt(m.psnr, 4), fmt(fovea, 4), fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 0)), 3),
-                    fmt(periphery, 4), fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 2)), 3),
-                    fmt(flip(ref, img), 4)});
+                    fmt(m.psnr, 4), fmt(fovea, 4),
+                    fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 0)), 3), fmt(periphery, 4),
+                    fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 2)), 3), fmt(flip(ref, img), 4)});
       if (c >= 2)
         summary += "- " + o.sceneLabels[s] + ": " + cf.label +
                    " SSIM − Base = " + fmt(m.ssim - baseSsim, 4) + " (fovea " +
@@ -296,14 +299,16 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
     report.image("figure17_" + label + ".png",
                  o.sceneLabels[s] + ": reference, Base, NH2LD, NH3LD (same crop, left eye)");
     writePng((fs::path(o.out) / ("figure18_" + label + ".png")).string(), maps);
-    report.image("figure18_" + label + ".png",
-                 o.sceneLabels[s] + ": FLIP against the reference, Base | NH2LD | NH3LD | NH3LD + temporal | NH3LD, levels "
-                 "from variance");
+    report.image(
+        "figure18_" + label + ".png",
+        o.sceneLabels[s] +
+            ": FLIP against the reference, Base | NH2LD | NH3LD | NH3LD + temporal | NH3LD, levels "
+            "from variance");
   }
   report.markdown("### Table 5 shape: quality against the same path tracer converged (" +
                   std::to_string(o.referenceSpp) + " spp, no foveation, no denoising), " +
-                  std::to_string(qw) + "x" + std::to_string(qh) +
-                  " per eye (radii " + fmt(qd.r0, 0) + " / " + fmt(qd.r1, 0) +
+                  std::to_string(qw) + "x" + std::to_string(qh) + " per eye (radii " +
+                  fmt(qd.r0, 0) + " / " + fmt(qd.r1, 0) +
                   "); fovea = inner layer, periphery = outer layer, both eyes\n\n");
   report.table("table5_quality",
                {"scene", "renderer", "RMSE (%)", "SSIM", "PSNR (dB)", "fovea SSIM",

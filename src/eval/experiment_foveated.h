@@ -25,11 +25,11 @@ struct FoveatedExperimentOptions {
   std::string cache;  // reference cache folder ("" = none)
   std::vector<std::string> scenes, sceneLabels;
   std::vector<std::string> resolutions{"fhd", "quest2"};
-  int warmup = 1;                              // untimed frames (the distribution is built)
-  int fhdFrames = 4, quest2Frames = 2;         // timed frames along the camera path
+  int warmup = 1;                               // untimed frames (the distribution is built)
+  int fhdFrames = 4, quest2Frames = 2;          // timed frames along the camera path
   int qualityWidth = 480, qualityHeight = 540;  // per eye
   int referenceSpp = 1024;
-  int temporalFrames = 8;  // still-camera frames before NH3LD + temporal is measured
+  int temporalFrames = 8;      // still-camera frames before NH3LD + temporal is measured
   int crop[4] = {0, 0, 0, 0};  // Figure 17 crop of the left eye at the quality size (0: centre)
 };
 

@@ -45,8 +45,8 @@ inline float expNeg(float e) {
   const int xi = int(x);  // toward zero: f in (-1, 0]
   const float f = (x - float(xi)) * 0.69314718f;
   const float p =
-      1.0f +
-      f * (1.0f + f * (0.5f + f * (1.0f / 6 + f * (1.0f / 24 + f * (1.0f / 120 + f * (1.0f / 720))))));
+      1.0f + f * (1.0f + f * (0.5f + f * (1.0f / 6 +
+                                          f * (1.0f / 24 + f * (1.0f / 120 + f * (1.0f / 720))))));
   return p * std::bit_cast<float>((xi + 127) << 23);
 }
 
@@ -60,9 +60,9 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTap(
     const TapPlanes& p, ptrdiff_t offset, int count, float kernel, float invColor, float invNormal,
     const float* __restrict scale, const float* __restrict known, float* __restrict sr,
     float* __restrict sg, float* __restrict sb, float* __restrict sw) {
-  const float *__restrict c0 = p.c0, *__restrict c1 = p.c1, *__restrict c2 = p.c2;
-  const float *__restrict n0 = p.n0, *__restrict n1 = p.n1, *__restrict n2 = p.n2;
-  const float *__restrict x0 = p.x0, *__restrict x1 = p.x1, *__restrict x2 = p.x2;
+  const float* __restrict c0 = p.c0, * __restrict c1 = p.c1, * __restrict c2 = p.c2;
+  const float* __restrict n0 = p.n0, * __restrict n1 = p.n1, * __restrict n2 = p.n2;
+  const float* __restrict x0 = p.x0, * __restrict x1 = p.x1, * __restrict x2 = p.x2;
   const float* __restrict b = p.b;
   for (int i = 0; i < count; ++i) {
     const ptrdiff_t j = i + offset;
@@ -134,9 +134,9 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
           const int xa = std::max(sp.x0, sp.vx0 - dx), xb = std::min(sp.x1, sp.vx1 - dx);
           if (xb <= xa) continue;
           const size_t u = u0 + size_t(xa - sp.x0);
-          const TapPlanes p{&img.c[0][u], &img.c[1][u], &img.c[2][u], &img.n[0][u],
-                            &img.n[1][u], &img.n[2][u], &img.x[0][u], &img.x[1][u],
-                            &img.x[2][u],  &img.sampled[u]};
+          const TapPlanes p{&img.c[0][u], &img.c[1][u],   &img.c[2][u], &img.n[0][u],
+                            &img.n[1][u], &img.n[2][u],   &img.x[0][u], &img.x[1][u],
+                            &img.x[2][u], &img.sampled[u]};
           const int o = xa - sp.x0;
           accumulateTap(p, ptrdiff_t(dy) * img.width + dx, xb - xa, kSpline[ty] * kSpline[tx],
                         invColor, invNormal, &img.positionScale[u], &img.known[u], sr + o, sg + o,

@@ -1,7 +1,8 @@
 // Edge-avoiding À-Trous wavelet filtering (Dammertz et al. 2010), non-homogeneous as in seed 004
 // §4.4: a 5x5 kernel from the cubic B-spline (1/16, 1/4, 3/8, 1/4, 1/16) taps pixels `step` apart;
 // each tap is weighted by colour, normal and position edge-stopping weights (eq. 4.1)
-//   w = exp(-|c_j - c_u|² / (σ_c² L̄² 2^-k)) · exp(-|n_j - n_u|² / σ_n²) · exp(-|x_j - x_u|² / (σ_x z_u)²)
+//   w = exp(-|c_j - c_u|² / (σ_c² L̄² 2^-k)) · exp(-|n_j - n_u|² / σ_n²) · exp(-|x_j - x_u|² / (σ_x
+//   z_u)²)
 // times the binary mask b(j) (eq. 4.2): a pixel that was not sampled is never read. L̄ is the mean
 // luminance of the sampled pixels (σ_c is relative, so exposure does not matter) and k the
 // iteration's index within its region (σ_c halves each iteration, as Dammertz's c_phi); z_u is
@@ -18,9 +19,9 @@
 namespace tandem {
 
 struct AtrousWeights {
-  float sigmaColor = 16.0f;    // relative to the sampled pixels' mean luminance
-  float sigmaNormal = 0.3f;    // unit-normal difference
-  float sigmaPosition = 0.05f; // relative to the centre's distance from the eye
+  float sigmaColor = 16.0f;     // relative to the sampled pixels' mean luminance
+  float sigmaNormal = 0.3f;     // unit-normal difference
+  float sigmaPosition = 0.05f;  // relative to the centre's distance from the eye
 };
 
 // The frame in planes: colour (filtered in place), guides and per-pixel flags.

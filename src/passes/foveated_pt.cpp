@@ -13,9 +13,12 @@
 namespace tandem {
 
 std::vector<BufferSlot> FoveatedPTPass::inputs() const {
-  return {{"position", 3, BufferKind::Position}, {"normal", 3, BufferKind::Normal},
-          {"geo_normal", 3, BufferKind::Normal}, {"diffuse", 4, BufferKind::Material},
-          {"emission", 3, BufferKind::Color},    {"depth", 1, BufferKind::Depth},
+  return {{"position", 3, BufferKind::Position},
+          {"normal", 3, BufferKind::Normal},
+          {"geo_normal", 3, BufferKind::Normal},
+          {"diffuse", 4, BufferKind::Material},
+          {"emission", 3, BufferKind::Color},
+          {"depth", 1, BufferKind::Depth},
           {"fov_coords", 3, BufferKind::List, Extent::any()}};
 }
 

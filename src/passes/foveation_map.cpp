@@ -83,7 +83,8 @@ FoveationMap computeFoveation(int width, int height, const FoveationDesc& desc) 
     const size_t k1 = std::max(k0, size_t(std::llround(discAreaInRect(g, desc.r1, width, height))));
     auto byDistance = order.begin();
     if (k1 < n) std::nth_element(byDistance, byDistance + ptrdiff_t(k1), order.end());
-    if (k0 < k1) std::nth_element(byDistance, byDistance + ptrdiff_t(k0), byDistance + ptrdiff_t(k1));
+    if (k0 < k1)
+      std::nth_element(byDistance, byDistance + ptrdiff_t(k0), byDistance + ptrdiff_t(k1));
     for (size_t i = 0; i < std::min(k1, n); ++i) m.layer[order[i].second] = i < k0 ? 0 : 1;
     m.layers[0].radius = desc.r0;
     m.layers[1].radius = desc.r1;

@@ -34,19 +34,19 @@ struct FoveationDesc {
 };
 
 struct FoveationLayerStats {
-  float radius = 0;       // outer radius in pixels (0: the viewport's edge)
-  int64_t area = 0;       // pixels of the layer
-  int64_t listed = 0;     // pixels listed for sampling
-  int spp = 0;            // samples per listed pixel
+  float radius = 0;    // outer radius in pixels (0: the viewport's edge)
+  int64_t area = 0;    // pixels of the layer
+  int64_t listed = 0;  // pixels listed for sampling
+  int spp = 0;         // samples per listed pixel
   int64_t samples() const { return listed * spp; }
   int64_t tableSamples() const { return area * spp; }  // Table 2's "samples": area x spp
 };
 
 struct FoveationMap {
-  int width = 0, height = 0;    // one eye
-  std::vector<uint8_t> layer;   // per pixel: 0 inner, 1 middle, 2 outer
-  std::vector<uint16_t> spp;    // per pixel: samples, 0 = not listed (the binary mask is spp > 0)
-  std::vector<uint32_t> coords; // listed pixels, y * width + x, in row order
+  int width = 0, height = 0;     // one eye
+  std::vector<uint8_t> layer;    // per pixel: 0 inner, 1 middle, 2 outer
+  std::vector<uint16_t> spp;     // per pixel: samples, 0 = not listed (the binary mask is spp > 0)
+  std::vector<uint32_t> coords;  // listed pixels, y * width + x, in row order
   FoveationLayerStats layers[3];
   int64_t totalSamples() const;
 };

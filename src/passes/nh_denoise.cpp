@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "passes/atrous.h"
 #include "core/profiler.h"
+#include "passes/atrous.h"
 #include "pipeline/frame_context.h"
 
 namespace tandem {
@@ -40,8 +40,8 @@ RegionNoise measureNoise(const AtrousImage& img, const AtrousRegion& region) {
           if ((dx == 0 && dy == 0) || nx < sp.vx0 || nx >= sp.vx1 || ny < sp.vy0 || ny >= sp.vy1)
             continue;
           const size_t j = img.index(nx, ny);
-          const float cosN = img.n[0][u] * img.n[0][j] + img.n[1][u] * img.n[1][j] +
-                             img.n[2][u] * img.n[2][j];
+          const float cosN =
+              img.n[0][u] * img.n[0][j] + img.n[1][u] * img.n[1][j] + img.n[2][u] * img.n[2][j];
           if (img.sampled[j] <= 0 || cosN < 0.9f) continue;
           m += lum(j);
           ++k;
@@ -57,7 +57,7 @@ RegionNoise measureNoise(const AtrousImage& img, const AtrousRegion& region) {
 }  // namespace
 
 std::vector<BufferSlot> NHDenoisePass::inputs() const {
-  return {{"pt_noisy", 3, BufferKind::Color},  {"normal", 3, BufferKind::Normal},
+  return {{"pt_noisy", 3, BufferKind::Color},    {"normal", 3, BufferKind::Normal},
           {"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth},
           {"diffuse", 4, BufferKind::Material},  {"emission", 3, BufferKind::Color},
           {"fov_mask", 1, BufferKind::Mask},     {"fov_layer", 1, BufferKind::Id}};
@@ -66,16 +66,53 @@ std::vector<BufferSlot> NHDenoisePass::inputs() const {
 std::vector<ParamDesc> NHDenoisePass::params() const {
   using T = ParamType;
   return {
-      {"regions", T::Enum, 2, 0, 2, "one: whole frame (Base); two: inner + rest (NH2LD); three: NH3LD", {"one", "two", "three"}},
+      {"regions",
+       T::Enum,
+       2,
+       0,
+       2,
+       "one: whole frame (Base); two: inner + rest (NH2LD); three: NH3LD",
+       {"one", "two", "three"}},
       {"levels_inner", T::Int, 2, 0, 10, "M: levels of the inner layer (regions two, three)", {}},
       {"levels_middle", T::Int, 3, 0, 10, "N: levels of the middle ring (regions three)", {}},
-      {"levels_outer", T::Int, 5, 0, 10, "P: levels of the outer layer (two: middle + outer; one: the frame)", {}},
-      {"sigma_color", T::Float, 16.0, 0.001, 1000, "colour edge-stopping σ, relative to mean luminance", {}},
+      {"levels_outer",
+       T::Int,
+       5,
+       0,
+       10,
+       "P: levels of the outer layer (two: middle + outer; one: the frame)",
+       {}},
+      {"sigma_color",
+       T::Float,
+       16.0,
+       0.001,
+       1000,
+       "colour edge-stopping σ, relative to mean luminance",
+       {}},
       {"sigma_normal", T::Float, 0.3, 0.001, 10, "normal edge-stopping σ", {}},
-      {"sigma_position", T::Float, 0.05, 0.0001, 10, "position edge-stopping σ, relative to eye distance", {}},
+      {"sigma_position",
+       T::Float,
+       0.05,
+       0.0001,
+       10,
+       "position edge-stopping σ, relative to eye distance",
+       {}},
       {"demodulate", T::Bool, 1, 0, 1, "filter illumination (divided by the diffuse albedo)", {}},
-      {"levels_from", T::Enum, 0, 0, 1, "fixed: the level counts above; variance: per region from its measured noise (beyond the thesis)", {"fixed", "variance"}},
-      {"target_variance", T::Float, 0.001, 1e-6, 10, "variance: the relative noise variance per pixel area each region is filtered down to", {}},
+      {"levels_from",
+       T::Enum,
+       0,
+       0,
+       1,
+       "fixed: the level counts above; variance: per region from its measured noise (beyond the "
+       "thesis)",
+       {"fixed", "variance"}},
+      {"target_variance",
+       T::Float,
+       0.001,
+       1e-6,
+       10,
+       "variance: the relative noise variance per pixel area each region is filtered down to",
+       {}},
   };
 }
 
@@ -134,7 +171,9 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   std::vector<AtrousRegion> regions(static_cast<size_t>(count));
   auto regionOf = [&](int L) { return mode == 0 ? 0 : mode == 1 ? std::min(L, 1) : L; };
   for (int r = 0; r < count; ++r)
-    regions[size_t(r)].levels = mode == 0 ? levels[2] : (mode == 1 && r == 1) ? levels[2] : levels[r];
+    regions[size_t(r)].levels = mode == 0               ? levels[2]
+                                : (mode == 1 && r == 1) ? levels[2]
+                                                        : levels[r];
   for (const View& v : ctx.views)
     for (int y = v.y; y < v.y + v.height(); ++y) {
       int x = v.x;
@@ -156,8 +195,8 @@ void NHDenoisePass::execute(FrameContext& ctx) {
       // Each level widens the footprint about fourfold: levels = log4 of the noise per pixel
       // area (the variance over the listed share) over the target.
       const double perArea = noise.variance / (double(mean) * mean) / std::max(noise.density, 1e-3);
-      regions[r].levels =
-          std::clamp(int(std::ceil(std::log(std::max(perArea / target, 1.0)) / std::log(4.0))), 1, 10);
+      regions[r].levels = std::clamp(
+          int(std::ceil(std::log(std::max(perArea / target, 1.0)) / std::log(4.0))), 1, 10);
       ctx.counters["nh_denoise/levels_region" + std::to_string(r)] = regions[r].levels;
     }
   }

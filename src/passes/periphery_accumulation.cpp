@@ -11,17 +11,38 @@ namespace tandem {
 std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
   BufferSlot history{"pt_history", 7, BufferKind::List};
   history.history = true;
-  return {{"pt_noisy", 3, BufferKind::Color},     {"fov_mask", 1, BufferKind::Mask},
-          {"fov_layer", 1, BufferKind::Id},       {"motion", 2, BufferKind::Motion},
-          {"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth},
+  return {{"pt_noisy", 3, BufferKind::Color},
+          {"fov_mask", 1, BufferKind::Mask},
+          {"fov_layer", 1, BufferKind::Id},
+          {"motion", 2, BufferKind::Motion},
+          {"position", 3, BufferKind::Position},
+          {"depth", 1, BufferKind::Depth},
           history};
 }
 
 std::vector<ParamDesc> PeripheryAccumulationPass::params() const {
   using T = ParamType;
-  return {{"from_layer", T::Int, 1, 0, 3, "first layer accumulated (0 inner, 1 middle, 2 outer; 3: none)", {}},
-          {"alpha_min", T::Float, 0.1, 0.01, 1, "smallest weight of this frame (the history's length)", {}},
-          {"position_tolerance", T::Float, 0.02, 0.0001, 1, "same surface: world distance over eye distance", {}}};
+  return {{"from_layer",
+           T::Int,
+           1,
+           0,
+           3,
+           "first layer accumulated (0 inner, 1 middle, 2 outer; 3: none)",
+           {}},
+          {"alpha_min",
+           T::Float,
+           0.1,
+           0.01,
+           1,
+           "smallest weight of this frame (the history's length)",
+           {}},
+          {"position_tolerance",
+           T::Float,
+           0.02,
+           0.0001,
+           1,
+           "same surface: world distance over eye distance",
+           {}}};
 }
 
 void PeripheryAccumulationPass::execute(FrameContext& ctx) {
@@ -53,7 +74,8 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
         float n = 1;
         if (prev && int(layer.at(x, y)[0]) >= fromLayer && depth.at(x, y)[0] > 0) {
           const float* mv = motion.at(x, y);
-          const int px = int(std::lround(float(x) - mv[0])), py = int(std::lround(float(y) - mv[1]));
+          const int px = int(std::lround(float(x) - mv[0])),
+                    py = int(std::lround(float(y) - mv[1]));
           if (v.contains(px, py)) {
             const float* ph = prev->at(px, py);
             const Vec3 pp(ph[4], ph[5], ph[6]);

@@ -45,11 +45,11 @@ void RTGBufferPass::execute(FrameContext& ctx) {
       float depth = v.camera.depthOf(r.origin + r.dir * h.t);
       g.write(x + v.x, y + v.y, s, depth, motionVector(ctx.frame, v, s.object, s.position));
     };
-    rays += tracePrimaryTile(v.camera, rt, fx0 - v.x, fy0 - v.y, fx1 - v.x, fy1 - v.y,
-                             [&](int n, const int* px, const int* py, const Ray* rs,
-                                 const Hit* hits) {
-                               for (int k = 0; k < n; ++k) pixel(px[k], py[k], rs[k], hits[k]);
-                             });
+    rays +=
+        tracePrimaryTile(v.camera, rt, fx0 - v.x, fy0 - v.y, fx1 - v.x, fy1 - v.y,
+                         [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
+                           for (int k = 0; k < n; ++k) pixel(px[k], py[k], rs[k], hits[k]);
+                         });
   });
   ctx.passRays += double(rays.load());
 }

@@ -62,7 +62,8 @@ Vec3 DiffuseGI::reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, fl
   const Hit h = rt_.intersect(r);
   if (!h.valid()) return sum + scene_.skyRadiance(r.dir);
   const float tuv[3] = {h.t, h.u, h.v};
-  const SurfaceSample hs = resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, r.dir, time, tuv);
+  const SurfaceSample hs =
+      resolveSurface(*rt_.frame(), h.object, h.prim, r.origin, r.dir, time, tuv);
   const Vec3 wh = -r.dir;
   const Vec3 nh = dot(hs.normal, wh) < 0.0f ? -hs.normal : hs.normal;
   return sum + emitted(hs, wh) + albedo(hs) * oneLight(hs, nh, u2.x, time, rays);

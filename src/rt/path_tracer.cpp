@@ -74,7 +74,6 @@ Vec3 sampleCosine(Vec3 n, float u1, float u2) {
   return toWorld({r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))}, n);
 }
 
-
 EmitterTable::EmitterTable(const FrameScene& fs) : frame_(&fs) {
   const Scene& scene = *fs.scene;
   objectFirst_.assign(fs.objects.size(), -1);

@@ -293,13 +293,13 @@ TEST(Atrous, DecreasingStepOrderOfAlgorithm1) {
     }
   NHDenoisePass pass;  // defaults: NH3LD, M = 2, N = 3, P = 5
   pass.execute(ctx);
-  const std::vector<std::pair<int, int>> nh3 = {{0, 2}, {0, 1}, {1, 4}, {1, 2}, {1, 1},
+  const std::vector<std::pair<int, int>> nh3 = {{0, 2},  {0, 1}, {1, 4}, {1, 2}, {1, 1},
                                                 {2, 16}, {2, 8}, {2, 4}, {2, 2}, {2, 1}};
   EXPECT_EQ(pass.lastSteps(), nh3);
   pass.setParam("regions", 1);  // NH2LD: inner M = 3, the rest P = 5
   pass.setParam("levels_inner", 3);
   pass.execute(ctx);
-  const std::vector<std::pair<int, int>> nh2 = {{0, 4},  {0, 2}, {0, 1}, {1, 16},
+  const std::vector<std::pair<int, int>> nh2 = {{0, 4}, {0, 2}, {0, 1}, {1, 16},
                                                 {1, 8}, {1, 4}, {1, 2}, {1, 1}};
   EXPECT_EQ(pass.lastSteps(), nh2);
 }
@@ -395,7 +395,8 @@ TEST(Foveated, BadValuesNameTheField) {
   d.r1 = 100;
   EXPECT_NE(message([&] { d.validate("pass foveation"); }).find("r1"), std::string::npos);
   Pipeline p = Pipeline::load("foveated-nh3ld");
-  EXPECT_NE(message([&] { p.setParam("foveation.p=1.5", "cli"); }).find("foveation.p"), std::string::npos);
+  EXPECT_NE(message([&] { p.setParam("foveation.p=1.5", "cli"); }).find("foveation.p"),
+            std::string::npos);
   EXPECT_NE(message([&] { p.setParam("nh_denoise.levels_inner=11", "cli"); }).find("levels_inner"),
             std::string::npos);
   EXPECT_NE(message([&] { p.setParam("nh_denoise.levels_outer=-1", "cli"); }).find("levels_outer"),

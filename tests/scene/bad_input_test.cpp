@@ -53,14 +53,14 @@ TEST(BadInput, UnknownJsonField) {
 }
 
 TEST(BadInput, GazeTraceFields) {
-  expectLoadError("g1.json",
-                  R"({"objects": [{"shape": "cube"}], "gazeTrace": [{"time": 0, "gaze": [1.5, 0.5]}]})",
-                  {"gazeTrace[0].gaze", "[0, 1]"});
+  expectLoadError(
+      "g1.json",
+      R"({"objects": [{"shape": "cube"}], "gazeTrace": [{"time": 0, "gaze": [1.5, 0.5]}]})",
+      {"gazeTrace[0].gaze", "[0, 1]"});
   expectLoadError("g2.json",
                   R"({"objects": [{"shape": "cube"}], "gazeTrace": [{"time": 1}, {"time": 0}]})",
                   {"gazeTrace[1].time", "sorted"});
-  expectLoadError("g3.json", R"({"objects": [{"shape": "cube"}], "gazeTrace": []})",
-                  {"gazeTrace"});
+  expectLoadError("g3.json", R"({"objects": [{"shape": "cube"}], "gazeTrace": []})", {"gazeTrace"});
   expectLoadError("g4.json", R"({"objects": [{"shape": "cube"}], "baseLights": 3})",
                   {"baseLights"});
 }
