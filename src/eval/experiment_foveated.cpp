@@ -54,15 +54,7 @@ FoveatedExperimentOptions foveatedOptionsFromJson(const nlohmann::json& j,
   o.qualityHeight = f.integer("qualityHeight", o.qualityHeight, 8, 16384);
   o.referenceSpp = f.integer("referenceSpp", o.referenceSpp, 1, 1 << 20);
   o.temporalFrames = f.integer("temporalFrames", o.temporalFrames, 1, 100000);
-  if (f.has("crop")) {
-    const Json& c = f.raw("crop");
-    if (!c.is_array() || c.size() != 4) f.fail("crop", "expected [x, y, width, height]");
-    for (int k = 0; k < 4; ++k) {
-      if (!c[size_t(k)].is_number_integer() || c[size_t(k)].get<int>() < 0)
-        f.fail("crop", "expected non-negative integers");
-      o.crop[k] = c[size_t(k)].get<int>();
-    }
-  }
+  cropFromJson(f, o.crop);
   f.finish();
   return o;
 }

@@ -21,6 +21,17 @@ std::string sceneLabel(const std::string& spec) {
   return fs::path(spec).stem().string();
 }
 
+void cropFromJson(JsonFields& f, int crop[4]) {
+  if (!f.has("crop")) return;
+  const Json& c = f.raw("crop");
+  if (!c.is_array() || c.size() != 4) f.fail("crop", "expected [x, y, width, height]");
+  for (int k = 0; k < 4; ++k) {
+    if (!c[size_t(k)].is_number_integer() || c[size_t(k)].get<int>() < 0)
+      f.fail("crop", "expected non-negative integers");
+    crop[k] = c[size_t(k)].get<int>();
+  }
+}
+
 Buffer cropOf(const Buffer& b, const int c[4]) {
   int x = c[0], y = c[1], w = c[2], h = c[3];
   if (w == 0 || h == 0) x = b.width / 3, y = b.height / 3, w = b.width / 3, h = b.height / 3;

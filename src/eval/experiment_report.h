@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/buffer.h"
+#include "core/json_fields.h"
 #include "eval/machine_info.h"
 
 namespace tandem {
@@ -17,6 +18,8 @@ std::string fmt(double v, int decimals = 2);
 std::string sceneLabel(const std::string& spec);
 // A crop (x, y, width, height; width or height 0: the centre third) of an image, clamped to it.
 Buffer cropOf(const Buffer& b, const int crop[4]);
+// An experiment file's optional "crop": [x, y, width, height] of non-negative integers.
+void cropFromJson(JsonFields& f, int crop[4]);
 
 struct PlotSeries {
   std::string label;

@@ -48,15 +48,7 @@ TaaExperimentOptions taaOptionsFromJson(const nlohmann::json& j, const std::stri
   o.supersample = f.integer("supersample", o.supersample, 1, 64);
   o.pathFrames = f.integer("pathFrames", o.pathFrames, 0, 100000);
   o.pathEvery = f.integer("pathEvery", o.pathEvery, 1, 100000);
-  if (f.has("crop")) {
-    const Json& c = f.raw("crop");
-    if (!c.is_array() || c.size() != 4) f.fail("crop", "expected [x, y, width, height]");
-    for (int k = 0; k < 4; ++k) {
-      if (!c[size_t(k)].is_number_integer() || c[size_t(k)].get<int>() < 0)
-        f.fail("crop", "expected non-negative integers");
-      o.crop[k] = c[size_t(k)].get<int>();
-    }
-  }
+  cropFromJson(f, o.crop);
   f.finish();
   return o;
 }

@@ -34,14 +34,8 @@ Vec3 DiffuseGI::oneLight(const SurfaceSample& s, Vec3 n, float u, float time,
   const float cosI = dot(n, ls.wi);
   if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) return Vec3(0.0f);
   if (scene_.lights[size_t(i)].castsShadows) {
-    Ray r;
-    r.origin = offsetRayOrigin(s, ls.wi);
-    r.dir = ls.wi;
-    r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
-                                     : ls.distance * (1.0f - 1e-4f);
-    r.time = time;
     ++rays;
-    if (rt_.occluded(r)) return Vec3(0.0f);
+    if (rt_.occluded(shadowRayTowards(s, ls, time))) return Vec3(0.0f);
   }
   return ls.radiance * (cosI * float(count) / kPi);
 }

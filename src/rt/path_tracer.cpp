@@ -168,13 +168,7 @@ Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, 
     LightSample ls = sampleLight(shading_.lights[i], s.position);
     float cosI = dot(n, ls.wi);
     if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
-    Ray r;
-    r.origin = offsetRayOrigin(s, ls.wi);
-    r.dir = ls.wi;
-    r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
-                                     : ls.distance * (1.0f - 1e-4f);
-    r.time = time;
-    if (scene_.lights[i].castsShadows && rt_.occluded(r)) continue;
+    if (scene_.lights[i].castsShadows && rt_.occluded(shadowRayTowards(s, ls, time))) continue;
     sum += blinnPhongBrdf(n, wo, ls.wi, kd, ks, e) * ls.radiance * cosI;
   }
   return sum;

@@ -32,16 +32,22 @@ Vec3 offsetRayOrigin(const SurfaceSample& s, Vec3 dir) {
   return s.position + s.geoNormal * (dot(dir, s.geoNormal) > 0 ? eps : -eps);
 }
 
+Ray shadowRayTowards(const SurfaceSample& s, const LightSample& ls, float time) {
+  Ray r;
+  r.origin = offsetRayOrigin(s, ls.wi);
+  r.dir = ls.wi;
+  r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
+                                   : ls.distance * (1.0f - 1e-4f);
+  r.time = time;
+  return r;
+}
+
 bool Whitted::shadowRay(const SurfaceSample& s, size_t light, Ray& r) const {
   if (!scene_.lights[light].castsShadows) return false;
   LightSample ls = sampleLight(shading_.lights[light], s.position);
   if (dot(s.normal, ls.wi) <= 0.0f || maxComponent(ls.radiance) <= 0.0f)
     return false;  // unlit anyway
-  r.origin = offsetRayOrigin(s, ls.wi);
-  r.dir = ls.wi;
-  r.time = time_;
-  r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
-                                   : ls.distance * (1.0f - 1e-4f);
+  r = shadowRayTowards(s, ls, time_);
   return true;
 }
 

@@ -35,6 +35,9 @@ Vec3 reflectDir(Vec3 d, Vec3 n);
 // A secondary ray's origin: the surface point moved off the surface towards the side `dir`
 // leaves to, by an amount scaled to the position's magnitude (large scenes do not self-hit).
 Vec3 offsetRayOrigin(const SurfaceSample& s, Vec3 dir);
+// The shadow ray from surface s towards a light sample: offset off the surface, stopping just
+// short of a punctual light (unbounded for a directional one), at shutter fraction `time`.
+Ray shadowRayTowards(const SurfaceSample& s, const LightSample& ls, float time);
 // Refracts d at a surface with normal n facing against d, eta = n_incident / n_transmitted.
 // Returns false on total internal reflection.
 bool refractDir(Vec3 d, Vec3 n, float eta, Vec3& out);
