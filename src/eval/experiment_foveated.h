@@ -10,7 +10,9 @@
 //  - Figures 17 and 18: same-crop comparisons and FLIP heat maps side by side;
 //  - beyond the thesis: NH3LD with the periphery accumulated over frames (timed along the path,
 //    its quality after `temporalFrames` frames of the still camera), and NH3LD with each
-//    region's level count from its measured noise (nh_denoise levels_from = variance).
+//    region's level count from its measured noise (nh_denoise levels_from = variance);
+//  - the accumulating configuration along a moving camera (Base, NH3LD, NH3LD + temporal at the
+//    last of the first `temporalFrames` frames of each path, against its own reference).
 // Quality is measured at a smaller size (`qualityWidth` x `qualityHeight` per eye, radii scaled
 // from the FHD ones by the eye's height) so the references stay affordable on a CPU.
 #pragma once
@@ -30,6 +32,9 @@ struct FoveatedExperimentOptions {
   int qualityWidth = 480, qualityHeight = 540;  // per eye
   int referenceSpp = 1024;
   int temporalFrames = 8;      // still-camera frames before NH3LD + temporal is measured
+  // Moving camera: the first temporalFrames frames of each path at 30 fps at this size, the last
+  // against its own reference (pathReferenceSpp; 0: skipped).
+  int pathWidth = 240, pathHeight = 270, pathReferenceSpp = 256;
   int crop[4] = {0, 0, 0, 0};  // Figure 17 crop of the left eye at the quality size (0: centre)
 };
 
