@@ -342,8 +342,8 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
       Buffer ssimMap;
       const ImageMetrics m = compareImages(rd.output(), ref, &ssimMap);
       moving.push_back({o.sceneLabels[s], cf.label, fmt(m.ssim, 4),
-                        fmt(meanOverLayer(ssimMap, pm, 0), 4), fmt(meanOverLayer(ssimMap, pm, 2), 4),
-                        fmt(100.0 * m.rmse, 3)});
+                        fmt(meanOverLayer(ssimMap, pm, 0), 4),
+                        fmt(meanOverLayer(ssimMap, pm, 2), 4), fmt(100.0 * m.rmse, 3)});
     }
   }
   if (!moving.empty()) {
@@ -352,8 +352,7 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
                     std::to_string(ph) + " per eye, against its own reference (" +
                     std::to_string(o.pathReferenceSpp) + " spp)\n\n");
     report.table("moving_camera_quality",
-                 {"scene", "renderer", "SSIM", "fovea SSIM", "periphery SSIM", "RMSE (%)"},
-                 moving);
+                 {"scene", "renderer", "SSIM", "fovea SSIM", "periphery SSIM", "RMSE (%)"}, moving);
   }
   report.markdown("NH3LD + temporal (beyond the thesis) is measured after " +
                   std::to_string(o.temporalFrames) +

@@ -31,7 +31,7 @@ struct FoveatedExperimentOptions {
   int fhdFrames = 4, quest2Frames = 2;          // timed frames along the camera path
   int qualityWidth = 480, qualityHeight = 540;  // per eye
   int referenceSpp = 1024;
-  int temporalFrames = 8;      // still-camera frames before NH3LD + temporal is measured
+  int temporalFrames = 8;  // still-camera frames before NH3LD + temporal is measured
   // Moving camera: the first temporalFrames frames of each path at 30 fps at this size, the last
   // against its own reference (pathReferenceSpp; 0: skipped).
   int pathWidth = 240, pathHeight = 270, pathReferenceSpp = 256;
