@@ -56,6 +56,50 @@ float toss(uint64_t seed, uint32_t pixel) {
   return float(z >> 40) * (1.0f / 16777216.0f);
 }
 
+// The k pixels nearest g (by squared distance of their centres, ties by index). Only pixels
+// within `margin` of radius r are ranked: the k-th distance of a disc's worth of pixels lies a
+// small fraction of a pixel from r; when it does not (a disc clipped oddly), all pixels are.
+std::vector<uint32_t> nearestPixels(int width, int height, Vec2 g, double r, size_t k) {
+  using Key = std::pair<double, uint32_t>;
+  const size_t n = size_t(width) * size_t(height);
+  std::vector<uint32_t> out;
+  if (k == 0) return out;
+  auto d2 = [&](int x, int y) {
+    const double dx = x + 0.5 - double(g.x), dy = y + 0.5 - double(g.y);
+    return dx * dx + dy * dy;
+  };
+  auto rankAll = [&] {
+    std::vector<Key> all(n);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const uint32_t i = uint32_t(y) * uint32_t(width) + uint32_t(x);
+        all[i] = {d2(x, y), i};
+      }
+    const size_t kk = std::min(k, n);
+    if (kk < n) std::nth_element(all.begin(), all.begin() + ptrdiff_t(kk), all.end());
+    std::vector<uint32_t> r(kk);
+    for (size_t i = 0; i < kk; ++i) r[i] = all[i].second;
+    return r;
+  };
+  if (k >= n) return rankAll();
+  const double margin = 2.0, lo = std::max(r - margin, 0.0), hi = r + margin;
+  std::vector<Key> band;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double d = d2(x, y);
+      const uint32_t i = uint32_t(y) * uint32_t(width) + uint32_t(x);
+      if (d < lo * lo)
+        out.push_back(i);
+      else if (d < hi * hi)
+        band.push_back({d, i});
+    }
+  if (out.size() > k || out.size() + band.size() < k) return rankAll();
+  const size_t need = k - out.size();
+  std::nth_element(band.begin(), band.begin() + ptrdiff_t(need), band.end());
+  for (size_t i = 0; i < need; ++i) out.push_back(band[i].second);
+  return out;
+}
+
 }  // namespace
 
 FoveationMap computeFoveation(int width, int height, const FoveationDesc& desc) {
@@ -71,21 +115,13 @@ FoveationMap computeFoveation(int width, int height, const FoveationDesc& desc) 
     m.spp.assign(n, uint16_t(desc.spp[0]));
     m.layers[0] = {0, int64_t(n), int64_t(n), desc.spp[0]};
   } else {
-    // Rank the pixels by distance from the gaze; the first round(area) are inside the radius.
-    std::vector<std::pair<double, uint32_t>> order(n);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const double dx = x + 0.5 - double(g.x), dy = y + 0.5 - double(g.y);
-        const uint32_t i = uint32_t(y) * uint32_t(width) + uint32_t(x);
-        order[i] = {dx * dx + dy * dy, i};
-      }
+    // The first round(area) pixels by distance from the gaze (ties by pixel order) are inside.
     const size_t k0 = size_t(std::llround(discAreaInRect(g, desc.r0, width, height)));
     const size_t k1 = std::max(k0, size_t(std::llround(discAreaInRect(g, desc.r1, width, height))));
-    auto byDistance = order.begin();
-    if (k1 < n) std::nth_element(byDistance, byDistance + ptrdiff_t(k1), order.end());
-    if (k0 < k1)
-      std::nth_element(byDistance, byDistance + ptrdiff_t(k0), byDistance + ptrdiff_t(k1));
-    for (size_t i = 0; i < std::min(k1, n); ++i) m.layer[order[i].second] = i < k0 ? 0 : 1;
+    const std::vector<uint32_t> inner = nearestPixels(width, height, g, desc.r0, k0);
+    const std::vector<uint32_t> disc = nearestPixels(width, height, g, desc.r1, k1);
+    for (uint32_t i : disc) m.layer[i] = 1;
+    for (uint32_t i : inner) m.layer[i] = 0;
     m.layers[0].radius = desc.r0;
     m.layers[1].radius = desc.r1;
     const float outer = desc.outerProbability(), span = std::max(desc.r1 - desc.r0, 1e-6f);

@@ -141,6 +141,15 @@ TEST(Foveation, Table2AreasExact) {
     }
   EXPECT_LE(innerMax, middleMin);
   EXPECT_NEAR(innerMax, 144.0f, 1.0f);
+  // Exactly the first 65144 pixels of the full ranking by (squared distance, pixel index).
+  std::vector<std::pair<double, uint32_t>> all;
+  for (int y = 0; y < 1080; ++y)
+    for (int x = 0; x < 960; ++x) {
+      const double dx = x + 0.5 - 480.0, dy = y + 0.5 - 540.0;
+      all.push_back({dx * dx + dy * dy, uint32_t(y * 960 + x)});
+    }
+  std::nth_element(all.begin(), all.begin() + 65144, all.end());
+  for (size_t i = 0; i < all.size(); ++i) ASSERT_EQ(a.layer[all[i].second] == 0, i < 65144) << i;
 }
 
 // Inner pixels are all listed; the middle ring's share follows the linear decay from 1 to p and
