@@ -105,6 +105,31 @@ Renderer makeRenderer(const Scene& scene, const char* pipeline, int w, int h,
   return Renderer(scene, std::move(p), rs);
 }
 
+// The same path tracer converged, without foveation or denoising (the thesis' reference), both
+// eyes side by side, display-encoded.
+Buffer convergedDualImage(const Scene& scene, const CameraDesc& cam, int w, int h, int spp,
+                          const std::string& cache) {
+  ReferenceJob job;
+  job.scene = &scene;
+  job.camera = job.shutterCamera = cam;
+  job.width = w;
+  job.height = h;
+  job.stereo = scene.stereo;
+  job.stereo.enabled = true;
+  job.settings.spp = spp;
+  job.settings.integrator = Integrator::DiffuseGI;
+  job.settings.progress = true;
+  return visualizeBuffer(referenceImage(job, cache).hdr);
+}
+
+// The pipelines' layers at an eye `height` rows tall (the FHD radii scaled, as scale_radii).
+FoveationDesc scaledLayers(int height) {
+  FoveationDesc d;
+  d.r0 = 144.0f * float(height) / 1080.0f;
+  d.r1 = 288.0f * float(height) / 1080.0f;
+  return d;
+}
+
 // Mean of `map` (1 channel or the first) over the pixels of both eyes whose layer is `layer`.
 double meanOverLayer(const Buffer& map, const FoveationMap& fm, int layer) {
   double sum = 0;
@@ -220,26 +245,14 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
   // Table 5 and Figures 17-18: quality at the quality size against the converged reference.
   const int qw = o.qualityWidth, qh = o.qualityHeight;
   std::vector<std::vector<std::string>> t5;
-  FoveationDesc qd;  // the NH layers at the quality size (radii scaled from FHD by height)
-  qd.r0 = 144.0f * float(qh) / 1080.0f;
-  qd.r1 = 288.0f * float(qh) / 1080.0f;
+  const FoveationDesc qd = scaledLayers(qh);
   const FoveationMap qm = computeFoveation(qw, qh, qd);
   for (size_t s = 0; s < scenes.size(); ++s) {
     std::printf("experiment foveated: Table 5, %s, reference (%d spp)\n", o.sceneLabels[s].c_str(),
                 o.referenceSpp);
     std::fflush(stdout);
     const CameraDesc cam = defaultCamera(scenes[s]);
-    ReferenceJob job;
-    job.scene = &scenes[s];
-    job.camera = job.shutterCamera = cam;
-    job.width = qw;
-    job.height = qh;
-    job.stereo = scenes[s].stereo;
-    job.stereo.enabled = true;
-    job.settings.spp = o.referenceSpp;
-    job.settings.integrator = Integrator::DiffuseGI;
-    job.settings.progress = true;
-    const Buffer ref = visualizeBuffer(referenceImage(job, o.cache).hdr);
+    const Buffer ref = convergedDualImage(scenes[s], cam, qw, qh, o.referenceSpp, o.cache);
     const std::string label = sceneLabel(o.scenes[s]);
     writePng((fs::path(o.out) / ("reference_" + label + ".png")).string(), ref);
     report.image("reference_" + label + ".png",
@@ -313,27 +326,14 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
   // camera moves; the first temporalFrames frames of each path at 30 fps, the last one measured.
   std::vector<std::vector<std::string>> moving;
   const int pw = o.pathWidth, ph = o.pathHeight;
-  FoveationDesc pd;
-  pd.r0 = 144.0f * float(ph) / 1080.0f;
-  pd.r1 = 288.0f * float(ph) / 1080.0f;
-  const FoveationMap pm = computeFoveation(pw, ph, pd);
+  const FoveationMap pm = computeFoveation(pw, ph, scaledLayers(ph));
   for (size_t s = 0; s < scenes.size() && o.pathReferenceSpp > 0; ++s) {
     std::printf("experiment foveated: moving camera, %s\n", o.sceneLabels[s].c_str());
     std::fflush(stdout);
     const CameraDesc base = defaultCamera(scenes[s]);
     const int last = o.temporalFrames - 1;
     const CameraDesc lastCam = pathCameraAt(scenes[s], base, float(last) / 30.0f);
-    ReferenceJob job;
-    job.scene = &scenes[s];
-    job.camera = job.shutterCamera = lastCam;
-    job.width = pw;
-    job.height = ph;
-    job.stereo = scenes[s].stereo;
-    job.stereo.enabled = true;
-    job.settings.spp = o.pathReferenceSpp;
-    job.settings.integrator = Integrator::DiffuseGI;
-    job.settings.progress = true;
-    const Buffer ref = visualizeBuffer(referenceImage(job, o.cache).hdr);
+    const Buffer ref = convergedDualImage(scenes[s], lastCam, pw, ph, o.pathReferenceSpp, o.cache);
     for (int c : {0, 2, kTemporal}) {
       const Config& cf = configs()[size_t(c)];
       Renderer rd = makeRenderer(scenes[s], cf.pipeline, pw, ph, cf.sets);

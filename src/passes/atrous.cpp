@@ -54,6 +54,21 @@ struct TapPlanes {
   const float *c0, *c1, *c2, *n0, *n1, *n2, *x0, *x1, *x2, *b;
 };
 
+// Eq. 4.1 x 4.2: the weight of neighbour j for centre i (the kernel's, the edge-stopping terms
+// and the mask); the colour term only where the centre has an estimate to compare with.
+__attribute__((always_inline)) inline float tapWeight(
+    const float* c0, const float* c1, const float* c2, const float* n0, const float* n1,
+    const float* n2, const float* x0, const float* x1, const float* x2, const float* b, int i,
+    ptrdiff_t j, float kernel, float invColor, float invNormal, float scale, float known) {
+  const float dr = c0[j] - c0[i], dg = c1[j] - c1[i], db = c2[j] - c2[i];
+  const float dnx = n0[j] - n0[i], dny = n1[j] - n1[i], dnz = n2[j] - n2[i];
+  const float dxx = x0[j] - x0[i], dxy = x1[j] - x1[i], dxz = x2[j] - x2[i];
+  const float e = (dr * dr + dg * dg + db * db) * invColor * known +
+                  (dnx * dnx + dny * dny + dnz * dnz) * invNormal +
+                  (dxx * dxx + dxy * dxy + dxz * dxz) * scale;
+  return kernel * b[j] * expNeg(e);
+}
+
 // Accumulates one tap row segment: centres u = [0, count) of the span (pointers at the span's
 // first centre), neighbours at offset `offset` from each centre.
 __attribute__((target_clones("avx2", "default"))) void accumulateTap(
@@ -66,14 +81,8 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTap(
   const float* __restrict b = p.b;
   for (int i = 0; i < count; ++i) {
     const ptrdiff_t j = i + offset;
-    const float dr = c0[j] - c0[i], dg = c1[j] - c1[i], db = c2[j] - c2[i];
-    const float dnx = n0[j] - n0[i], dny = n1[j] - n1[i], dnz = n2[j] - n2[i];
-    const float dxx = x0[j] - x0[i], dxy = x1[j] - x1[i], dxz = x2[j] - x2[i];
-    // The colour term only where the centre has an estimate to compare with.
-    const float e = (dr * dr + dg * dg + db * db) * invColor * known[i] +
-                    (dnx * dnx + dny * dny + dnz * dnz) * invNormal +
-                    (dxx * dxx + dxy * dxy + dxz * dxz) * scale[i];
-    const float w = kernel * b[j] * expNeg(e);
+    const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel, invColor,
+                              invNormal, scale[i], known[i]);
     sr[i] += w * c0[j];
     sg[i] += w * c1[j];
     sb[i] += w * c2[j];
@@ -100,13 +109,8 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTaps(
       for (int l = 0; l < 8; ++l) {
         const int i = i0 + l;
         const ptrdiff_t j = i + o;
-        const float dr = c0[j] - c0[i], dg = c1[j] - c1[i], db = c2[j] - c2[i];
-        const float dnx = n0[j] - n0[i], dny = n1[j] - n1[i], dnz = n2[j] - n2[i];
-        const float dxx = x0[j] - x0[i], dxy = x1[j] - x1[i], dxz = x2[j] - x2[i];
-        const float e = (dr * dr + dg * dg + db * db) * invColor * known[i] +
-                        (dnx * dnx + dny * dny + dnz * dnz) * invNormal +
-                        (dxx * dxx + dxy * dxy + dxz * dxz) * scale[i];
-        const float w = kernel * b[j] * expNeg(e);
+        const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel, invColor,
+                                  invNormal, scale[i], known[i]);
         ar[l] += w * c0[j];
         ag[l] += w * c1[j];
         ab[l] += w * c2[j];
@@ -121,8 +125,8 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTaps(
     }
   }
   if (i0 < count) {
-    const TapPlanes rest{c0 + i0, c1 + i0, c2 + i0, n0 + i0, n1 + i0,
-                         n2 + i0, x0 + i0, x1 + i0, x2 + i0, b + i0};
+    const TapPlanes rest{p.c0 + i0, p.c1 + i0, p.c2 + i0, p.n0 + i0, p.n1 + i0,
+                         p.n2 + i0, p.x0 + i0, p.x1 + i0, p.x2 + i0, p.b + i0};
     for (int t = 0; t < taps; ++t)
       accumulateTap(rest, offsets[t], count - i0, kernels[t], invColor, invNormal, scale + i0,
                     known + i0, sr + i0, sg + i0, sb + i0, sw + i0);
