@@ -35,6 +35,18 @@ inline std::unique_ptr<Renderer> renderOnce(const Scene& scene, const std::strin
   return r;
 }
 
+// Renders one frame (96 x 64 unless given) of `scene` through a built-in pipeline with pass
+// parameters `sets` ("pass.param=value") and returns its hdr buffer.
+inline Buffer renderHdr(const Scene& s, const std::string& pipeline, const CameraDesc& cam,
+                        const std::vector<std::string>& sets, float shutter = 0.0f, int w = 96,
+                        int h = 64) {
+  Pipeline p = Pipeline::load(pipeline);
+  for (const std::string& a : sets) p.setParam(a, "test");
+  Renderer r(s, std::move(p), RenderSettings{.width = w, .height = h, .shutter = shutter});
+  r.renderFrame(0, cam);
+  return r.context().input("hdr");
+}
+
 // Unlit emissive squares (radiance (1, 0.8, 0.6), 1 x 1 m) at 4, 6 and 8 m in front of a camera at
 // z = 2 looking down -z, over a black sky: rasterized emission and path-traced emission are the
 // same light transport whatever the shading model, so images differ only by how visibility,

@@ -6,29 +6,13 @@
 
 #include "core/low_discrepancy.h"
 #include "core/parallel.h"
+#include "passes/interleaved.h"
 #include "pipeline/frame_context.h"
 #include "rt/reference_render.h"
 #include "shading/blinn_phong.h"
 #include "shading/surface_resolve.h"
 
 namespace tandem {
-
-std::vector<TimeLensPair> stratifiedTimeLensPairs(int n, uint64_t seed) {
-  std::vector<int> perm(static_cast<size_t>(n)), jitterOrder(static_cast<size_t>(n));
-  std::iota(perm.begin(), perm.end(), 0);
-  std::iota(jitterOrder.begin(), jitterOrder.end(), 0);
-  std::mt19937_64 rng(seed ^ 0x5851F42D4C957F2Dull);
-  std::shuffle(perm.begin(), perm.end(), rng);
-  std::shuffle(jitterOrder.begin(), jitterOrder.end(), rng);
-  std::vector<TimeLensPair> pairs(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    // Hammersley point i of n over the lens square; time stratum perm[i].
-    const Vec2 lens = hammersley(i, n);
-    pairs[size_t(i)] = {(float(perm[size_t(i)]) + 0.5f) / float(n), lens.x, lens.y,
-                        haltonJitter(1 + jitterOrder[size_t(i)])};
-  }
-  return pairs;
-}
 
 std::vector<ParamDesc> AccumulationPass::params() const {
   return {{"samples", ParamType::Int, 64, 1, 4096, "rasterized images averaged", {}, true},
@@ -58,10 +42,8 @@ void AccumulationPass::execute(FrameContext& ctx) {
     for (const TimeLensPair& p : pairs) {
       const float tau = time ? p.tau : 0.0f;
       // The camera along its shutter path, then moved to the lens point.
-      const Camera atTau = time ? cameraAtShutter(v.camera, v.shutterCamera, tau) : v.camera;
-      const Vec2 lensPoint = lens ? atTau.lensPoint(p.u1, p.u2) : Vec2{0, 0};
-      const Vec2 jitter = aa ? v.camera.jitter + p.jitter : v.camera.jitter;
-      const Camera cam = Camera::make(atTau.desc, v.width(), v.height(), jitter, lensPoint);
+      const Camera cam = cameraForPair(v, p, time, lens,
+                                       aa ? v.camera.jitter + p.jitter : v.camera.jitter);
       auto t0 = Clock::now();
       RasterStats stats;
       rasterizer_.render(ctx.frame, cam, visibility_, &stats, time ? tau : -1.0f);

@@ -13,15 +13,9 @@
 
 #include "pipeline/pass.h"
 #include "raster/rasterizer.h"
+#include "raster/sample_tiles.h"
 
 namespace tandem {
-
-// Sample i of n: shutter fraction tau and lens coordinates (u1, u2) in [0,1)^2.
-struct TimeLensPair {
-  float tau, u1, u2;
-  Vec2 jitter;  // sub-pixel offset of the image (anti-aliasing), in [-0.5, 0.5)^2
-};
-std::vector<TimeLensPair> stratifiedTimeLensPairs(int n, uint64_t seed);
 
 class AccumulationPass : public Pass {
  public:

@@ -96,13 +96,11 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
   render(fs, cam, out, Subset{}, stats, tau);
 }
 
-void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
-                        const Subset& subset, RasterStats* stats, float tau) {
+int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& subset, float tau,
+                        int binW, int binH, bool anywhere, RasterStats* stats) {
   const Scene& scene = *fs.scene;
   const int W = cam.width, H = cam.height;
-  TANDEM_ASSERT(!subset.keep || (out.width == W && out.height == H));
-  out.resize(W, H);
-  const int tilesX = (W + kBinSize - 1) / kBinSize, tilesY = (H + kBinSize - 1) / kBinSize;
+  const int tilesX = (W + binW - 1) / binW, tilesY = (H + binH - 1) / binH;
   const int tileCount = tilesX * tilesY;
   const Mat4 vp = cam.viewProj;
 
@@ -241,20 +239,22 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
         st.object = uint32_t(o);
         st.prim = prim;
         st.alphaMask = mat.alphaMode == AlphaMode::Mask;
-        // Pixel range whose centres (px + 0.5) can be covered.
+        // Pixel range whose centres (px + 0.5) can be covered; with `anywhere`, every pixel
+        // the triangle's box touches (samples may sit anywhere inside a pixel).
         int32_t minX = std::min({st.x[0], st.x[1], st.x[2]}),
                 maxX = std::max({st.x[0], st.x[1], st.x[2]});
         int32_t minY = std::min({st.y[0], st.y[1], st.y[2]}),
                 maxY = std::max({st.y[0], st.y[1], st.y[2]});
-        int px0 = std::max(0, int((minX - 128 + 255) >> kSubBits));
-        int px1 = std::min(W - 1, int((maxX - 128) >> kSubBits));
-        int py0 = std::max(0, int((minY - 128 + 255) >> kSubBits));
-        int py1 = std::min(H - 1, int((maxY - 128) >> kSubBits));
+        const int32_t centre = anywhere ? 0 : 128, round = anywhere ? 0 : 255;
+        int px0 = std::max(0, int((minX - centre + round) >> kSubBits));
+        int px1 = std::min(W - 1, int((maxX - centre) >> kSubBits));
+        int py0 = std::max(0, int((minY - centre + round) >> kSubBits));
+        int py1 = std::min(H - 1, int((maxY - centre) >> kSubBits));
         if (px0 > px1 || py0 > py1) continue;  // covers no pixel centre
-        st.tx0 = int16_t(px0 / kBinSize);
-        st.tx1 = int16_t(px1 / kBinSize);
-        st.ty0 = int16_t(py0 / kBinSize);
-        st.ty1 = int16_t(py1 / kBinSize);
+        st.tx0 = int16_t(px0 / binW);
+        st.tx1 = int16_t(px1 / binW);
+        st.ty0 = int16_t(py0 / binH);
+        st.ty1 = int16_t(py1 / binH);
         uint32_t id = uint32_t(tris.size());
         tris.push_back(st);
         for (int ty = st.ty0; ty <= st.ty1; ++ty)
@@ -264,6 +264,26 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
     culled += localCulled;
     clipped += localClipped;
   });
+
+  if (stats) {
+    stats->trianglesIn = totalTris;
+    stats->trianglesCulled = culled;
+    stats->trianglesClipped = clipped;
+    size_t binned = 0;
+    for (int ch = 0; ch < chunks; ++ch) binned += chunkTris_[ch].size();
+    stats->trianglesBinned = binned;
+  }
+  return chunks;
+}
+
+void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
+                        const Subset& subset, RasterStats* stats, float tau) {
+  const int W = cam.width, H = cam.height;
+  TANDEM_ASSERT(!subset.keep || (out.width == W && out.height == H));
+  out.resize(W, H);
+  const int tilesX = (W + kBinSize - 1) / kBinSize, tilesY = (H + kBinSize - 1) / kBinSize;
+  const int tileCount = tilesX * tilesY;
+  const int chunks = prepare(fs, cam, subset, tau, kBinSize, kBinSize, false, stats);
 
   // 3. Rasterize each tile, chunks in submission order.
   tbb::parallel_for(0, tileCount, [&](int tile) {
@@ -315,19 +335,7 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
               const float z = zRow;
               size_t i = row + px;
               if (z > out.depth[i] && z <= 1.0f) {
-                bool keep = true;
-                if (t.alphaMask) {
-                  Vec3 o, d;
-                  cam.generateRay(px + 0.5f, py + 0.5f, o, d);
-                  const Mesh& mesh = scene.meshes[scene.objects[t.object].mesh];
-                  const uint32_t* idx = &mesh.indices[3 * size_t(t.prim)];
-                  const auto& wp = fs.objects[t.object].positions;
-                  float tt, u, v;
-                  intersectTriangle(o, d, wp[idx[0]], wp[idx[1]], wp[idx[2]], tt, u, v);
-                  const Material& m = scene.materials[scene.objects[t.object].material];
-                  keep = surfaceAlpha(fs, int(t.object), int(t.prim), u, v) >= m.alphaCutoff;
-                }
-                if (keep) {
+                if (!t.alphaMask || alphaKeeps(fs, cam, t, px + 0.5f, py + 0.5f)) {
                   out.depth[i] = z;
                   out.object[i] = t.object;
                   out.prim[i] = t.prim;
@@ -345,14 +353,88 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
       }
     }
   });
-  if (stats) {
-    stats->trianglesIn = totalTris;
-    stats->trianglesCulled = culled;
-    stats->trianglesClipped = clipped;
-    size_t binned = 0;
-    for (int ch = 0; ch < chunks; ++ch) binned += chunkTris_[ch].size();
-    stats->trianglesBinned = binned;
-  }
+}
+
+bool Rasterizer::alphaKeeps(const FrameScene& fs, const Camera& cam, const SetupTriangle& t,
+                            float px, float py) {
+  const Scene& scene = *fs.scene;
+  Vec3 o, d;
+  cam.generateRay(px, py, o, d);
+  const Mesh& mesh = scene.meshes[scene.objects[t.object].mesh];
+  const uint32_t* idx = &mesh.indices[3 * size_t(t.prim)];
+  const auto& wp = fs.objects[t.object].positions;
+  float tt, u, v;
+  intersectTriangle(o, d, wp[idx[0]], wp[idx[1]], wp[idx[2]], tt, u, v);
+  const Material& m = scene.materials[scene.objects[t.object].material];
+  return surfaceAlpha(fs, int(t.object), int(t.prim), u, v) >= m.alphaCutoff;
+}
+
+void Rasterizer::renderSamples(const FrameScene& fs, const Camera& cam, const SampleSet& set,
+                               VisibilityBuffer& out, RasterStats* stats, float tau) {
+  const int W = cam.width, H = cam.height;
+  // Bins are whole numbers of cells near 64 pixels, so each cell (and sample) has one owner.
+  const int binCellsX = std::max(1, kBinSize / set.cellW), binCellsY = std::max(1, kBinSize / set.cellH);
+  const int binW = binCellsX * set.cellW, binH = binCellsY * set.cellH;
+  const int tilesX = (W + binW - 1) / binW, tilesY = (H + binH - 1) / binH;
+  const int chunks = prepare(fs, cam, Subset{}, tau, binW, binH, true, stats);
+  tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
+    const int bx = tile % tilesX, by = tile / tilesX;
+    const int cx0 = bx * binCellsX, cy0 = by * binCellsY;
+    const int cx1 = std::min(set.cellsX, cx0 + binCellsX) - 1;
+    const int cy1 = std::min(set.cellsY, cy0 + binCellsY) - 1;
+    for (int cy = cy0; cy <= cy1; ++cy)
+      for (int cx = cx0; cx <= cx1; ++cx) {
+        const size_t c = size_t(cy) * size_t(set.cellsX) + size_t(cx);
+        for (uint32_t k = set.start[c]; k < set.start[c + 1]; ++k) {
+          const uint32_t id = set.ids[k];
+          out.depth[id] = 0.0f;
+          out.object[id] = kNoObject;
+          out.prim[id] = 0;
+        }
+      }
+    for (int ch = 0; ch < chunks; ++ch) {
+      const auto& tris = chunkTris_[ch];
+      for (uint32_t ti : bins_[ch][tile]) {
+        const SetupTriangle& t = tris[ti];
+        const int32_t minX = std::min({t.x[0], t.x[1], t.x[2]}),
+                      maxX = std::max({t.x[0], t.x[1], t.x[2]});
+        const int32_t minY = std::min({t.y[0], t.y[1], t.y[2]}),
+                      maxY = std::max({t.y[0], t.y[1], t.y[2]});
+        // Cells the triangle's box touches, inside this bin.
+        const int tx0 = std::max(cx0, int(minX >> kSubBits) / set.cellW);
+        const int tx1 = std::min(cx1, int(maxX >> kSubBits) / set.cellW);
+        const int ty0 = std::max(cy0, int(minY >> kSubBits) / set.cellH);
+        const int ty1 = std::min(cy1, int(maxY >> kSubBits) / set.cellH);
+        if (tx0 > tx1 || ty0 > ty1) continue;
+        int64_t dx[3], dy[3], bias[3];
+        for (int e = 0; e < 3; ++e) {
+          const int a = e, b = (e + 1) % 3;
+          dx[e] = int64_t(t.x[b]) - t.x[a];
+          dy[e] = int64_t(t.y[b]) - t.y[a];
+          bias[e] = (dy[e] < 0 || (dy[e] == 0 && dx[e] > 0)) ? 0 : -1;  // top-left rule
+        }
+        for (int cy = ty0; cy <= ty1; ++cy)
+          for (int cx = tx0; cx <= tx1; ++cx) {
+            const size_t c = size_t(cy) * size_t(set.cellsX) + size_t(cx);
+            for (uint32_t k = set.start[c]; k < set.start[c + 1]; ++k) {
+              const uint32_t id = set.ids[k];
+              const int64_t sx = set.fx[id], sy = set.fy[id];
+              bool inside = true;
+              for (int e = 0; e < 3 && inside; ++e)
+                inside = dx[e] * (sy - t.y[e]) - dy[e] * (sx - t.x[e]) + bias[e] >= 0;
+              if (!inside) continue;
+              const Vec2 p = set.pos[id];
+              const float z = t.zRef + t.dzdx * (p.x - t.xRef) + t.dzdy * (p.y - t.yRef);
+              if (!(z > out.depth[id] && z <= 1.0f)) continue;
+              if (t.alphaMask && !alphaKeeps(fs, cam, t, p.x, p.y)) continue;
+              out.depth[id] = z;
+              out.object[id] = t.object;
+              out.prim[id] = t.prim;
+            }
+          }
+      }
+    }
+  });
 }
 
 }  // namespace tandem

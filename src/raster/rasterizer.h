@@ -36,6 +36,22 @@ class Rasterizer {
   void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out, const Subset& subset,
               RasterStats* stats = nullptr, float tau = -1.0f);
 
+  // Sparse samples for one pass of interleaved sampling: the screen is cut into cells of
+  // cellW x cellH pixels; cell c (row-major) holds the samples ids[start[c] .. start[c + 1]),
+  // sample id at pixel position pos[id] (fx, fy: the same in 8-bit fixed point).
+  struct SampleSet {
+    int cellW = 1, cellH = 1, cellsX = 0, cellsY = 0;
+    const uint32_t* start = nullptr;
+    const uint32_t* ids = nullptr;
+    const Vec2* pos = nullptr;
+    const int32_t *fx = nullptr, *fy = nullptr;
+  };
+  // Draws `fs` through `cam` into the entries of `out` (indexed by sample id) of the samples in
+  // `set`, clearing them first and touching no other entry. Each triangle visits only the cells
+  // its screen box at this (time, lens) touches: one sample per cell for interleaved tiles.
+  void renderSamples(const FrameScene& fs, const Camera& cam, const SampleSet& set,
+                     VisibilityBuffer& out, RasterStats* stats = nullptr, float tau = -1.0f);
+
   struct SetupTriangle {
     int32_t x[3], y[3];  // fixed point, 8 sub-pixel bits, positive orientation
     float zRef, dzdx,
@@ -47,6 +63,14 @@ class Rasterizer {
   };
 
  private:
+  // Steps 1-2: clip-space vertices, triangle setup, binning into binW x binH pixel bins (pixel
+  // ranges by centre coverage, or every pixel touched with `anywhere`). Returns the chunk count.
+  int prepare(const FrameScene& fs, const Camera& cam, const Subset& subset, float tau, int binW,
+              int binH, bool anywhere, RasterStats* stats);
+  // Alpha-mask test of triangle t at pixel position (px, py).
+  static bool alphaKeeps(const FrameScene& fs, const Camera& cam, const SetupTriangle& t, float px,
+                         float py);
+
   std::vector<std::vector<Vec4>> clip_;  // per object, clip-space vertices
   std::vector<char> objectCulled_;       // per object: outside the frustum
   // What clip_[o] was computed for: skipped when neither the camera nor the geometry changed.

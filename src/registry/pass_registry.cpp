@@ -11,6 +11,7 @@
 #include "passes/foveated_pt.h"
 #include "passes/foveation.h"
 #include "passes/heuristic.h"
+#include "passes/interleaved.h"
 #include "passes/nh_denoise.h"
 #include "passes/periphery_accumulation.h"
 #include "passes/postfx_dof.h"
@@ -54,6 +55,8 @@ const std::vector<std::string>& passTypes() {
                                                  "foveated_pt",
                                                  "nh_denoise",
                                                  "periphery_accumulation",
+                                                 "interleaved_raster",
+                                                 "interleaved_rt",
                                                  "tonemap"};
   return types;
 }
@@ -83,6 +86,8 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "foveated_pt") return std::make_unique<FoveatedPTPass>();
   if (type == "nh_denoise") return std::make_unique<NHDenoisePass>();
   if (type == "periphery_accumulation") return std::make_unique<PeripheryAccumulationPass>();
+  if (type == "interleaved_raster") return std::make_unique<InterleavedRasterPass>();
+  if (type == "interleaved_rt") return std::make_unique<InterleavedRTPass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

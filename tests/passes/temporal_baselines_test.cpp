@@ -33,11 +33,7 @@ CameraDesc lensCamera() {
 
 Buffer render(const Scene& s, const std::string& pipeline, const CameraDesc& cam,
               std::vector<std::string> sets, float shutter = 0.0f) {
-  Pipeline p = Pipeline::load(pipeline);
-  for (const std::string& a : sets) p.setParam(a, "test");
-  Renderer r(s, std::move(p), RenderSettings{.width = 96, .height = 64, .shutter = shutter});
-  r.renderFrame(0, cam);
-  return r.context().input("hdr");
+  return test::renderHdr(s, pipeline, cam, sets, shutter);
 }
 
 }  // namespace

@@ -1,0 +1,302 @@
+#include "passes/interleaved.h"
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "core/hash.h"
+#include "core/parallel.h"
+#include "passes/rt_secondary.h"
+#include "pipeline/frame_context.h"
+#include "rt/reference_render.h"
+#include "rt/whitted.h"
+#include "shading/blinn_phong.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+Camera cameraForPair(const View& v, const TimeLensPair& p, bool time, bool lens, Vec2 jitter) {
+  const Camera atTau = time ? cameraAtShutter(v.camera, v.shutterCamera, p.tau) : v.camera;
+  const Vec2 lensPoint = lens ? atTau.lensPoint(p.u1, p.u2) : Vec2{0, 0};
+  return Camera::make(atTau.desc, v.width(), v.height(), jitter, lensPoint);
+}
+
+float blackmanHarris(float t) {
+  // The 4-term window over [-1, 1] (Harris 1978), centred: x in [0, 1] maps to 0.5 + t / 2.
+  if (t >= 1.0f) return 0.0f;
+  const float x = kPi * (1.0f + t);  // 2 pi (0.5 + t / 2)
+  return 0.35875f - 0.48829f * std::cos(x) + 0.14128f * std::cos(2 * x) -
+         0.01168f * std::cos(3 * x);
+}
+
+std::vector<ParamDesc> InterleavedPass::params() const {
+  std::vector<ParamDesc> p = {
+      {"samples", ParamType::Int, 16, 1, 4096, "N: (time, lens) pairs in T (passes)", {}, true},
+      {"spp", ParamType::Int, 4, 1, 64, "k: samples per pixel (N must be a multiple)", {}, true},
+      {"scheme",
+       ParamType::Enum,
+       3,
+       0,
+       3,
+       "how samples take pairs of T",
+       {"independent", "stratified", "random_tiles", "colored_corner"},
+       true},
+      {"mode",
+       ParamType::Enum,
+       2,
+       0,
+       2,
+       "what the pairs vary",
+       {"dof", "motion_blur", "both"},
+       true},
+      {"correlated",
+       ParamType::Bool,
+       0,
+       0,
+       1,
+       "pair the i-th time with the i-th lens point (interval methods' compromise: strobes)",
+       {},
+       true},
+      {"jitter", ParamType::Bool, 1, 0, 1, "jitter samples inside their strata", {}, true},
+      {"filter",
+       ParamType::Enum,
+       1,
+       0,
+       1,
+       "pixel reconstruction filter",
+       {"box", "blackman_harris"},
+       true},
+      {"filter_radius", ParamType::Float, 1.0, 0.5, 4, "filter radius in pixels", {}, true},
+      {"shading",
+       ParamType::Enum,
+       0,
+       0,
+       1,
+       "whitted: ray-traced shadows, mirrors, glass; local: Blinn-Phong without shadows",
+       {"whitted", "local"},
+       true}};
+  for (const ParamDesc& d : whittedParams()) p.push_back(d);
+  return p;
+}
+
+void InterleavedPass::execute(FrameContext& ctx) {
+  const int n = int(param("samples")), k = int(param("spp")), mode = int(param("mode"));
+  const std::string problem = tileShapeProblem(n, k);
+  if (!problem.empty())
+    throw InputError("", "pass '" + type() + "' parameters 'samples' and 'spp'", problem);
+  const bool lens = mode != 1, time = mode != 0;
+  const auto scheme = SamplingScheme(int(param("scheme")));
+  const PairMetric metric = mode == 0 ? PairMetric::Lens : mode == 1 ? PairMetric::Time
+                                                                      : PairMetric::Both;
+  const std::vector<TimeLensPair> pairs =
+      stratifiedTimeLensPairs(n, ctx.seed, param("correlated") != 0);
+  const TileSet& tiles =
+      tileSetFor(n, k, scheme == SamplingScheme::RandomTiles ? TileKind::Random : TileKind::ColoredCorner,
+                 metric, pairs, ctx.seed);
+  const TileShape& shape = tiles.shape;
+  Buffer& hdr = ctx.output(*this, "hdr");
+  Buffer& samplesOut =
+      ctx.output(*this, "interleave_samples", ctx.width * shape.sx, ctx.height * shape.sy);
+  const Scene& scene = *ctx.scene;
+  const ShadingContext shading = ShadingContext::from(scene);
+  const bool whittedShading = param("shading") == 0;
+  RayTracer* rt = whittedShading ? &ctx.rayTracer() : nullptr;
+  RayTracer* counted = whittedShading || tracesPrimaryRays() ? &ctx.rayTracer() : nullptr;
+  const uint64_t raysBefore = counted ? counted->raysTraced() : 0;
+  const WhittedSettings ws = whittedSettings(*this);
+  std::vector<float> taus(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j) taus[size_t(j)] = time ? pairs[size_t(j)].tau : 0.0f;
+  double visMs = 0, shadeMs = 0, resolveMs = 0;
+
+  for (const View& v : ctx.views) {
+    const int W = v.width(), H = v.height();
+    Hasher key;
+    key.pod(int(scheme)).pod(W).pod(H).pod(ctx.seed).pod(param("jitter")).pod(&tiles);
+    if (!layout_ || layoutKey_ != key.value()) {
+      layout_ = std::make_unique<SampleLayout>(
+          buildSampleLayout(scheme, tiles, W, H, ctx.seed, param("jitter") != 0));
+      layoutKey_ = key.value();
+    }
+    const SampleLayout& L = *layout_;
+    std::vector<Camera> cams;
+    cams.reserve(size_t(n));
+    for (int j = 0; j < n; ++j)
+      cams.push_back(cameraForPair(v, pairs[size_t(j)], time, lens, {0, 0}));
+
+    // 1. Visibility of every sample.
+    auto t0 = Clock::now();
+    vis_.resize(L.stridesW(), L.stridesH());
+    visibility(ctx, L, cams, taus, vis_);
+    visMs += msSince(t0);
+
+    // 2. Shading, pass by pass (one time per pass), 8 samples at a time.
+    auto t1 = Clock::now();
+    colour_.resize(L.sampleCount());
+    const float spread = ctx.pixelSpread(v) / std::sqrt(float(k));
+    for (int j = 0; j < n; ++j) {
+      const uint32_t b = L.passBegin(j), e = L.passEnd(j);
+      const Camera& cam = cams[size_t(j)];
+      const float tau = taus[size_t(j)];
+      std::unique_ptr<Whitted> whitted;
+      if (rt) whitted = std::make_unique<Whitted>(Whitted(*rt, scene, shading, ws).atTime(tau));
+      parallelRange(
+          size_t(e - b),
+          [&](size_t s0, size_t s1) {
+            SurfaceSample s[8];
+            Vec3 d[8], out[8];
+            uint32_t at[8];
+            int m = 0;
+            auto flush = [&] {
+              if (m == 0) return;
+              if (whitted) {
+                whitted->shadePrimary8(s, d, m, out);
+              } else {
+                for (int q = 0; q < m; ++q) out[q] = shadeBlinnPhong(s[q], -d[q], shading);
+              }
+              for (int q = 0; q < m; ++q) colour_[at[q]] = out[q];
+              m = 0;
+            };
+            for (size_t q = b + s0; q < b + s1; ++q) {
+              const uint32_t id = L.ids[q];
+              Vec3 o, dir;
+              cam.generateRay(L.pos[id].x, L.pos[id].y, o, dir);
+              if (vis_.object[id] == kNoObject) {
+                colour_[id] = scene.skyRadiance(dir);
+                continue;
+              }
+              s[m] = resolveSurface(ctx.frame, int(vis_.object[id]), int(vis_.prim[id]), o, dir,
+                                    tau, nullptr, spread);
+              d[m] = dir;
+              at[m++] = id;
+              if (m == 8) flush();
+            }
+            flush();
+          },
+          256);
+    }
+    shadeMs += msSince(t1);
+
+    // 3. Resolve to pixels: a separable box or Blackman-Harris weight of each sample's offset.
+    auto t2 = Clock::now();
+    const float radius = float(param("filter_radius"));
+    const bool bh = param("filter") == 1;
+    const int reach = int(std::ceil(radius));
+    const int SW = L.stridesW();
+    // The 1D weight tabulated over [0, radius] (the window's cosines once, not per sample).
+    constexpr int kTable = 1024;
+    std::vector<float> table(kTable + 2);
+    for (int i = 0; i <= kTable + 1; ++i)
+      table[size_t(i)] = i > kTable ? 0.0f : bh ? blackmanHarris(float(i) / kTable) : 1.0f;
+    const float toTable = float(kTable) / radius;
+    auto weight = [&](float d) {
+      const float a = std::abs(d);
+      return a > radius ? 0.0f : table[size_t(int(a * toTable + 0.5f))];
+    };
+    parallelTiles(W, H, [&](int x0, int y0, int x1, int y1) {
+      for (int py = y0; py < y1; ++py)
+        for (int px = x0; px < x1; ++px) {
+          const float cx = float(px) + 0.5f, cy = float(py) + 0.5f;
+          Vec3 sum{0.0f};
+          float wsum = 0;
+          for (int qy = std::max(0, py - reach); qy <= std::min(H - 1, py + reach); ++qy)
+            for (int qx = std::max(0, px - reach); qx <= std::min(W - 1, px + reach); ++qx)
+              for (int sy = 0; sy < shape.sy; ++sy)
+                for (int sx = 0; sx < shape.sx; ++sx) {
+                  const size_t id = size_t(qy * shape.sy + sy) * size_t(SW) +
+                                    size_t(qx * shape.sx + sx);
+                  const float w = weight(L.pos[id].x - cx) * weight(L.pos[id].y - cy);
+                  if (w <= 0) continue;
+                  sum = sum + colour_[id] * w;
+                  wsum += w;
+                }
+          float* h = hdr.at(px + v.x, py + v.y);
+          if (wsum > 1e-12f) sum = sum * (1.0f / wsum);
+          h[0] = sum.x;
+          h[1] = sum.y;
+          h[2] = sum.z;
+        }
+    });
+    // The samples for the viewer: time, lens, prototype.
+    for (int y = 0; y < L.stridesH(); ++y)
+      for (int x = 0; x < SW; ++x) {
+        const size_t id = size_t(y) * size_t(SW) + size_t(x);
+        const TimeLensPair& p = pairs[L.pair[id]];
+        float* o = samplesOut.at(x + v.x * shape.sx, y + v.y * shape.sy);
+        o[0] = p.tau;
+        o[1] = p.u1;
+        o[2] = p.u2;
+        o[3] = scheme >= SamplingScheme::RandomTiles
+                   ? float(tiles.prototypeAt(x / shape.stridesX(), y / shape.stridesY())) / 80.0f
+                   : 0.0f;
+      }
+    resolveMs += msSince(t2);
+  }
+  if (counted) ctx.passRays += double(counted->raysTraced() - raysBefore);
+  ctx.passParts.push_back({"visibility", visMs, 0});
+  ctx.passParts.push_back({"shade", shadeMs, 0});
+  ctx.passParts.push_back({"resolve", resolveMs, 0});
+  ctx.counters[type() + "/passes"] = double(n);
+  ctx.counters[type() + "/samples_per_pixel"] = double(k);
+  ctx.counters[type() + "/min_similar_time_distance_px"] = tiles.quality.minSimilarTimeDistance;
+  ctx.counters[type() + "/footprint_time_discrepancy"] = tiles.quality.meanFootprintDiscrepancy;
+}
+
+void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& layout,
+                                       const std::vector<Camera>& cams,
+                                       const std::vector<float>& taus, VisibilityBuffer& vis) {
+  // Cameras at the strata grid's scale would change the projection; the rasterizer works in
+  // pixels and the samples carry their own sub-pixel positions.
+  double setUp = 0, setUpMax = 0, setUpMin = 1e300;
+  const bool moving = ctx.frame.motionBlur();
+  for (size_t j = 0; j < cams.size(); ++j) {
+    RasterStats stats;
+    rasterizer_.renderSamples(ctx.frame, cams[j], layout.passSamples(int(j)), vis, &stats,
+                              moving ? taus[j] : -1.0f);
+    setUp += double(stats.trianglesBinned);
+    setUpMax = std::max(setUpMax, double(stats.trianglesBinned));
+    setUpMin = std::min(setUpMin, double(stats.trianglesBinned));
+  }
+  ctx.counters["interleaved_raster/triangles_set_up_per_pass"] = setUp / double(cams.size());
+  ctx.counters["interleaved_raster/triangles_set_up_max"] = setUpMax;
+  ctx.counters["interleaved_raster/triangles_set_up_min"] = setUpMin;
+}
+
+void InterleavedRTPass::visibility(FrameContext& ctx, const SampleLayout& layout,
+                                   const std::vector<Camera>& cams, const std::vector<float>& taus,
+                                   VisibilityBuffer& vis) {
+  RayTracer& rt = ctx.rayTracer();
+  for (size_t j = 0; j < cams.size(); ++j) {
+    const uint32_t b = layout.passBegin(int(j)), e = layout.passEnd(int(j));
+    const Camera& cam = cams[j];
+    const float tau = taus[j];
+    parallelRange(
+        size_t(e - b),
+        [&](size_t s0, size_t s1) {
+          Ray rays[8];
+          Hit hits[8];
+          uint32_t at[8];
+          int m = 0;
+          auto flush = [&] {
+            rt.intersect8(rays, m, hits, /*cullBackfaces=*/true);
+            for (int q = 0; q < m; ++q) {
+              vis.object[at[q]] = hits[q].valid() ? uint32_t(hits[q].object) : kNoObject;
+              vis.prim[at[q]] = hits[q].valid() ? uint32_t(hits[q].prim) : 0u;
+            }
+            m = 0;
+          };
+          for (size_t q = b + s0; q < b + s1; ++q) {
+            const uint32_t id = layout.ids[q];
+            Ray& r = rays[m];
+            cam.generateRay(layout.pos[id].x, layout.pos[id].y, r.origin, r.dir);
+            r.time = tau;
+            at[m++] = id;
+            if (m == 8) flush();
+          }
+          if (m > 0) flush();
+        },
+        256);
+  }
+}
+
+}  // namespace tandem
