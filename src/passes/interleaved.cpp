@@ -245,13 +245,34 @@ void InterleavedPass::execute(FrameContext& ctx) {
 void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& layout,
                                        const std::vector<Camera>& cams,
                                        const std::vector<float>& taus, VisibilityBuffer& vis) {
-  // Cameras at the strata grid's scale would change the projection; the rasterizer works in
-  // pixels and the samples carry their own sub-pixel positions.
-  double setUp = 0, setUpMax = 0, setUpMin = 1e300;
+  // When no pair moves the camera (no lens, no camera motion in the shutter), geometry that
+  // stands still looks the same at every pair: it is rasterized once into every sample, and
+  // only the moving objects once per pair, over it.
   const bool moving = ctx.frame.motionBlur();
-  for (size_t j = 0; j < cams.size(); ++j) {
+  bool sameView = true;
+  for (const Camera& c : cams) sameView = sameView && sameMatrix(c.viewProj, cams.front().viewProj);
+  std::vector<uint8_t> movers(ctx.frame.objects.size(), 0), still(movers.size(), 0);
+  size_t moverCount = 0;
+  for (size_t o = 0; o < movers.size(); ++o) {
+    movers[o] = !ctx.frame.objects[o].stepPositions.empty();
+    still[o] = !movers[o];
+    moverCount += movers[o];
+  }
+  const bool shareStatic = sameView && cams.size() > 1;
+  double setUp = 0, setUpMax = 0, setUpMin = 1e300, shared = 0;
+  if (shareStatic) {
     RasterStats stats;
-    rasterizer_.renderSamples(ctx.frame, cams[j], layout.passSamples(int(j)), vis, &stats,
+    rasterizer_.renderSamples(ctx.frame, cams.front(), layout.allSamples(), vis,
+                              Rasterizer::Subset{&still, false}, &stats,
+                              moving ? taus.front() : -1.0f);
+    shared = double(stats.trianglesBinned);
+  }
+  for (size_t j = 0; j < cams.size(); ++j) {
+    if (shareStatic && moverCount == 0) break;
+    RasterStats stats;
+    const Rasterizer::Subset subset =
+        shareStatic ? Rasterizer::Subset{&movers, true} : Rasterizer::Subset{};
+    rasterizer_.renderSamples(ctx.frame, cams[j], layout.passSamples(int(j)), vis, subset, &stats,
                               moving ? taus[j] : -1.0f);
     setUp += double(stats.trianglesBinned);
     setUpMax = std::max(setUpMax, double(stats.trianglesBinned));
@@ -259,7 +280,8 @@ void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& la
   }
   ctx.counters["interleaved_raster/triangles_set_up_per_pass"] = setUp / double(cams.size());
   ctx.counters["interleaved_raster/triangles_set_up_max"] = setUpMax;
-  ctx.counters["interleaved_raster/triangles_set_up_min"] = setUpMin;
+  ctx.counters["interleaved_raster/triangles_set_up_min"] = std::min(setUpMin, setUpMax);
+  ctx.counters["interleaved_raster/static_triangles_set_up_once"] = shared;
 }
 
 void InterleavedRTPass::visibility(FrameContext& ctx, const SampleLayout& layout,

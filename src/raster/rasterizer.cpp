@@ -370,19 +370,20 @@ bool Rasterizer::alphaKeeps(const FrameScene& fs, const Camera& cam, const Setup
 }
 
 void Rasterizer::renderSamples(const FrameScene& fs, const Camera& cam, const SampleSet& set,
-                               VisibilityBuffer& out, RasterStats* stats, float tau) {
+                               VisibilityBuffer& out, const Subset& subset, RasterStats* stats,
+                               float tau) {
   const int W = cam.width, H = cam.height;
   // Bins are whole numbers of cells near 64 pixels, so each cell (and sample) has one owner.
   const int binCellsX = std::max(1, kBinSize / set.cellW), binCellsY = std::max(1, kBinSize / set.cellH);
   const int binW = binCellsX * set.cellW, binH = binCellsY * set.cellH;
   const int tilesX = (W + binW - 1) / binW, tilesY = (H + binH - 1) / binH;
-  const int chunks = prepare(fs, cam, Subset{}, tau, binW, binH, true, stats);
+  const int chunks = prepare(fs, cam, subset, tau, binW, binH, true, stats);
   tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
     const int bx = tile % tilesX, by = tile / tilesX;
     const int cx0 = bx * binCellsX, cy0 = by * binCellsY;
     const int cx1 = std::min(set.cellsX, cx0 + binCellsX) - 1;
     const int cy1 = std::min(set.cellsY, cy0 + binCellsY) - 1;
-    for (int cy = cy0; cy <= cy1; ++cy)
+    for (int cy = cy0; cy <= cy1 && !subset.keep; ++cy)
       for (int cx = cx0; cx <= cx1; ++cx) {
         const size_t c = size_t(cy) * size_t(set.cellsX) + size_t(cx);
         for (uint32_t k = set.start[c]; k < set.start[c + 1]; ++k) {

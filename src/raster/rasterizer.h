@@ -50,7 +50,14 @@ class Rasterizer {
   // `set`, clearing them first and touching no other entry. Each triangle visits only the cells
   // its screen box at this (time, lens) touches: one sample per cell for interleaved tiles.
   void renderSamples(const FrameScene& fs, const Camera& cam, const SampleSet& set,
-                     VisibilityBuffer& out, RasterStats* stats = nullptr, float tau = -1.0f);
+                     VisibilityBuffer& out, RasterStats* stats = nullptr, float tau = -1.0f) {
+    renderSamples(fs, cam, set, out, Subset{}, stats, tau);
+  }
+  // The same for a subset of the objects; with subset.keep the samples are drawn over, not
+  // cleared.
+  void renderSamples(const FrameScene& fs, const Camera& cam, const SampleSet& set,
+                     VisibilityBuffer& out, const Subset& subset, RasterStats* stats = nullptr,
+                     float tau = -1.0f);
 
   struct SetupTriangle {
     int32_t x[3], y[3];  // fixed point, 8 sub-pixel bits, positive orientation

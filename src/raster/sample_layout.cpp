@@ -33,6 +33,13 @@ Rasterizer::SampleSet SampleLayout::passSamples(int j) const {
   return s;
 }
 
+Rasterizer::SampleSet SampleLayout::allSamples() const {
+  Rasterizer::SampleSet s = passSamples(0);
+  s.start = allStart.data();
+  s.ids = allIds.data();
+  return s;
+}
+
 SampleLayout buildSampleLayout(SamplingScheme scheme, const TileSet& tiles, int width, int height,
                                uint64_t seed, bool jitter) {
   SampleLayout L;
@@ -127,6 +134,13 @@ SampleLayout buildSampleLayout(SamplingScheme scheme, const TileSet& tiles, int 
     for (int c = 0; c < cells; ++c)
       fill[size_t(j) * size_t(cells) + size_t(c)] = L.cellStart[size_t(j) * size_t(cells + 1) + size_t(c)];
   for (size_t i = 0; i < count; ++i) L.ids[fill[size_t(L.pair[i]) * size_t(cells) + cellOf(i)]++] = uint32_t(i);
+  // By cell alone.
+  L.allStart.assign(size_t(cells) + 1, 0);
+  for (size_t i = 0; i < count; ++i) ++L.allStart[cellOf(i) + 1];
+  for (int c = 0; c < cells; ++c) L.allStart[size_t(c) + 1] += L.allStart[size_t(c)];
+  L.allIds.resize(count);
+  std::vector<uint32_t> at(L.allStart.begin(), L.allStart.end() - 1);
+  for (size_t i = 0; i < count; ++i) L.allIds[at[cellOf(i)]++] = uint32_t(i);
   return L;
 }
 

@@ -39,6 +39,9 @@ struct SampleLayout {
   uint32_t passBegin(int j) const { return cellStart[size_t(j) * size_t(cells() + 1)]; }
   uint32_t passEnd(int j) const { return cellStart[size_t(j) * size_t(cells() + 1) + size_t(cells())]; }
   Rasterizer::SampleSet passSamples(int j) const;
+  // Every sample, grouped by cell only: allIds[allStart[c] .. allStart[c + 1]).
+  std::vector<uint32_t> allStart, allIds;
+  Rasterizer::SampleSet allSamples() const;
 };
 
 // Lays out a width x height image. `tiles` is used by the tiled schemes (its shape sets k and

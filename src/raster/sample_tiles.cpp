@@ -435,8 +435,8 @@ TileQuality measureTileQuality(const TileSet& set, const std::vector<TimeLensPai
           const size_t i = size_t(ty * b + y) * W + size_t(tx * a + x);
           const size_t slot = size_t(p) * s.n + size_t(y * a + x);
           pairAt[i] = set.slot[slot];
-          const Vec2 j = set.jitter[slot];
-          pos[i] = {(float(tx * a + x) + j.x) / float(s.sx), (float(ty * b + y) + j.y) / float(s.sy)};
+          // Stratum centres: the arrangement's quality, not the jitter's.
+          pos[i] = {(float(tx * a + x) + 0.5f) / float(s.sx), (float(ty * b + y) + 0.5f) / float(s.sy)};
         }
     }
   // Time ranks: similar times are equal or adjacent ranks.

@@ -55,8 +55,8 @@ TileShape makeTileShape(int n, int k);
 enum class TileKind { Random, ColoredCorner };
 
 struct TileQuality {
-  // Smallest screen distance (pixels) between two samples whose times are neighbours in T
-  // (adjacent time strata), over a layout of 12 x 12 tiles.
+  // Smallest screen distance (pixels, between stratum centres) of two samples whose times are
+  // equal or neighbours in T (adjacent time strata), over a layout of 12 x 12 tiles.
   double minSimilarTimeDistance = 0;
   // Star discrepancy of the times inside each 2 x 2-pixel footprint, mean and worst.
   double meanFootprintDiscrepancy = 0, maxFootprintDiscrepancy = 0;
