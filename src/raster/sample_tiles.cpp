@@ -125,7 +125,7 @@ class Arrangement {
   Arrangement(int w, int h, const TileShape& shape, const PairSpace& space)
       : w_(w), h_(h), space_(space), cell(size_t(w) * h, -1), group(size_t(w) * h, -1) {
     // Gaussian falloff over screen distance in pixels (sigma 0.7 px: a pixel filter's reach).
-    const float sigma = 0.7f, radius = 2.0f * sigma;
+    const float sigma = 1.0f, radius = 2.5f * sigma;
     rx_ = std::max(1, int(std::ceil(radius * float(shape.sx))));
     ry_ = std::max(1, int(std::ceil(radius * float(shape.sy))));
     weights_.resize(size_t(2 * rx_ + 1) * (2 * ry_ + 1));
@@ -449,20 +449,24 @@ TileQuality measureTileQuality(const TileSet& set, const std::vector<TimeLensPai
     for (int r = 0; r < s.n; ++r) rank[size_t(order[size_t(r)])] = r;
   }
   TileQuality q;
-  double minD = 1e30;
+  double minD = 1e30, sumNearest = 0;
   const int reachX = 4 * s.sx, reachY = 4 * s.sy;  // 4 pixels
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const size_t i = size_t(y) * W + size_t(x);
-      for (int yy = y; yy <= std::min(H - 1, y + reachY); ++yy)
+      double nearest = 4.0;
+      for (int yy = std::max(0, y - reachY); yy <= std::min(H - 1, y + reachY); ++yy)
         for (int xx = std::max(0, x - reachX); xx <= std::min(W - 1, x + reachX); ++xx) {
           const size_t j = size_t(yy) * W + size_t(xx);
-          if (j <= i) continue;
+          if (j == i) continue;
           if (std::abs(rank[size_t(pairAt[i])] - rank[size_t(pairAt[j])]) > 1) continue;
           const float dx = pos[i].x - pos[j].x, dy = pos[i].y - pos[j].y;
-          minD = std::min(minD, double(std::sqrt(dx * dx + dy * dy)));
+          nearest = std::min(nearest, double(std::sqrt(dx * dx + dy * dy)));
         }
+      minD = std::min(minD, nearest);
+      sumNearest += nearest;
     }
+  q.meanSimilarTimeDistance = sumNearest / double(size_t(W) * H);
   q.minSimilarTimeDistance = minD > 1e29 ? 4.0 : minD;
   // Footprints of 2 x 2 pixels, every pixel position.
   auto star = [](std::vector<float>& v) {

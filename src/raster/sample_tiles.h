@@ -58,6 +58,8 @@ struct TileQuality {
   // Smallest screen distance (pixels, between stratum centres) of two samples whose times are
   // equal or neighbours in T (adjacent time strata), over a layout of 12 x 12 tiles.
   double minSimilarTimeDistance = 0;
+  // The mean over samples of the distance to the nearest such sample (at most 4 pixels).
+  double meanSimilarTimeDistance = 0;
   // Star discrepancy of the times inside each 2 x 2-pixel footprint, mean and worst.
   double meanFootprintDiscrepancy = 0, maxFootprintDiscrepancy = 0;
   // The same for the lens coordinate u1 (how the aperture is covered).
