@@ -2,7 +2,8 @@
 // JSON file (experiments/NAME.json in the source tree, or any path) whose "runner" picks the
 // procedure — "sweep" (scenes x pipelines x a parameter sweep against cached references),
 // "heuristic" (seed 002's Tables 5 and 6 and the ms-budget tracking), "taa" (TAA against a
-// supersampled render) or "hybrid-dof" (seed 000's Table 2 and Figures 6-7). Command-line options
+// supersampled render), "hybrid-dof" (seed 000's Table 2 and Figures 6-7), "foveated" (seed 004)
+// or "interleaved" (seed 003). Command-line options
 // override the file's settings. Every run writes results.md, CSV, PNG plots and index.html.
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "eval/experiment_dof.h"
 #include "eval/experiment_foveated.h"
 #include "eval/experiment_heuristic.h"
+#include "eval/experiment_interleaved.h"
 #include "eval/experiment_sweep.h"
 #include "eval/experiment_taa.h"
 #include "verbs.h"
@@ -115,9 +117,22 @@ struct ExperimentVerb {
       if (o.spp) fo.referenceSpp = o.spp;
       return runFoveatedExperiment(fo);
     }
+    if (runner == "interleaved") {
+      InterleavedExperimentOptions io = interleavedOptionsFromJson(j, file.string());
+      io.out = o.out.empty() ? "out/experiment-" + file.stem().string() : o.out;
+      io.cache = o.noCache ? "" : o.cache;
+      if (o.width) io.width = o.width;
+      if (o.height) io.height = o.height;
+      if (o.warmup >= 0) io.timingWarmup = o.warmup;
+      if (o.frames) io.timingFrames = o.frames;
+      if (o.spp) io.referenceSpp = o.spp;
+      if (!o.scenes.empty()) throw InputError("command line", "--scenes", "not for interleaved");
+      return runInterleavedExperiment(io);
+    }
     if (runner != "sweep")
       throw InputError(file.string(), "runner",
-                       "'" + runner + "' is not sweep, heuristic, taa, hybrid-dof or foveated");
+                       "'" + runner +
+                           "' is not sweep, heuristic, taa, hybrid-dof, foveated or interleaved");
     if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
       throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
                        "apply to the heuristic runner only");

@@ -1,6 +1,7 @@
 #include "passes/accumulation.h"
 
 #include <algorithm>
+#include <memory>
 #include <numeric>
 #include <random>
 
@@ -9,6 +10,7 @@
 #include "passes/interleaved.h"
 #include "pipeline/frame_context.h"
 #include "rt/reference_render.h"
+#include "rt/whitted.h"
 #include "shading/blinn_phong.h"
 #include "shading/surface_resolve.h"
 
@@ -24,7 +26,16 @@ std::vector<ParamDesc> AccumulationPass::params() const {
            "what the samples vary",
            {"dof", "motion_blur", "both"},
            true},
-          {"antialias", ParamType::Bool, 1, 0, 1, "jitter each image within the pixel", {}}};
+          {"antialias", ParamType::Bool, 1, 0, 1, "jitter each image within the pixel", {}},
+          {"shading",
+           ParamType::Enum,
+           1,
+           0,
+           1,
+           "whitted: ray-traced shadows, mirrors, glass (as interleaved_*); local: Blinn-Phong "
+           "without shadows",
+           {"whitted", "local"},
+           true}};
 }
 
 void AccumulationPass::execute(FrameContext& ctx) {
@@ -32,6 +43,8 @@ void AccumulationPass::execute(FrameContext& ctx) {
   const bool lens = mode != 1, time = mode != 0, aa = param("antialias") != 0;
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
+  RayTracer* rt = param("shading") == 0 ? &ctx.rayTracer() : nullptr;
+  const uint64_t raysBefore = rt ? rt->raysTraced() : 0;
   const std::vector<TimeLensPair> pairs = stratifiedTimeLensPairs(n, ctx.seed);
   Buffer& hdr = ctx.output(*this, "hdr");
   hdr.fill(0.0f);
@@ -50,6 +63,8 @@ void AccumulationPass::execute(FrameContext& ctx) {
       triangles += stats.trianglesBinned;
       rasterMs += msSince(t0);
       auto t1 = Clock::now();
+      std::unique_ptr<Whitted> whitted;
+      if (rt) whitted = std::make_unique<Whitted>(Whitted(*rt, scene, shading, {}).atTime(tau));
       parallelTiles(v.width(), v.height(), [&](int x0, int y0, int x1, int y1) {
         for (int y = y0; y < y1; ++y)
           for (int x = x0; x < x1; ++x) {
@@ -62,7 +77,7 @@ void AccumulationPass::execute(FrameContext& ctx) {
             } else {
               const SurfaceSample s = resolveSurface(ctx.frame, int(visibility_.object[i]),
                                                      int(visibility_.prim[i]), o, d, tau);
-              c = shadeBlinnPhong(s, -d, shading);
+              c = whitted ? whitted->shadePrimary(s, d) : shadeBlinnPhong(s, -d, shading);
             }
             float* h = hdr.at(x + v.x, y + v.y);
             h[0] += c.x * weight;
@@ -76,6 +91,7 @@ void AccumulationPass::execute(FrameContext& ctx) {
   ctx.passParts.push_back({"raster", rasterMs, 0});
   ctx.passParts.push_back({"shade", shadeMs, 0});
   ctx.counters["accumulation/triangles_binned"] = double(triangles);
+  if (rt) ctx.passRays += double(rt->raysTraced() - raysBefore);
 }
 
 }  // namespace tandem

@@ -7,7 +7,8 @@
 // camera's n-gon, Hammersley points), the two decorrelated by a seeded permutation.
 // Each image is also offset by a sub-pixel jitter (Halton (2, 3), in a third independent order), so
 // the average is anti-aliased like the reference's pixel-area samples.
-// Output: hdr. Parameters: samples, mode (dof, motion_blur, both), antialias.
+// Output: hdr. Parameters: samples, mode (dof, motion_blur, both), antialias, shading (local:
+// Blinn-Phong without shadows; whitted: the ray-traced shading of the interleaved passes).
 #pragma once
 #include <vector>
 
