@@ -75,6 +75,22 @@ std::vector<ParamDesc> InterleavedPass::params() const {
        1,
        "whitted: ray-traced shadows, mirrors, glass; local: Blinn-Phong without shadows",
        {"whitted", "local"},
+       true},
+      {"shutter_time",
+       ParamType::Float,
+       -1,
+       -1,
+       1,
+       "every pair at this shutter fraction (a sharp image; -1: the pairs' own times)",
+       {},
+       true},
+      {"shading_rate",
+       ParamType::Enum,
+       0,
+       0,
+       1,
+       "sample: every sample shaded; pixel: once per pixel and surface seen (MSAA-style)",
+       {"sample", "pixel"},
        true}};
   for (const ParamDesc& d : whittedParams()) p.push_back(d);
   return p;
@@ -98,6 +114,8 @@ void InterleavedPass::execute(FrameContext& ctx) {
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& samplesOut =
       ctx.output(*this, "interleave_samples", ctx.width * shape.sx, ctx.height * shape.sy);
+  Buffer& velocityOut = ctx.output(*this, "velocity");
+  Buffer& depthOut = ctx.output(*this, "view_depth");
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   const bool whittedShading = param("shading") == 0;
@@ -106,7 +124,9 @@ void InterleavedPass::execute(FrameContext& ctx) {
   const uint64_t raysBefore = counted ? counted->raysTraced() : 0;
   const WhittedSettings ws = whittedSettings(*this);
   std::vector<float> taus(static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j) taus[size_t(j)] = time ? pairs[size_t(j)].tau : 0.0f;
+  const float fixedTau = float(param("shutter_time"));
+  for (int j = 0; j < n; ++j)
+    taus[size_t(j)] = !time ? 0.0f : fixedTau >= 0 ? fixedTau : pairs[size_t(j)].tau;
   double visMs = 0, shadeMs = 0, resolveMs = 0;
 
   for (const View& v : ctx.views) {
@@ -121,19 +141,74 @@ void InterleavedPass::execute(FrameContext& ctx) {
     const SampleLayout& L = *layout_;
     std::vector<Camera> cams;
     cams.reserve(size_t(n));
-    for (int j = 0; j < n; ++j)
-      cams.push_back(cameraForPair(v, pairs[size_t(j)], time, lens, {0, 0}));
+    for (int j = 0; j < n; ++j) {
+      TimeLensPair p = pairs[size_t(j)];
+      p.tau = taus[size_t(j)];
+      cams.push_back(cameraForPair(v, p, time, lens, {0, 0}));
+    }
+
+    // 0. Which samples are needed: those of pixels within the filter's reach of the mask.
+    const Buffer* mask = ctx.optionalInput(*this, "sample_mask");
+    const int reach = int(std::ceil(float(param("filter_radius"))));
+    const int SW = L.stridesW();
+    std::vector<uint8_t> wanted;  // per pixel: resolved (mask > 0)
+    if (mask) {
+      wanted.assign(size_t(W) * H, 0);
+      std::vector<uint8_t> near(size_t(W) * H, 0);
+      for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+          if (mask->at(x + v.x, y + v.y)[0] > 0) {
+            wanted[size_t(y) * W + size_t(x)] = 1;
+            for (int yy = std::max(0, y - reach); yy <= std::min(H - 1, y + reach); ++yy)
+              for (int xx = std::max(0, x - reach); xx <= std::min(W - 1, x + reach); ++xx)
+                near[size_t(yy) * W + size_t(xx)] = 1;
+          }
+      active_.assign(L.sampleCount(), 0);
+      for (int y = 0; y < L.stridesH(); ++y)
+        for (int x = 0; x < SW; ++x)
+          active_[size_t(y) * size_t(SW) + size_t(x)] =
+              near[size_t(y / shape.sy) * W + size_t(x / shape.sx)];
+    }
+    const uint8_t* active = mask ? active_.data() : nullptr;
 
     // 1. Visibility of every sample.
     auto t0 = Clock::now();
     vis_.resize(L.stridesW(), L.stridesH());
-    visibility(ctx, L, cams, taus, vis_);
+    visibility(ctx, L, cams, taus, active, vis_);
     visMs += msSince(t0);
 
     // 2. Shading, pass by pass (one time per pass), 8 samples at a time.
     auto t1 = Clock::now();
     colour_.resize(L.sampleCount());
+    position_.resize(L.sampleCount());
     const float spread = ctx.pixelSpread(v) / std::sqrt(float(k));
+    // Shading per pixel (MSAA-style): a pixel's samples that see the same triangle at the same
+    // pair (or the same time, when the lens does not vary) take the colour of the first of them.
+    const bool perPixel = param("shading_rate") == 1;
+    if (perPixel) {
+      rep_.resize(L.sampleCount());
+      parallelTiles(W, H, [&](int x0, int y0, int x1, int y1) {
+        for (int py = y0; py < y1; ++py)
+          for (int px = x0; px < x1; ++px) {
+            uint32_t ids[64];
+            int m = 0;
+            for (int sy = 0; sy < shape.sy; ++sy)
+              for (int sx = 0; sx < shape.sx; ++sx) {
+                const uint32_t id = uint32_t(size_t(py * shape.sy + sy) * size_t(SW) +
+                                             size_t(px * shape.sx + sx));
+                rep_[id] = id;
+                for (int q = 0; q < m; ++q)
+                  if (vis_.object[ids[q]] == vis_.object[id] && vis_.prim[ids[q]] == vis_.prim[id] &&
+                      (L.pair[ids[q]] == L.pair[id] ||
+                       (!lens && taus[L.pair[ids[q]]] == taus[L.pair[id]]))) {
+                    rep_[id] = ids[q];
+                    break;
+                  }
+                if (rep_[id] == id) ids[m++] = id;
+              }
+          }
+      });
+    }
     for (int j = 0; j < n; ++j) {
       const uint32_t b = L.passBegin(j), e = L.passEnd(j);
       const Camera& cam = cams[size_t(j)];
@@ -154,11 +229,15 @@ void InterleavedPass::execute(FrameContext& ctx) {
               } else {
                 for (int q = 0; q < m; ++q) out[q] = shadeBlinnPhong(s[q], -d[q], shading);
               }
-              for (int q = 0; q < m; ++q) colour_[at[q]] = out[q];
+              for (int q = 0; q < m; ++q) {
+                colour_[at[q]] = out[q];
+                position_[at[q]] = s[q].position;
+              }
               m = 0;
             };
             for (size_t q = b + s0; q < b + s1; ++q) {
               const uint32_t id = L.ids[q];
+              if ((active && !active[id]) || (perPixel && rep_[id] != id)) continue;
               Vec3 o, dir;
               cam.generateRay(L.pos[id].x, L.pos[id].y, o, dir);
               if (vis_.object[id] == kNoObject) {
@@ -175,14 +254,17 @@ void InterleavedPass::execute(FrameContext& ctx) {
           },
           256);
     }
+    if (perPixel)
+      parallelRange(L.sampleCount(), [&](size_t b, size_t e) {
+        for (size_t id = b; id < e; ++id)
+          if (rep_[id] != id) colour_[id] = colour_[rep_[id]];
+      });
     shadeMs += msSince(t1);
 
     // 3. Resolve to pixels: a separable box or Blackman-Harris weight of each sample's offset.
     auto t2 = Clock::now();
     const float radius = float(param("filter_radius"));
     const bool bh = param("filter") == 1;
-    const int reach = int(std::ceil(radius));
-    const int SW = L.stridesW();
     // The 1D weight tabulated over [0, radius] (the window's cosines once, not per sample).
     constexpr int kTable = 1024;
     std::vector<float> table(kTable + 2);
@@ -197,6 +279,11 @@ void InterleavedPass::execute(FrameContext& ctx) {
       for (int py = y0; py < y1; ++py)
         for (int px = x0; px < x1; ++px) {
           const float cx = float(px) + 0.5f, cy = float(py) + 0.5f;
+          if (mask && !wanted[size_t(py) * W + size_t(px)]) {
+            float* h = hdr.at(px + v.x, py + v.y);
+            h[0] = h[1] = h[2] = 0.0f;
+            continue;
+          }
           Vec3 sum{0.0f};
           float wsum = 0;
           for (int qy = std::max(0, py - reach); qy <= std::min(H - 1, py + reach); ++qy)
@@ -217,6 +304,64 @@ void InterleavedPass::execute(FrameContext& ctx) {
           h[2] = sum.z;
         }
     });
+    // Velocity and depth of each pixel's first sample, for the post-process motion blur: the
+    // surface point carried rigidly with its object from the sample's time to shutter open and
+    // close, projected through the cameras at open and close.
+    const float t0s = ctx.frame.time, t1s = ctx.frame.shutterClose;
+    // Per pair and animated object: world at open (and close) after world at the pair's time
+    // undone.
+    std::vector<std::vector<std::pair<Mat4, Mat4>>> carry(static_cast<size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      carry[size_t(j)].resize(scene.objects.size());
+      for (size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& obj = scene.objects[o];
+        if (!obj.animated()) continue;
+        const Mat4 undo = obj.worldMatrix(t0s + (t1s - t0s) * taus[size_t(j)]).inverse();
+        carry[size_t(j)][o] = {obj.worldMatrix(t0s) * undo, obj.worldMatrix(t1s) * undo};
+      }
+    }
+    parallelTiles(W, H, [&](int x0, int y0, int x1, int y1) {
+      for (int py = y0; py < y1; ++py)
+        for (int px = x0; px < x1; ++px) {
+          float* vel = velocityOut.at(px + v.x, py + v.y);
+          float* dep = depthOut.at(px + v.x, py + v.y);
+          const size_t id = size_t(py * shape.sy) * size_t(SW) + size_t(px * shape.sx);
+          vel[0] = vel[1] = 0.0f;
+          dep[0] = 1e30f;
+          if (active && !active[id]) continue;
+          const int j = L.pair[id];
+          Vec3 pOpen, pClose;
+          float wPoint = 1.0f;
+          if (vis_.object[id] == kNoObject) {
+            Vec3 o;
+            cams[size_t(j)].generateRay(L.pos[id].x, L.pos[id].y, o, pOpen);
+            pClose = pOpen;  // a direction: only the camera's rotation moves it
+            wPoint = 0.0f;
+          } else {
+            const Vec3 p = position_[id];
+            const size_t obj = vis_.object[id];
+            if (scene.objects[obj].animated()) {
+              pOpen = carry[size_t(j)][obj].first.transformPoint(p);
+              pClose = carry[size_t(j)][obj].second.transformPoint(p);
+            } else {
+              pOpen = pClose = p;
+            }
+            dep[0] = dot(p - cams[size_t(j)].eye, cams[size_t(j)].forward);
+          }
+          auto toPixel = [&](const Camera& c, Vec3 q, Vec2& out) {
+            const Vec4 h = c.viewProjUnjittered * Vec4(q, wPoint);
+            if (h.w <= 1e-8f) return false;
+            out = {(h.x / h.w * 0.5f + 0.5f) * float(W), (0.5f - h.y / h.w * 0.5f) * float(H)};
+            return true;
+          };
+          Vec2 a, b;
+          if (toPixel(v.camera, pOpen, a) && toPixel(v.shutterCamera, pClose, b)) {
+            vel[0] = b.x - a.x;
+            vel[1] = b.y - a.y;
+          }
+        }
+    });
+
     // The samples for the viewer: time, lens, prototype.
     for (int y = 0; y < L.stridesH(); ++y)
       for (int x = 0; x < SW; ++x) {
@@ -244,7 +389,9 @@ void InterleavedPass::execute(FrameContext& ctx) {
 
 void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& layout,
                                        const std::vector<Camera>& cams,
-                                       const std::vector<float>& taus, VisibilityBuffer& vis) {
+                                       const std::vector<float>& taus, const uint8_t* /*active*/,
+                                       VisibilityBuffer& vis) {
+  // Every sample: a pass costs its triangles' setup, not its samples.
   // When no pair moves the camera (no lens, no camera motion in the shutter), geometry that
   // stands still looks the same at every pair: it is rasterized once into every sample, and
   // only the moving objects once per pair, over it.
@@ -286,7 +433,7 @@ void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& la
 
 void InterleavedRTPass::visibility(FrameContext& ctx, const SampleLayout& layout,
                                    const std::vector<Camera>& cams, const std::vector<float>& taus,
-                                   VisibilityBuffer& vis) {
+                                   const uint8_t* active, VisibilityBuffer& vis) {
   RayTracer& rt = ctx.rayTracer();
   for (size_t j = 0; j < cams.size(); ++j) {
     const uint32_t b = layout.passBegin(int(j)), e = layout.passEnd(int(j));
@@ -309,6 +456,7 @@ void InterleavedRTPass::visibility(FrameContext& ctx, const SampleLayout& layout
           };
           for (size_t q = b + s0; q < b + s1; ++q) {
             const uint32_t id = layout.ids[q];
+            if (active && !active[id]) continue;
             Ray& r = rays[m];
             cam.generateRay(layout.pos[id].x, layout.pos[id].y, r.origin, r.dir);
             r.time = tau;

@@ -10,9 +10,17 @@
 //    lens point: the same samples, ray traced.
 // Both shade every sample with the one shading function (Whitted: ray-traced shadows, mirrors,
 // glass at the pair's time; or `local` Blinn-Phong without shadows, as accumulation) and resolve
-// to pixels with a box or Blackman-Harris filter of the given radius.
+// to pixels with a box or Blackman-Harris filter of the given radius. `shading_rate = pixel`
+// shades a pixel's samples that see the same triangle at the same pair once (MSAA-style: the
+// sharp mid-shutter image of the post-process motion blur, anti-aliased at the cost of ~1 shade
+// a pixel).
+// Input (optional): sample_mask — where to sample (> 0); elsewhere no sample is shaded and hdr
+// is 0 (hybrid motion blur samples only where the post-process cannot be trusted).
 // Outputs: hdr; interleave_samples (the strata grid, W k_x x H k_y: time, lens u1, u2, tile
-// prototype / 80) for the viewer. Counters: triangles set up per pass (raster).
+// prototype / 80) for the viewer; velocity (the screen displacement in pixels over the whole
+// shutter of the surface a pixel's first sample sees: camera open to close, object at open to
+// close) and view_depth (that surface's distance along the view axis) for the post-process
+// motion blur. Counters: triangles set up per pass (raster).
 #pragma once
 #include <memory>
 
@@ -34,24 +42,35 @@ float blackmanHarris(float t);
 
 class InterleavedPass : public Pass {
  public:
+  std::vector<BufferSlot> inputs() const override {
+    BufferSlot mask{"sample_mask", 1, BufferKind::Mask};
+    mask.optional = true;
+    return {mask};
+  }
   std::vector<BufferSlot> outputs() const override {
-    return {{"hdr", 3}, {"interleave_samples", 4, BufferKind::Color, Extent::any()}};
+    return {{"hdr", 3},
+            {"interleave_samples", 4, BufferKind::Color, Extent::any()},
+            {"velocity", 2, BufferKind::Motion},
+            {"view_depth", 1, BufferKind::Color}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
 
  protected:
-  // Finds the surface of every sample: vis.object / vis.prim indexed by sample id.
+  // Finds the surface of every sample: vis.object / vis.prim indexed by sample id. `active`
+  // (null: all) marks the samples that are needed; others may be left as they are.
   virtual void visibility(FrameContext& ctx, const SampleLayout& layout,
                           const std::vector<Camera>& cams, const std::vector<float>& taus,
-                          VisibilityBuffer& vis) = 0;
+                          const uint8_t* active, VisibilityBuffer& vis) = 0;
   virtual bool tracesPrimaryRays() const { return false; }
 
  private:
   std::unique_ptr<SampleLayout> layout_;
   uint64_t layoutKey_ = 0;
   VisibilityBuffer vis_;
-  std::vector<Vec3> colour_;
+  std::vector<Vec3> colour_, position_;  // per sample: shaded colour, surface point
+  std::vector<uint8_t> active_;
+  std::vector<uint32_t> rep_;  // shading_rate pixel: the sample whose colour a sample takes
 };
 
 class InterleavedRasterPass : public InterleavedPass {
@@ -64,7 +83,8 @@ class InterleavedRasterPass : public InterleavedPass {
 
  protected:
   void visibility(FrameContext& ctx, const SampleLayout& layout, const std::vector<Camera>& cams,
-                  const std::vector<float>& taus, VisibilityBuffer& vis) override;
+                  const std::vector<float>& taus, const uint8_t* active,
+                  VisibilityBuffer& vis) override;
 
  private:
   Rasterizer rasterizer_;
@@ -80,7 +100,8 @@ class InterleavedRTPass : public InterleavedPass {
 
  protected:
   void visibility(FrameContext& ctx, const SampleLayout& layout, const std::vector<Camera>& cams,
-                  const std::vector<float>& taus, VisibilityBuffer& vis) override;
+                  const std::vector<float>& taus, const uint8_t* active,
+                  VisibilityBuffer& vis) override;
   bool tracesPrimaryRays() const override { return true; }
 };
 

@@ -15,6 +15,7 @@
 #include "passes/nh_denoise.h"
 #include "passes/periphery_accumulation.h"
 #include "passes/postfx_dof.h"
+#include "passes/postfx_motion_blur.h"
 #include "passes/pt_reference.h"
 #include "passes/raster_gbuffer.h"
 #include "passes/ray_mask.h"
@@ -57,6 +58,8 @@ const std::vector<std::string>& passTypes() {
                                                  "periphery_accumulation",
                                                  "interleaved_raster",
                                                  "interleaved_rt",
+                                                 "postfx_motion_blur",
+                                                 "mb_composite",
                                                  "tonemap"};
   return types;
 }
@@ -88,6 +91,8 @@ std::unique_ptr<Pass> createPass(const std::string& type) {
   if (type == "periphery_accumulation") return std::make_unique<PeripheryAccumulationPass>();
   if (type == "interleaved_raster") return std::make_unique<InterleavedRasterPass>();
   if (type == "interleaved_rt") return std::make_unique<InterleavedRTPass>();
+  if (type == "postfx_motion_blur") return std::make_unique<PostfxMotionBlurPass>();
+  if (type == "mb_composite") return std::make_unique<MotionBlurCompositePass>();
   if (type == "tonemap") return std::make_unique<TonemapPass>();
   return nullptr;
 }

@@ -37,6 +37,7 @@ const std::string kGoldenDir = std::string(TANDEM_SOURCE_DIR) + "/tests/golden";
 
 struct GoldenCase {
   std::string pipeline, scene;
+  float shutter = 0.0f;  // seconds (motion blur)
 };
 
 // Pipelines that draw another's picture by design are held to that pipeline's golden.
@@ -65,6 +66,10 @@ std::vector<GoldenCase> goldenCases() {
   }
   cases.push_back({"accumulation-motion-blur",
                    std::string(TANDEM_SOURCE_DIR) + "/scenes/cornell_motion_blur.json"});
+  // Interleaved sampling and the motion blurs with the shutter open (the ball crosses the box).
+  for (const char* p :
+       {"interleaved-raster", "interleaved-rt", "postfx-motion-blur", "hybrid-motion-blur"})
+    cases.push_back({p, std::string(TANDEM_SOURCE_DIR) + "/scenes/cornell_motion_blur.json", 1.0f});
   return cases;
 }
 
@@ -80,7 +85,8 @@ Buffer renderGolden(const GoldenCase& c, float nudge = 0.0f) {
   Scene scene = loadScene(c.scene);
   Pipeline pipeline = Pipeline::load(c.pipeline);
   if (c.pipeline == "reference") pipeline.setParam("pt_reference.spp=16", "golden");
-  Renderer r(scene, std::move(pipeline), RenderSettings{.width = 160, .height = 90});
+  Renderer r(scene, std::move(pipeline),
+             RenderSettings{.width = 160, .height = 90, .shutter = c.shutter});
   CameraDesc cam = defaultCamera(scene);
   cam.position = cam.position + Vec3(nudge, 0, 0);
   cam.lookAt = cam.lookAt + Vec3(nudge, 0, 0);
