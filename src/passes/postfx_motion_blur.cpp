@@ -33,6 +33,7 @@ float smoothstep(float a, float b, float x) {
   return t * t * (3 - 2 * t);
 }
 float cylinder(float dist, float speed) {
+  if (speed <= 0) return dist <= 0 ? 1.0f : 0.0f;  // a still pixel covers only itself
   return 1.0f - smoothstep(0.95f * speed, 1.05f * speed, dist);
 }
 // 1 where depth a is (softly) in front of depth b (distances along the view axis).

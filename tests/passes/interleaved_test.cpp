@@ -177,3 +177,130 @@ TEST(Interleaved, BadValuesAreNamed) {
                                {"interleaved_raster.spp=0"}),
                InputError);
 }
+
+namespace {
+
+// One frame of `pipeline` with the shutter open for 1 s, the renderer kept for its buffers.
+std::unique_ptr<Renderer> renderMoving(const Scene& s, const std::string& pipeline,
+                                       const CameraDesc& cd, int w = 96, int h = 64) {
+  auto r = std::make_unique<Renderer>(s, Pipeline::load(pipeline),
+                                      RenderSettings{.width = w, .height = h, .shutter = 1.0f});
+  r->renderFrame(0, cd);
+  return r;
+}
+
+Scene movingSquare() {
+  Scene s = oneSquare();
+  Transform a, b;
+  b.position.x = 1.0f;
+  s.objects[0].animation = {{0.0f, a}, {1.0f, b}};
+  return s;
+}
+
+}  // namespace
+
+// The velocity buffer carries each pixel's surface over the shutter: the square moves 1 m at
+// 4 m, exactly its own projected width; the sky does not move.
+TEST(MotionBlur, VelocityIsTheDisplacementOverTheShutter) {
+  const CameraDesc cd = pinholeCamera();
+  const Camera cam = Camera::make(cd, 96, 64);
+  Vec2 left, right;
+  ASSERT_TRUE(cam.project({-0.5f, 0, -2}, left));
+  ASSERT_TRUE(cam.project({0.5f, 0, -2}, right));
+  auto r = renderMoving(movingSquare(), "postfx-motion-blur", cd);
+  const Buffer& v = r->context().input("velocity");
+  const int row = int(left.y);
+  // The sharp image is at mid-shutter: the square then spans [left + D/2, right + D/2].
+  const float D = right.x - left.x;
+  int onSquare = 0;
+  for (int x = 0; x < 96; ++x) {
+    const float c = float(x) + 0.5f;
+    if (c > left.x + 0.5f * D + 1 && c < right.x + 0.5f * D - 1) {
+      EXPECT_NEAR(v.at(x, row)[0], D, 0.05f) << x;
+      EXPECT_NEAR(v.at(x, row)[1], 0.0f, 0.05f) << x;
+      ++onSquare;
+    }
+  }
+  EXPECT_GT(onSquare, 10);
+  EXPECT_EQ(v.at(2, 2)[0], 0.0f);  // sky
+}
+
+// McGuire et al.'s filter on the moving square: no light beyond the swept path, the blur spans
+// the path (first and last lit pixels within 2 px of its ends), ramps in between. The filter is
+// plausible rather than exact: inside the object's own mid-shutter footprint it cannot see the
+// background it should let through, so the square stays too opaque there (measured: +24 % light,
+// RMS 0.17 over the path against the analytic profile; interleaved sampling: below 0.035).
+TEST(MotionBlur, PostProcessBlurFollowsTheSweptPath) {
+  const CameraDesc cd = pinholeCamera();
+  const Camera cam = Camera::make(cd, 96, 64);
+  Vec2 left, right;
+  ASSERT_TRUE(cam.project({-0.5f, 0, -2}, left));
+  ASSERT_TRUE(cam.project({0.5f, 0, -2}, right));
+  const float L0 = left.x, S = right.x - left.x, D = S;
+  const int row = int(left.y);
+  auto r = renderMoving(movingSquare(), "postfx-motion-blur", cd);
+  const Buffer& img = r->context().input("mb_postfx");
+  double got = 0, expected = 0, err = 0;
+  int first = -1, last = -1;
+  for (int x = 0; x < 96; ++x) {
+    double e = 0;
+    for (int q = 0; q < 64; ++q) {
+      const double u = x + (q + 0.5) / 64.0;
+      e += std::clamp((u - L0) / D, 0.0, 1.0) - std::clamp((u - L0 - S) / D, 0.0, 1.0);
+    }
+    e /= 64.0;
+    const double g = img.at(x, row)[0];
+    ASSERT_TRUE(std::isfinite(g));
+    if (g > 0.01) {
+      if (first < 0) first = x;
+      last = x;
+    }
+    got += g;
+    expected += e;
+    err += (g - e) * (g - e);
+  }
+  EXPECT_NEAR(first, L0, 2.0);
+  EXPECT_NEAR(last + 1, L0 + S + D, 2.0);
+  EXPECT_GT(got / expected, 0.95);
+  EXPECT_LT(got / expected, 1.3);
+  EXPECT_LT(std::sqrt(err / (last - first + 1)), 0.2);
+}
+
+// Nothing moves: the mask is empty and the post-process returns the sharp image untouched.
+// Something moves over a still background: the mask covers it and not the far corners; the
+// hybrid is the interleaved image where the mask is 1 and the post-process where it is 0.
+TEST(MotionBlur, MaskMarksMixedMotionAndTheCompositeFollowsIt) {
+  const CameraDesc cd = pinholeCamera();
+  {
+    auto r = renderMoving(oneSquare(), "hybrid-motion-blur", cd);
+    const Buffer& m = r->context().input("mb_mask");
+    const Buffer& sharp = r->context().input("sharp");
+    const Buffer& post = r->context().input("mb_postfx");
+    double maskSum = 0;
+    for (float v : m.data) maskSum += v;
+    EXPECT_EQ(maskSum, 0.0);
+    EXPECT_EQ(sharp.data, post.data);
+  }
+  // 192 x 128: the far corners lie more than a neighbourhood of 20-pixel tiles from the motion.
+  auto r = renderMoving(movingSquare(), "hybrid-motion-blur", cd, 192, 128);
+  const Buffer& m = r->context().input("mb_mask");
+  const Buffer& post = r->context().input("mb_postfx");
+  const Buffer& il = r->context().input("mb_interleaved");
+  const Buffer& out = r->context().input("hdr");
+  int ones = 0, zeros = 0;
+  for (int y = 0; y < m.height; ++y)
+    for (int x = 0; x < m.width; ++x) {
+      const float v = m.at(x, y)[0];
+      if (v == 1.0f) {
+        ++ones;
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(out.at(x, y)[c], il.at(x, y)[c]);
+      } else if (v == 0.0f) {
+        ++zeros;
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(out.at(x, y)[c], post.at(x, y)[c]);
+      }
+    }
+  EXPECT_GT(ones, 100);
+  EXPECT_GT(zeros, 100);
+  EXPECT_EQ(m.at(0, 0)[0], 0.0f);
+  EXPECT_EQ(m.at(191, 127)[0], 0.0f);
+}
