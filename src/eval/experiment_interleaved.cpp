@@ -485,8 +485,8 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
                "x its time\n";
     }
     report.markdown(
-        "### Hybrid motion blur\n\nPost-process only: a sharp mid-shutter image (1 sample per "
-        "pixel, the same shading) blurred by McGuire et al.'s reconstruction filter (tile max "
+        "### Hybrid motion blur\n\nPost-process only: a sharp mid-shutter image (4 samples per "
+        "pixel shaded once per triangle seen, MSAA-style; the same shading) blurred by McGuire et al.'s reconstruction filter (tile max "
         "velocity, gather). Hybrid: the same, with interleaved samples (N 16, k 4) inside the "
         "mask of tiles whose neighbourhood mixes motions, lerped by the mask. Interleaved: the "
         "whole image at k = 4, 2, 1 (the last ones near the hybrid's time). Time at " +

@@ -113,7 +113,8 @@ void InterleavedPass::execute(FrameContext& ctx) {
   const TileShape& shape = tiles.shape;
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& samplesOut =
-      ctx.output(*this, "interleave_samples", ctx.width * shape.sx, ctx.height * shape.sy);
+      ctx.output(*this, "sample_time_lens", ctx.width * shape.sx, ctx.height * shape.sy);
+  Buffer& layoutOut = ctx.output(*this, "tile_layout");
   Buffer& velocityOut = ctx.output(*this, "velocity");
   Buffer& depthOut = ctx.output(*this, "view_depth");
   const Scene& scene = *ctx.scene;
@@ -362,19 +363,21 @@ void InterleavedPass::execute(FrameContext& ctx) {
         }
     });
 
-    // The samples for the viewer: time, lens, prototype.
+    // For the viewer: each sample's time and lens coordinates, each pixel's tile prototype.
     for (int y = 0; y < L.stridesH(); ++y)
       for (int x = 0; x < SW; ++x) {
         const size_t id = size_t(y) * size_t(SW) + size_t(x);
-        const TimeLensPair& p = pairs[L.pair[id]];
+        const int j = L.pair[id];
         float* o = samplesOut.at(x + v.x * shape.sx, y + v.y * shape.sy);
-        o[0] = p.tau;
-        o[1] = p.u1;
-        o[2] = p.u2;
-        o[3] = scheme >= SamplingScheme::RandomTiles
-                   ? float(tiles.prototypeAt(x / shape.stridesX(), y / shape.stridesY())) / 80.0f
-                   : 0.0f;
+        o[0] = taus[size_t(j)];
+        o[1] = pairs[size_t(j)].u1;
+        o[2] = pairs[size_t(j)].u2;
       }
+    const bool tiled = scheme >= SamplingScheme::RandomTiles;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x)
+        layoutOut.at(x + v.x, y + v.y)[0] =
+            tiled ? float(tiles.prototypeAt(x / shape.tw, y / shape.th)) : -1.0f;
     resolveMs += msSince(t2);
   }
   if (counted) ctx.passRays += double(counted->raysTraced() - raysBefore);

@@ -16,8 +16,9 @@
 // a pixel).
 // Input (optional): sample_mask — where to sample (> 0); elsewhere no sample is shaded and hdr
 // is 0 (hybrid motion blur samples only where the post-process cannot be trusted).
-// Outputs: hdr; interleave_samples (the strata grid, W k_x x H k_y: time, lens u1, u2, tile
-// prototype / 80) for the viewer; velocity (the screen displacement in pixels over the whole
+// Outputs: hdr; for the viewer sample_time_lens (the strata grid, W k_x x H k_y: each sample's
+// shutter fraction, lens u1, u2 as red, green, blue) and tile_layout (each pixel's tile
+// prototype, 0-80, false-coloured; -1 for the schemes without tiles); velocity (the screen displacement in pixels over the whole
 // shutter of the surface a pixel's first sample sees: camera open to close, object at open to
 // close) and view_depth (that surface's distance along the view axis) for the post-process
 // motion blur. Counters: triangles set up per pass (raster).
@@ -49,7 +50,8 @@ class InterleavedPass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override {
     return {{"hdr", 3},
-            {"interleave_samples", 4, BufferKind::Color, Extent::any()},
+            {"sample_time_lens", 3, BufferKind::Mask, Extent::any()},
+            {"tile_layout", 1, BufferKind::Id},
             {"velocity", 2, BufferKind::Motion},
             {"view_depth", 1, BufferKind::Color}};
   }

@@ -239,7 +239,7 @@ TEST(MotionBlur, PostProcessBlurFollowsTheSweptPath) {
   const float L0 = left.x, S = right.x - left.x, D = S;
   const int row = int(left.y);
   auto r = renderMoving(movingSquare(), "postfx-motion-blur", cd);
-  const Buffer& img = r->context().input("mb_postfx");
+  const Buffer& img = r->context().input("hdr");
   double got = 0, expected = 0, err = 0;
   int first = -1, last = -1;
   for (int x = 0; x < 96; ++x) {
