@@ -238,7 +238,8 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
         "interleaved_raster.samples=" + std::to_string(n),
         "interleaved_raster.spp=" + std::to_string(k),
         std::string("interleaved_raster.scheme=") + scheme,
-        "interleaved_raster.mode=" + s.mode};
+        "interleaved_raster.mode=" + s.mode, "interleaved_raster.filter=box",
+        "interleaved_raster.filter_radius=0.5"};
   };
   std::vector<std::vector<std::string>> nRows, kRows;
   std::string figureCheck;
@@ -321,7 +322,7 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
   }
   const std::string schemeNote =
       "Interleaved rasterization (`interleaved-raster`, its pass's `mode` set to what the scene "
-      "varies) at " + std::to_string(W) + "x" + std::to_string(H) + ", mean of " +
+      "varies, a pixel box filter as the reference's) at " + std::to_string(W) + "x" + std::to_string(H) + ", mean of " +
       std::to_string(o.seeds) +
       " frames (seeds: new T, new tiles), against the same-shading reference (distributed ray "
       "tracing of the Whitted shading at the same shutter and aperture). Schemes: independent "
