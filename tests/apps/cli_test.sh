@@ -37,6 +37,13 @@ check "foveated-nh3ld renders the dual image with its buffers" \
   "[ -s $D/fov/foveated_pink_room_foveated-nh3ld.png ] && [ -s $D/fov/foveated_pink_room_foveated-nh3ld_fov_layer.png ]"
 out=$("$T" reference --scene "$SRC/scenes/foveated_pink_room.json" --integrator diffuse-gi --spp 2 --width 32 --height 36 --no-cache --quiet --out "$D/fovref.png" 2>&1)
 check "diffuse-gi reference renders" "[ -s $D/fovref.png ] && grep -q '2 spp' <<<\"\$out\""
+"$T" render "$SRC/scenes/interleaved_both.json" --pipeline interleaved-raster --shutter 0.1 --width 64 --height 36 \
+  --aov sample_time_lens,tile_layout,velocity --out "$D/il/" >/dev/null
+check "interleaved-raster renders with its sample and tile views" \
+  "[ -s $D/il/interleaved_both_interleaved-raster.png ] && [ -s $D/il/interleaved_both_interleaved-raster_tile_layout.png ] && [ -s $D/il/interleaved_both_interleaved-raster_sample_time_lens.png ]"
+"$T" render "$SRC/scenes/interleaved_motion.json" --pipeline hybrid-motion-blur --shutter 0.1 --width 64 --height 36 \
+  --aov mb_mask --out "$D/il/" >/dev/null
+check "hybrid-motion-blur renders with its mask" "[ -s $D/il/interleaved_motion_hybrid-motion-blur_mb_mask.png ]"
 out=$("$T" compare "$D/demo/cornell_deferred.png" "$D/rt.png" --heatmap "$D/heat.png" --flip-map "$D/flip.png")
 check "compare raster vs rt output" "grep -q ssim <<<\"\$out\" && grep -q '^flip ' <<<\"\$out\" && [ -s $D/heat.png ] && [ -s $D/flip.png ]"
 ssim=$(awk '/^ssim/ {print $2}' <<<"$out")
@@ -181,6 +188,12 @@ expect_error "info missing" "not found" "$T" info /nonexistent.gltf
 expect_error "unknown named resolution" "--resolution" "$T" render cornell --resolution 8k --out "$D/err/x.png"
 expect_error "foveation r1 below r0" "r1" "$T" render cornell --pipeline foveated-nh3ld --width 32 --height 18 \
   --set foveation.r0=40 --set foveation.r1=20 --out "$D/err/x.png"
+expect_error "interleaved N not a multiple of k" "multiple" "$T" render cornell --pipeline interleaved-raster \
+  --width 32 --height 18 --set interleaved_raster.samples=6 --set interleaved_raster.spp=4 --out "$D/err/x.png"
+expect_error "interleaved k below 1" "out of range" "$T" render cornell --pipeline interleaved-rt \
+  --width 32 --height 18 --set interleaved_rt.spp=0 --out "$D/err/x.png"
+echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "pairCounts": [6], "sweepSpp": 4}' > "$D/badil.json"
+expect_error "interleaved experiment bad N" "pairCounts / sweepSpp" "$T" experiment "$D/badil.json" --out "$D/err/exp"
 
 if [ $fail -ne 0 ]; then echo "cli tests failed"; exit 1; fi
 echo "cli tests passed"
