@@ -150,7 +150,9 @@ void InterleavedPass::execute(FrameContext& ctx) {
 
     // 0. Which samples are needed: those of pixels within the filter's reach of the mask.
     const Buffer* mask = ctx.optionalInput(*this, "sample_mask");
-    const int reach = int(std::ceil(float(param("filter_radius"))));
+    // Pixels whose samples the filter reaches: a sample lies inside its pixel, so a radius r
+    // reaches ceil(r - 1/2) pixels out (the pixel box: the pixel's own samples).
+    const int reach = int(std::ceil(float(param("filter_radius")) - 0.5f));
     const int SW = L.stridesW();
     std::vector<uint8_t> wanted;  // per pixel: resolved (mask > 0)
     if (mask) {
