@@ -28,18 +28,7 @@ InterleavedExperimentOptions interleavedOptionsFromJson(const nlohmann::json& j,
   f.string("title", "");
   f.string("description", "");
   f.string("runner", "interleaved");
-  if (!f.has("scenes") || !f.raw("scenes").is_array() || f.raw("scenes").empty())
-    f.fail("scenes", "expected an array of [label, scene] pairs");
-  const fs::path base = fs::path(file).parent_path();
-  for (const Json& s : f.raw("scenes")) {
-    if (!s.is_array() || s.size() != 2 || !s[0].is_string() || !s[1].is_string())
-      f.fail("scenes", "each scene is [label, scene name or file]");
-    std::string path = s[1].get<std::string>();
-    if (path.find('.') != std::string::npos && fs::path(path).is_relative())
-      path = (base / path).string();
-    o.sceneLabels.push_back(s[0].get<std::string>());
-    o.scenes.push_back(path);
-  }
+  scenePairsFromJson(f, o.sceneLabels, o.scenes);
   auto intList = [&](const char* key, std::vector<int>& out, int lo, int hi) {
     if (!f.has(key)) return;
     const Json& a = f.raw(key);

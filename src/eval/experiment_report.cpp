@@ -32,6 +32,22 @@ void cropFromJson(JsonFields& f, int crop[4]) {
   }
 }
 
+void scenePairsFromJson(JsonFields& f, std::vector<std::string>& labels,
+                        std::vector<std::string>& scenes) {
+  if (!f.has("scenes") || !f.raw("scenes").is_array() || f.raw("scenes").empty())
+    f.fail("scenes", "expected an array of [label, scene] pairs");
+  const fs::path base = fs::path(f.file()).parent_path();
+  for (const Json& s : f.raw("scenes")) {
+    if (!s.is_array() || s.size() != 2 || !s[0].is_string() || !s[1].is_string())
+      f.fail("scenes", "each scene is [label, scene name or file]");
+    std::string path = s[1].get<std::string>();
+    if (path.find('.') != std::string::npos && fs::path(path).is_relative())
+      path = (base / path).string();
+    labels.push_back(s[0].get<std::string>());
+    scenes.push_back(path);
+  }
+}
+
 Buffer cropOf(const Buffer& b, const int c[4]) {
   int x = c[0], y = c[1], w = c[2], h = c[3];
   if (w == 0 || h == 0) x = b.width / 3, y = b.height / 3, w = b.width / 3, h = b.height / 3;

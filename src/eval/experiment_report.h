@@ -20,6 +20,10 @@ std::string sceneLabel(const std::string& spec);
 Buffer cropOf(const Buffer& b, const int crop[4]);
 // An experiment file's optional "crop": [x, y, width, height] of non-negative integers.
 void cropFromJson(JsonFields& f, int crop[4]);
+// An experiment file's "scenes": [[label, scene name or file], ...]; relative files are taken
+// from the experiment file's folder.
+void scenePairsFromJson(JsonFields& f, std::vector<std::string>& labels,
+                        std::vector<std::string>& scenes);
 
 struct PlotSeries {
   std::string label;

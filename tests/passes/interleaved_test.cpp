@@ -33,6 +33,18 @@ Scene oneSquare() {
   return s;
 }
 
+// The share of the shutter a square of width S (pixels) whose left edge moves from L0 to L0 + D
+// covers a point u of its row, clamp((u - L0) / D) - clamp((u - L0 - S) / D), averaged over
+// pixel x (a pixel box filter).
+double sweptCoverage(int x, double L0, double S, double D) {
+  double c = 0;
+  for (int q = 0; q < 64; ++q) {
+    const double u = x + (q + 0.5) / 64.0;
+    c += std::clamp((u - L0) / D, 0.0, 1.0) - std::clamp((u - L0 - S) / D, 0.0, 1.0);
+  }
+  return c / 64.0;
+}
+
 double sum(const Buffer& b) {
   double s = 0;
   for (float v : b.data) s += v;
@@ -73,12 +85,7 @@ TEST(Interleaved, MotionBlurOfAMovingSquareIsItsSweptPathWithLinearRamps) {
     double sx[2] = {}, sxx[2] = {}, sg[2] = {}, sxg[2] = {}, se[2] = {}, sxe[2] = {}, cnt[2] = {};
     for (int x = 0; x < W; ++x) {
       // The expected pixel value: the covered fraction averaged over the pixel.
-      double expect = 0;
-      for (int q = 0; q < 64; ++q) {
-        const double u = x + (q + 0.5) / 64.0;
-        expect += std::clamp((u - L0) / D, 0.0, 1.0) - std::clamp((u - L0 - S) / D, 0.0, 1.0);
-      }
-      expect /= 64.0;
+      const double expect = sweptCoverage(x, L0, S, D);
       const double got = img.at(x, row)[0];  // emission red = 1
       if (expect == 0.0) {
         EXPECT_EQ(got, 0.0) << pipeline << " x " << x << " outside the swept path";
@@ -285,12 +292,7 @@ TEST(MotionBlur, PostProcessBlurFollowsTheSweptPath) {
   double got = 0, expected = 0, err = 0;
   int first = -1, last = -1;
   for (int x = 0; x < 96; ++x) {
-    double e = 0;
-    for (int q = 0; q < 64; ++q) {
-      const double u = x + (q + 0.5) / 64.0;
-      e += std::clamp((u - L0) / D, 0.0, 1.0) - std::clamp((u - L0 - S) / D, 0.0, 1.0);
-    }
-    e /= 64.0;
+    const double e = sweptCoverage(x, L0, S, D);
     const double g = img.at(x, row)[0];
     ASSERT_TRUE(std::isfinite(g));
     if (g > 0.01) {
