@@ -192,6 +192,15 @@ expect_error "interleaved N not a multiple of k" "multiple" "$T" render cornell 
   --width 32 --height 18 --set interleaved_raster.samples=6 --set interleaved_raster.spp=4 --out "$D/err/x.png"
 expect_error "interleaved k below 1" "out of range" "$T" render cornell --pipeline interleaved-rt \
   --width 32 --height 18 --set interleaved_rt.spp=0 --out "$D/err/x.png"
+cat > "$D/tinyil.json" <<JSON
+{"runner": "interleaved", "scenes": [["motion", "$SRC/scenes/cornell_motion_blur.json"]],
+ "shutter": 0.5, "width": 32, "height": 18, "referenceSpp": 2, "seeds": 1, "pairCounts": [4, 8],
+ "sweepSpp": 1, "sppCounts": [1], "sweepPairs": 4, "timingWidth": 32, "timingHeight": 18,
+ "timingFrames": 1, "timingWarmup": 0, "timingPairs": 4, "timingSpp": 1, "strobePairs": 4}
+JSON
+"$T" experiment "$D/tinyil.json" --out "$D/tinyil" --no-cache >/dev/null 2>&1
+check "interleaved experiment writes its tables" \
+  "grep -q 'Figure check' $D/tinyil/results.md && [ -s $D/tinyil/tile_quality.csv ] && [ -s $D/tinyil/hybrid_motion_blur.csv ]"
 echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "pairCounts": [6], "sweepSpp": 4}' > "$D/badil.json"
 expect_error "interleaved experiment bad N" "pairCounts / sweepSpp" "$T" experiment "$D/badil.json" --out "$D/err/exp"
 
