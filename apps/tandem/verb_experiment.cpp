@@ -130,9 +130,9 @@ struct ExperimentVerb {
       return runInterleavedExperiment(io);
     }
     if (runner != "sweep")
-      throw InputError(file.string(), "runner",
-                       "'" + runner +
-                           "' is not sweep, heuristic, taa, hybrid-dof, foveated or interleaved");
+      throw InputError(
+          file.string(), "runner",
+          "'" + runner + "' is not sweep, heuristic, taa, hybrid-dof, foveated or interleaved");
     if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
       throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
                        "apply to the heuristic runner only");

@@ -36,8 +36,8 @@ InterleavedExperimentOptions interleavedOptionsFromJson(const nlohmann::json& j,
     out.clear();
     for (const Json& v : a) {
       if (!v.is_number_integer() || v.get<int>() < lo || v.get<int>() > hi)
-        f.fail(key, "expected integers in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                        "]");
+        f.fail(key,
+               "expected integers in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
       out.push_back(v.get<int>());
     }
   };
@@ -88,8 +88,8 @@ Shot shotOf(const std::string& spec, const std::string& label, float shutter) {
   const CameraDesc base = defaultCamera(s.scene);
   s.open = pathCameraAt(s.scene, base, 0.0f);
   s.close = pathCameraAt(s.scene, base, shutter);
-  bool moves = length(s.open.position - s.close.position) > 0 ||
-               length(s.open.lookAt - s.close.lookAt) > 0;
+  bool moves =
+      length(s.open.position - s.close.position) > 0 || length(s.open.lookAt - s.close.lookAt) > 0;
   for (const Object& o : s.scene.objects) moves = moves || o.animation.size() > 1;
   const bool lens = s.open.apertureDiameter > 0;
   s.mode = lens && moves ? "both" : lens ? "dof" : "motion_blur";
@@ -161,7 +161,8 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
   for (size_t i = 0; i < o.scenes.size(); ++i)
     shots.push_back(shotOf(o.scenes[i], o.sceneLabels[i], o.shutter));
   fs::create_directories(o.out);
-  ExperimentReport report(o.out, "Seed 003: interleaved sampling for depth of field and motion blur");
+  ExperimentReport report(o.out,
+                          "Seed 003: interleaved sampling for depth of field and motion blur");
   const int W = o.width, H = o.height;
 
   // 1. Tile quality.
@@ -191,11 +192,11 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
         "order; distances between stratum centres over 12 x 12 tiles, in pixels. Discrepancy: "
         "star discrepancy of the times in each 2 x 2-pixel footprint. Build: ms to generate all "
         "81 prototypes (and measure them).\n\n");
-    report.table("tile_quality",
-                 {"N", "k", "tile (px)", "tiles", "min similar-time distance",
-                  "mean similar-time distance", "mean footprint discrepancy",
-                  "worst footprint discrepancy", "build ms"},
-                 rows);
+    report.table(
+        "tile_quality",
+        {"N", "k", "tile (px)", "tiles", "min similar-time distance", "mean similar-time distance",
+         "mean footprint discrepancy", "worst footprint discrepancy", "build ms"},
+        rows);
   }
 
   // 2. Error against the same-shading reference.
@@ -223,12 +224,12 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
     return e;
   };
   auto interleavedSets = [&](const Shot& s, int n, int k, const char* scheme) {
-    return std::vector<std::string>{
-        "interleaved_raster.samples=" + std::to_string(n),
-        "interleaved_raster.spp=" + std::to_string(k),
-        std::string("interleaved_raster.scheme=") + scheme,
-        "interleaved_raster.mode=" + s.mode, "interleaved_raster.filter=box",
-        "interleaved_raster.filter_radius=0.5"};
+    return std::vector<std::string>{"interleaved_raster.samples=" + std::to_string(n),
+                                    "interleaved_raster.spp=" + std::to_string(k),
+                                    std::string("interleaved_raster.scheme=") + scheme,
+                                    "interleaved_raster.mode=" + s.mode,
+                                    "interleaved_raster.filter=box",
+                                    "interleaved_raster.filter_radius=0.5"};
   };
   std::vector<std::vector<std::string>> nRows, kRows;
   std::string figureCheck;
@@ -242,7 +243,8 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
         std::printf("experiment interleaved: %s, %s, N %d, k %d\n", s.label.c_str(), scheme, n,
                     o.sweepSpp);
         std::fflush(stdout);
-        const Errors e = measure(si, "interleaved-raster", interleavedSets(s, n, o.sweepSpp, scheme));
+        const Errors e =
+            measure(si, "interleaved-raster", interleavedSets(s, n, o.sweepSpp, scheme));
         nRows.push_back({s.label, scheme, std::to_string(n), std::to_string(o.sweepSpp),
                          fmt(e.rmse, 4), fmt(e.ssim, 4), fmt(e.flip, 4)});
         pr.x.push_back(n);
@@ -273,12 +275,12 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
       rmsePlot.push_back(pr);
       ssimPlot.push_back(ps);
     }
-    report.plot("rmse_vs_n_" + s.label, s.label + ": RMSE against N (k = " +
-                    std::to_string(o.sweepSpp) + ")", "N (time, lens) pairs", "RMSE",
-                rmsePlot, true, true);
-    report.plot("ssim_vs_n_" + s.label, s.label + ": SSIM against N (k = " +
-                    std::to_string(o.sweepSpp) + ")", "N (time, lens) pairs", "SSIM", ssimPlot,
-                true);
+    report.plot("rmse_vs_n_" + s.label,
+                s.label + ": RMSE against N (k = " + std::to_string(o.sweepSpp) + ")",
+                "N (time, lens) pairs", "RMSE", rmsePlot, true, true);
+    report.plot("ssim_vs_n_" + s.label,
+                s.label + ": SSIM against N (k = " + std::to_string(o.sweepSpp) + ")",
+                "N (time, lens) pairs", "SSIM", ssimPlot, true);
     // The figure: colored-corner below random tiles at every N >= 8.
     int wins = 0, points = 0;
     for (size_t i = 0; i < o.pairCounts.size(); ++i) {
@@ -305,14 +307,15 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
       }
       kPlot.push_back(pk);
     }
-    report.plot("rmse_vs_k_" + s.label, s.label + ": RMSE against samples per pixel (N = " +
-                    std::to_string(o.sweepPairs) + ")", "k samples per pixel", "RMSE", kPlot,
-                true, true);
+    report.plot(
+        "rmse_vs_k_" + s.label,
+        s.label + ": RMSE against samples per pixel (N = " + std::to_string(o.sweepPairs) + ")",
+        "k samples per pixel", "RMSE", kPlot, true, true);
   }
   const std::string schemeNote =
       "Interleaved rasterization (`interleaved-raster`, its pass's `mode` set to what the scene "
-      "varies, a pixel box filter as the reference's) at " + std::to_string(W) + "x" + std::to_string(H) + ", mean of " +
-      std::to_string(o.seeds) +
+      "varies, a pixel box filter as the reference's) at " +
+      std::to_string(W) + "x" + std::to_string(H) + ", mean of " + std::to_string(o.seeds) +
       " frames (seeds: new T, new tiles), against the same-shading reference (distributed ray "
       "tracing of the Whitted shading at the same shutter and aperture). Schemes: independent "
       "(a random pair of T per sample), stratified (a pixel's k samples from k time strata of T), "
@@ -336,14 +339,14 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
           std::printf("experiment interleaved: timing %s, %s, %s\n", s.label.c_str(), pass,
                       shading);
           std::fflush(stdout);
-          const std::string pl = std::string(pass) == "interleaved_rt" ? "interleaved-rt"
-                                                                        : "interleaved-raster";
+          const std::string pl =
+              std::string(pass) == "interleaved_rt" ? "interleaved-rt" : "interleaved-raster";
           const std::string P = pass;
-          const RenderResult r = renderShot(
-              s, pl,
-              {P + ".samples=" + std::to_string(n), P + ".spp=" + std::to_string(k),
-               P + ".mode=" + s.mode, P + ".shading=" + shading},
-              tw, th, o.shutter, 0, o.timingWarmup, o.timingFrames);
+          const RenderResult r =
+              renderShot(s, pl,
+                         {P + ".samples=" + std::to_string(n), P + ".spp=" + std::to_string(k),
+                          P + ".mode=" + s.mode, P + ".shading=" + shading},
+                         tw, th, o.shutter, 0, o.timingWarmup, o.timingFrames);
           const double vis = r.partMs.count(P + "/visibility") ? r.partMs.at(P + "/visibility") : 0;
           const double shade = r.partMs.count(P + "/shade") ? r.partMs.at(P + "/shade") : 0;
           const double resolve = r.partMs.count(P + "/resolve") ? r.partMs.at(P + "/resolve") : 0;
@@ -397,13 +400,16 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
     };
     const std::string N = std::to_string(n);
     const std::vector<Variant> variants = {
-        {"colored_corner", "interleaved-raster",
+        {"colored_corner",
+         "interleaved-raster",
          {"interleaved_raster.samples=" + N, "interleaved_raster.spp=1",
           "interleaved_raster.mode=" + s.mode}},
-        {"colored_corner_correlated", "interleaved-raster",
+        {"colored_corner_correlated",
+         "interleaved-raster",
          {"interleaved_raster.samples=" + N, "interleaved_raster.spp=1",
           "interleaved_raster.mode=" + s.mode, "interleaved_raster.correlated=true"}},
-        {"accumulation", "accumulation-dof",
+        {"accumulation",
+         "accumulation-dof",
          {"accumulation.samples=" + N, "accumulation.mode=" + s.mode,
           "accumulation.shading=whitted"}}};
     const Buffer refCrop = cropOf(visualizeBuffer(refs[si]), o.crop);
@@ -438,15 +444,18 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
       const std::vector<Variant> variants = {
           {"postfx only", "postfx-motion-blur", {}},
           {"hybrid", "hybrid-motion-blur", {}},
-          {"interleaved N 16, k 4", "interleaved-raster",
+          {"interleaved N 16, k 4",
+           "interleaved-raster",
            {"interleaved_raster.mode=motion_blur", "interleaved_raster.spp=4"}},
-          {"interleaved N 16, k 2", "interleaved-raster",
+          {"interleaved N 16, k 2",
+           "interleaved-raster",
            {"interleaved_raster.mode=motion_blur", "interleaved_raster.spp=2"}},
-          {"interleaved N 16, k 1", "interleaved-raster",
+          {"interleaved N 16, k 1",
+           "interleaved-raster",
            {"interleaved_raster.mode=motion_blur", "interleaved_raster.spp=1"}}};
       double fullMs = 0, fullSsim = 0, hybridMs = 0, hybridSsim = 0;
-      std::printf("experiment interleaved: reference %s at %dx%d\n", s.label.c_str(),
-                  o.timingWidth, o.timingHeight);
+      std::printf("experiment interleaved: reference %s at %dx%d\n", s.label.c_str(), o.timingWidth,
+                  o.timingHeight);
       std::fflush(stdout);
       const Buffer ref =
           referenceOf(s, o.timingWidth, o.timingHeight, o.shutter, o.referenceSpp, o.cache);
@@ -470,8 +479,8 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
         const auto m = q.counters.find("postfx_motion_blur/masked_tiles_percent");
         rows.push_back({s.label, v.name, fmt(t.frameMs, 1), fmt(e.rmse, 4), fmt(e.ssim, 4),
                         fmt(e.flip, 4), m != q.counters.end() ? fmt(m->second, 1) : "-"});
-        const std::string file = "mb_" + s.label + "_" + v.pipeline + "_" +
-                                 std::to_string(rows.size()) + ".png";
+        const std::string file =
+            "mb_" + s.label + "_" + v.pipeline + "_" + std::to_string(rows.size()) + ".png";
         writePng((fs::path(o.out) / file).string(), visualizeBuffer(q.hdr));
         report.image(file, s.label + ": " + v.name);
         if (v.name == "hybrid") hybridMs = t.frameMs, hybridSsim = e.ssim;
@@ -483,7 +492,8 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
     }
     report.markdown(
         "### Hybrid motion blur\n\nPost-process only: a sharp mid-shutter image (4 samples per "
-        "pixel shaded once per triangle seen, MSAA-style; the same shading) blurred by McGuire et al.'s reconstruction filter (tile max "
+        "pixel shaded once per triangle seen, MSAA-style; the same shading) blurred by McGuire et "
+        "al.'s reconstruction filter (tile max "
         "velocity, gather). Hybrid: the same, with interleaved samples (N 16, k 4) inside the "
         "mask of tiles whose neighbourhood mixes motions, lerped by the mask. Interleaved: the "
         "whole image at k = 4, 2, 1 (the last ones near the hybrid's time). Time and errors at " +
@@ -491,8 +501,7 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
         " (time: median of " + std::to_string(o.timingFrames) + " frames; errors: mean of " +
         std::to_string(o.seeds) + " seeds against a reference of that size).\n\n");
     report.table("hybrid_motion_blur",
-                 {"scene", "renderer", "frame ms", "RMSE", "SSIM", "FLIP", "masked tiles %"},
-                 rows);
+                 {"scene", "renderer", "frame ms", "RMSE", "SSIM", "FLIP", "masked tiles %"}, rows);
     report.markdown(check + "\n");
   }
 

@@ -20,18 +20,18 @@ struct InterleavedExperimentOptions {
   std::string out = "out/experiment-interleaved";
   std::string cache;  // reference cache folder ("" = none)
   std::vector<std::string> scenes, sceneLabels;
-  float shutter = 0.1f;                  // seconds
-  int width = 320, height = 180;         // quality sweeps
+  float shutter = 0.1f;           // seconds
+  int width = 320, height = 180;  // quality sweeps
   int referenceSpp = 256;
-  int seeds = 3;                         // frames (seeds) averaged per quality point
+  int seeds = 3;  // frames (seeds) averaged per quality point
   std::vector<int> pairCounts{4, 8, 16, 32, 64};
-  int sweepSpp = 4;                      // k of the N sweep
+  int sweepSpp = 4;  // k of the N sweep
   std::vector<int> sppCounts{1, 4, 16};
-  int sweepPairs = 16;                   // N of the k sweep
+  int sweepPairs = 16;  // N of the k sweep
   int timingWidth = 960, timingHeight = 540, timingFrames = 3, timingWarmup = 1;
   int timingPairs = 16, timingSpp = 4;
   int strobePairs = 4;
-  int crop[4] = {0, 0, 0, 0};            // strobing crop at the quality size (0: centre third)
+  int crop[4] = {0, 0, 0, 0};  // strobing crop at the quality size (0: centre third)
 };
 
 InterleavedExperimentOptions interleavedOptionsFromJson(const nlohmann::json& j,

@@ -55,8 +55,8 @@ void AccumulationPass::execute(FrameContext& ctx) {
     for (const TimeLensPair& p : pairs) {
       const float tau = time ? p.tau : 0.0f;
       // The camera along its shutter path, then moved to the lens point.
-      const Camera cam = cameraForPair(v, p, time, lens,
-                                       aa ? v.camera.jitter + p.jitter : v.camera.jitter);
+      const Camera cam =
+          cameraForPair(v, p, time, lens, aa ? v.camera.jitter + p.jitter : v.camera.jitter);
       auto t0 = Clock::now();
       RasterStats stats;
       rasterizer_.render(ctx.frame, cam, visibility_, &stats, time ? tau : -1.0f);

@@ -103,13 +103,14 @@ void InterleavedPass::execute(FrameContext& ctx) {
     throw InputError("", "pass '" + type() + "' parameters 'samples' and 'spp'", problem);
   const bool lens = mode != 1, time = mode != 0;
   const auto scheme = SamplingScheme(int(param("scheme")));
-  const PairMetric metric = mode == 0 ? PairMetric::Lens : mode == 1 ? PairMetric::Time
-                                                                      : PairMetric::Both;
+  const PairMetric metric = mode == 0   ? PairMetric::Lens
+                            : mode == 1 ? PairMetric::Time
+                                        : PairMetric::Both;
   const std::vector<TimeLensPair> pairs =
       stratifiedTimeLensPairs(n, ctx.seed, param("correlated") != 0);
-  const TileSet& tiles =
-      tileSetFor(n, k, scheme == SamplingScheme::RandomTiles ? TileKind::Random : TileKind::ColoredCorner,
-                 metric, pairs, ctx.seed);
+  const TileSet& tiles = tileSetFor(
+      n, k, scheme == SamplingScheme::RandomTiles ? TileKind::Random : TileKind::ColoredCorner,
+      metric, pairs, ctx.seed);
   const TileShape& shape = tiles.shape;
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& samplesOut =
@@ -197,11 +198,12 @@ void InterleavedPass::execute(FrameContext& ctx) {
             int m = 0;
             for (int sy = 0; sy < shape.sy; ++sy)
               for (int sx = 0; sx < shape.sx; ++sx) {
-                const uint32_t id = uint32_t(size_t(py * shape.sy + sy) * size_t(SW) +
-                                             size_t(px * shape.sx + sx));
+                const uint32_t id =
+                    uint32_t(size_t(py * shape.sy + sy) * size_t(SW) + size_t(px * shape.sx + sx));
                 rep_[id] = id;
                 for (int q = 0; q < m; ++q)
-                  if (vis_.object[ids[q]] == vis_.object[id] && vis_.prim[ids[q]] == vis_.prim[id] &&
+                  if (vis_.object[ids[q]] == vis_.object[id] &&
+                      vis_.prim[ids[q]] == vis_.prim[id] &&
                       (L.pair[ids[q]] == L.pair[id] ||
                        (!lens && taus[L.pair[ids[q]]] == taus[L.pair[id]]))) {
                     rep_[id] = ids[q];
@@ -293,8 +295,8 @@ void InterleavedPass::execute(FrameContext& ctx) {
             for (int qx = std::max(0, px - reach); qx <= std::min(W - 1, px + reach); ++qx)
               for (int sy = 0; sy < shape.sy; ++sy)
                 for (int sx = 0; sx < shape.sx; ++sx) {
-                  const size_t id = size_t(qy * shape.sy + sy) * size_t(SW) +
-                                    size_t(qx * shape.sx + sx);
+                  const size_t id =
+                      size_t(qy * shape.sy + sy) * size_t(SW) + size_t(qx * shape.sx + sx);
                   const float w = weight(L.pos[id].x - cx) * weight(L.pos[id].y - cy);
                   if (w <= 0) continue;
                   sum = sum + colour_[id] * w;

@@ -18,10 +18,10 @@
 // is 0 (hybrid motion blur samples only where the post-process cannot be trusted).
 // Outputs: hdr; for the viewer sample_time_lens (the strata grid, W k_x x H k_y: each sample's
 // shutter fraction, lens u1, u2 as red, green, blue) and tile_layout (each pixel's tile
-// prototype, 0-80, false-coloured; -1 for the schemes without tiles); velocity (the screen displacement in pixels over the whole
-// shutter of the surface a pixel's first sample sees: camera open to close, object at open to
-// close) and view_depth (that surface's distance along the view axis) for the post-process
-// motion blur. Counters: triangles set up per pass (raster).
+// prototype, 0-80, false-coloured; -1 for the schemes without tiles); velocity (the screen
+// displacement in pixels over the whole shutter of the surface a pixel's first sample sees: camera
+// open to close, object at open to close) and view_depth (that surface's distance along the view
+// axis) for the post-process motion blur. Counters: triangles set up per pass (raster).
 #pragma once
 #include <memory>
 

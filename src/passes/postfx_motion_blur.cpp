@@ -9,21 +9,24 @@
 namespace tandem {
 
 std::vector<ParamDesc> PostfxMotionBlurPass::params() const {
-  return {{"tile_size", ParamType::Int, 20, 2, 128, "K: tile size and largest blur radius (px)", {}},
-          {"samples", ParamType::Int, 15, 3, 101, "S: gather samples per pixel (odd)", {}},
-          {"soft_z", ParamType::Float, 0.1, 0.001, 100, "soft depth comparison extent (m)", {}},
-          {"mask_threshold",
-           ParamType::Float,
-           1.0,
-           0,
-           100,
-           "mask tiles whose neighbourhood's blur radii differ by more than this (px)",
-           {}}};
+  return {
+      {"tile_size", ParamType::Int, 20, 2, 128, "K: tile size and largest blur radius (px)", {}},
+      {"samples", ParamType::Int, 15, 3, 101, "S: gather samples per pixel (odd)", {}},
+      {"soft_z", ParamType::Float, 0.1, 0.001, 100, "soft depth comparison extent (m)", {}},
+      {"mask_threshold",
+       ParamType::Float,
+       1.0,
+       0,
+       100,
+       "mask tiles whose neighbourhood's blur radii differ by more than this (px)",
+       {}}};
 }
 
 namespace {
 
-float lengthOf(Vec2 v) { return std::sqrt(v.x * v.x + v.y * v.y); }
+float lengthOf(Vec2 v) {
+  return std::sqrt(v.x * v.x + v.y * v.y);
+}
 
 float cone(float dist, float speed) {
   return speed <= 0 ? 0.0f : std::clamp(1.0f - dist / speed, 0.0f, 1.0f);

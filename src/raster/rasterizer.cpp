@@ -374,7 +374,8 @@ void Rasterizer::renderSamples(const FrameScene& fs, const Camera& cam, const Sa
                                float tau) {
   const int W = cam.width, H = cam.height;
   // Bins are whole numbers of cells near 64 pixels, so each cell (and sample) has one owner.
-  const int binCellsX = std::max(1, kBinSize / set.cellW), binCellsY = std::max(1, kBinSize / set.cellH);
+  const int binCellsX = std::max(1, kBinSize / set.cellW),
+            binCellsY = std::max(1, kBinSize / set.cellH);
   const int binW = binCellsX * set.cellW, binH = binCellsY * set.cellH;
   const int tilesX = (W + binW - 1) / binW, tilesY = (H + binH - 1) / binH;
   const int chunks = prepare(fs, cam, subset, tau, binW, binH, true, stats);

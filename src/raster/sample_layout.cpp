@@ -100,7 +100,8 @@ SampleLayout buildSampleLayout(SamplingScheme scheme, const TileSet& tiles, int 
           const int x = px * s.sx + k % s.sx, y = py * s.sy + k / s.sx;
           const size_t i = size_t(y) * size_t(SW) + size_t(x);
           const int g = groupOrder[size_t(k)];
-          L.pair[i] = uint16_t(tiles.timeOrder[size_t(g * groupSize) + rng() % uint64_t(groupSize)]);
+          L.pair[i] =
+              uint16_t(tiles.timeOrder[size_t(g * groupSize) + rng() % uint64_t(groupSize)]);
           const Vec2 j = jitter ? Vec2{unit(), unit()} : Vec2{0.5f, 0.5f};
           L.pos[i] = {(float(x) + j.x) / float(s.sx), (float(y) + j.y) / float(s.sy)};
         }
@@ -132,8 +133,10 @@ SampleLayout buildSampleLayout(SamplingScheme scheme, const TileSet& tiles, int 
   std::vector<uint32_t> fill(size_t(n) * size_t(cells));
   for (int j = 0; j < n; ++j)
     for (int c = 0; c < cells; ++c)
-      fill[size_t(j) * size_t(cells) + size_t(c)] = L.cellStart[size_t(j) * size_t(cells + 1) + size_t(c)];
-  for (size_t i = 0; i < count; ++i) L.ids[fill[size_t(L.pair[i]) * size_t(cells) + cellOf(i)]++] = uint32_t(i);
+      fill[size_t(j) * size_t(cells) + size_t(c)] =
+          L.cellStart[size_t(j) * size_t(cells + 1) + size_t(c)];
+  for (size_t i = 0; i < count; ++i)
+    L.ids[fill[size_t(L.pair[i]) * size_t(cells) + cellOf(i)]++] = uint32_t(i);
   // By cell alone.
   L.allStart.assign(size_t(cells) + 1, 0);
   for (size_t i = 0; i < count; ++i) ++L.allStart[cellOf(i) + 1];

@@ -12,9 +12,9 @@
 namespace tandem {
 
 enum class SamplingScheme {
-  Independent,   // each sample a pair of T drawn at random (with replacement), anywhere in its pixel
-  Stratified,    // per pixel: its k samples take pairs from k different time strata of T
-  RandomTiles,   // interleaved: 81 tiles, each a random permutation of T
+  Independent,  // each sample a pair of T drawn at random (with replacement), anywhere in its pixel
+  Stratified,   // per pixel: its k samples take pairs from k different time strata of T
+  RandomTiles,  // interleaved: 81 tiles, each a random permutation of T
   ColoredCorner  // interleaved: 81 optimised colored-corner tiles (sample_tiles.h)
 };
 const char* schemeName(SamplingScheme s);
@@ -22,8 +22,8 @@ const char* schemeName(SamplingScheme s);
 struct SampleLayout {
   TileShape shape;
   SamplingScheme scheme = SamplingScheme::ColoredCorner;
-  int width = 0, height = 0;    // pixels
-  int cellsX = 0, cellsY = 0;   // tiles of shape.tw x shape.th pixels
+  int width = 0, height = 0;                         // pixels
+  int cellsX = 0, cellsY = 0;                        // tiles of shape.tw x shape.th pixels
   int stridesW() const { return width * shape.sx; }  // strata across the image
   int stridesH() const { return height * shape.sy; }
   size_t sampleCount() const { return pair.size(); }
@@ -37,7 +37,9 @@ struct SampleLayout {
   std::vector<uint32_t> cellStart, ids;
   int cells() const { return cellsX * cellsY; }
   uint32_t passBegin(int j) const { return cellStart[size_t(j) * size_t(cells() + 1)]; }
-  uint32_t passEnd(int j) const { return cellStart[size_t(j) * size_t(cells() + 1) + size_t(cells())]; }
+  uint32_t passEnd(int j) const {
+    return cellStart[size_t(j) * size_t(cells() + 1) + size_t(cells())];
+  }
   Rasterizer::SampleSet passSamples(int j) const;
   // Every sample, grouped by cell only: allIds[allStart[c] .. allStart[c + 1]).
   std::vector<uint32_t> allStart, allIds;

@@ -62,7 +62,9 @@ uint64_t mix64(uint64_t z) {
 }
 
 // Corner quadrant (and edge strip) thickness in strata: a quarter of the tile, at least one.
-int borderOf(int strata) { return strata < 2 ? 0 : std::max(1, strata / 4); }
+int borderOf(int strata) {
+  return strata < 2 ? 0 : std::max(1, strata / 4);
+}
 
 }  // namespace
 
@@ -218,9 +220,8 @@ TileSet buildTileSet(int n, int k, TileKind kind, PairMetric metric,
 
   set.timeOrder.resize(size_t(n));
   std::iota(set.timeOrder.begin(), set.timeOrder.end(), uint16_t(0));
-  std::stable_sort(set.timeOrder.begin(), set.timeOrder.end(), [&](int i, int j) {
-    return pairs[size_t(i)].tau < pairs[size_t(j)].tau;
-  });
+  std::stable_sort(set.timeOrder.begin(), set.timeOrder.end(),
+                   [&](int i, int j) { return pairs[size_t(i)].tau < pairs[size_t(j)].tau; });
 
   if (kind == TileKind::Random) {
     std::vector<uint16_t> perm(static_cast<size_t>(n));
@@ -436,7 +437,8 @@ TileQuality measureTileQuality(const TileSet& set, const std::vector<TimeLensPai
           const size_t slot = size_t(p) * s.n + size_t(y * a + x);
           pairAt[i] = set.slot[slot];
           // Stratum centres: the arrangement's quality, not the jitter's.
-          pos[i] = {(float(tx * a + x) + 0.5f) / float(s.sx), (float(ty * b + y) + 0.5f) / float(s.sy)};
+          pos[i] = {(float(tx * a + x) + 0.5f) / float(s.sx),
+                    (float(ty * b + y) + 0.5f) / float(s.sy)};
         }
     }
   // Time ranks: similar times are equal or adjacent ranks.

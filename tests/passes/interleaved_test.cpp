@@ -72,8 +72,8 @@ TEST(Interleaved, MotionBlurOfAMovingSquareIsItsSweptPathWithLinearRamps) {
   const float L0 = left.x, S = right.x - left.x, D = S;
   const int row = int(left.y);
   for (const char* pipeline : {"interleaved-raster", "interleaved-rt"}) {
-    const std::string pass = std::string(pipeline) == "interleaved-rt" ? "interleaved_rt"
-                                                                       : "interleaved_raster";
+    const std::string pass =
+        std::string(pipeline) == "interleaved-rt" ? "interleaved_rt" : "interleaved_raster";
     const Buffer img =
         test::renderHdr(s, pipeline, cd,
                         {pass + ".samples=64", pass + ".spp=16", pass + ".mode=motion_blur",
@@ -123,9 +123,9 @@ TEST(Interleaved, DefocusAgreesWithTheReferenceThinLensAndKeepsEnergy) {
     cd.apertureDiameter = 0.25f;
     cd.focusDistance = 4.0f;
     cd.apertureBlades = blades;
-    const Buffer il = test::renderHdr(
-        s, "interleaved-raster", cd,
-        {"interleaved_raster.samples=64", "interleaved_raster.spp=16", "interleaved_raster.mode=dof"});
+    const Buffer il = test::renderHdr(s, "interleaved-raster", cd,
+                                      {"interleaved_raster.samples=64", "interleaved_raster.spp=16",
+                                       "interleaved_raster.mode=dof"});
     const Buffer ref = test::renderHdr(s, "reference", cd,
                                        {"pt_reference.spp=256", "pt_reference.progress=false"});
     CameraDesc pin = cd;
@@ -155,8 +155,8 @@ TEST(Interleaved, ADefocusedPointSpreadsToItsCircleOfConfusion) {
   ASSERT_TRUE(cam.project({0.15f, 0, -2}, edge));
   const float half = edge.x - c.x, coc = 0.5f * ThinLens::of(cam).coc(4.0f);
   ASSERT_GT(coc, 10.0f);
-  const std::vector<std::string> sets = {"interleaved_raster.samples=64",
-                                         "interleaved_raster.spp=16", "interleaved_raster.mode=dof"};
+  const std::vector<std::string> sets = {
+      "interleaved_raster.samples=64", "interleaved_raster.spp=16", "interleaved_raster.mode=dof"};
   const Buffer blur = test::renderHdr(s, "interleaved-raster", cd, sets, 0.0f, W, H);
   CameraDesc pin = cd;
   pin.apertureDiameter = 0;
@@ -184,11 +184,11 @@ TEST(Interleaved, ADefocusedPointSpreadsToItsCircleOfConfusion) {
 TEST(Interleaved, OnePairThroughAPinholeIsThePlainRasterImage) {
   const Scene s = makeBuiltinScene("spheres");
   const CameraDesc cd = s.camera;
-  const Buffer il = test::renderHdr(
-      s, "interleaved-raster", cd,
-      {"interleaved_raster.samples=1", "interleaved_raster.spp=1", "interleaved_raster.jitter=false",
-       "interleaved_raster.filter=box", "interleaved_raster.filter_radius=0.5",
-       "interleaved_raster.shading=local"});
+  const Buffer il =
+      test::renderHdr(s, "interleaved-raster", cd,
+                      {"interleaved_raster.samples=1", "interleaved_raster.spp=1",
+                       "interleaved_raster.jitter=false", "interleaved_raster.filter=box",
+                       "interleaved_raster.filter_radius=0.5", "interleaved_raster.shading=local"});
   const Buffer plain = test::renderHdr(s, "deferred", cd, {});
   EXPECT_LT(rmse(il, plain), 1e-4);
   EXPECT_GT(sum(il), 1.0);  // not black
@@ -203,7 +203,8 @@ TEST(Interleaved, RasterAndRayTracedInterleavingAgree) {
   s.objects.back().animation = {{0.0f, a}, {1.0f, b}};  // a sphere
   CameraDesc cd = s.camera;
   cd.apertureDiameter = 0.1f;
-  const std::vector<std::string> sets = {"interleaved_raster.samples=16", "interleaved_rt.samples=16"};
+  const std::vector<std::string> sets = {"interleaved_raster.samples=16",
+                                         "interleaved_rt.samples=16"};
   const Buffer r = test::renderHdr(s, "interleaved-raster", cd, {sets[0]}, 1.0f);
   const Buffer t = test::renderHdr(s, "interleaved-rt", cd, {sets[1]}, 1.0f);
   EXPECT_GT(psnr(r, t), 40.0);
@@ -222,9 +223,9 @@ TEST(Interleaved, BadValuesAreNamed) {
     EXPECT_NE(m.find("samples"), std::string::npos) << m;
     EXPECT_NE(m.find("multiple"), std::string::npos) << m;
   }
-  EXPECT_THROW(test::renderHdr(s, "interleaved-raster", pinholeCamera(),
-                               {"interleaved_raster.spp=0"}),
-               InputError);
+  EXPECT_THROW(
+      test::renderHdr(s, "interleaved-raster", pinholeCamera(), {"interleaved_raster.spp=0"}),
+      InputError);
 }
 
 namespace {

@@ -21,7 +21,7 @@ namespace {
 struct Case {
   int n, k;
 };
-const Case kCases[] = {{1, 1}, {4, 1}, {8, 1},  {12, 3},  {16, 1},
+const Case kCases[] = {{1, 1},  {4, 1},  {8, 1},  {12, 3},  {16, 1},
                        {16, 4}, {32, 2}, {64, 4}, {64, 16}, {144, 9}};
 
 TileSet build(int n, int k, TileKind kind, uint64_t seed = 7) {
@@ -114,7 +114,8 @@ TEST(SampleTiles, CornersAndEdgesOfAdjacentTilesMatch) {
         for (int p = 0; p < TileSet::kPrototypes; ++p)
           protos.emplace_back(set.slot.begin() + p * c.n, set.slot.begin() + (p + 1) * c.n);
         std::sort(protos.begin(), protos.end());
-        EXPECT_GT(std::unique(protos.begin(), protos.end()) - protos.begin(), std::min(a, b) > 4 ? 70 : 16)
+        EXPECT_GT(std::unique(protos.begin(), protos.end()) - protos.begin(),
+                  std::min(a, b) > 4 ? 70 : 16)
             << c.n << " " << c.k;
       }
     }
@@ -123,8 +124,8 @@ TEST(SampleTiles, CornersAndEdgesOfAdjacentTilesMatch) {
 TEST(SampleTiles, SamplesSitInTheirStrata) {
   const std::vector<TimeLensPair> pairs = stratifiedTimeLensPairs(16, 3);
   const TileSet set = buildTileSet(16, 4, TileKind::ColoredCorner, PairMetric::Both, pairs, 3);
-  for (auto scheme : {SamplingScheme::Stratified, SamplingScheme::RandomTiles,
-                      SamplingScheme::ColoredCorner}) {
+  for (auto scheme :
+       {SamplingScheme::Stratified, SamplingScheme::RandomTiles, SamplingScheme::ColoredCorner}) {
     const SampleLayout L = buildSampleLayout(scheme, set, 37, 23, 5);
     ASSERT_EQ(L.sampleCount(), size_t(37 * 23 * 4));
     for (int y = 0; y < L.stridesH(); ++y)
