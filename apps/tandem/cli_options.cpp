@@ -1,9 +1,13 @@
 #include "cli_options.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/image_io.h"
 #include "pipeline/renderer.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
@@ -189,6 +193,27 @@ void validateRenderOptions(const RenderOptions& o) {
     throw InputError("command line", "--convergence", "must be a positive distance in metres");
   if (o.emissiveLights != "auto" && o.emissiveLights != "on" && o.emissiveLights != "off")
     throw InputError("command line", "--emissive-lights", "expected auto, on or off");
+  // An output file is .png or .exr; anything else with an extension is not a folder name either.
+  if (!o.out.empty() && o.out.back() != '/') {
+    const std::string ext = std::filesystem::path(o.out).extension().string();
+    if (!ext.empty() && !hasExtension(o.out, ".png") && !hasExtension(o.out, ".exr"))
+      throw InputError(
+          "command line", "--out",
+          "'" + o.out + "': Tandem writes .png and .exr files (or a folder: end it with /)");
+  }
+  // The frame's buffers need at least ~175 bytes a pixel (G-buffer, history, outputs): refuse a
+  // size the machine cannot hold before allocating it.
+  const double pixels = double(o.width) * double(o.height) * (o.stereo ? 2.0 : 1.0);
+  const double need = pixels * 175.0;
+  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (have > 0 && need > 0.9 * have) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "%d x %d%s needs about %.1f GiB for its buffers; this machine has %.1f GiB",
+                  o.width, o.height, o.stereo ? " (stereo)" : "", need / 1073741824.0,
+                  have / 1073741824.0);
+    throw InputError("command line", "--width / --height", msg);
+  }
 }
 
 Scene loadSceneFor(const RenderOptions& o) {

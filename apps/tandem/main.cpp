@@ -17,7 +17,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and friends: CLI11 prints them and exits 0. Every other parse error is bad input:
+    // exit 2 with Tandem's wording, like every other error.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "tandem: error: command line: %s (see tandem --help)\n", e.what());
+    return 2;
   }
   try {
     for (auto& [name, run] : verbs)

@@ -188,6 +188,10 @@ expect_error "info missing" "not found" "$T" info /nonexistent.gltf
 expect_error "unknown named resolution" "--resolution" "$T" render cornell --resolution 8k --out "$D/err/x.png"
 expect_error "foveation r1 below r0" "r1" "$T" render cornell --pipeline foveated-nh3ld --width 32 --height 18 \
   --set foveation.r0=40 --set foveation.r1=20 --out "$D/err/x.png"
+out=$("$T" render --width abc 2>&1); rc=$?
+check "a CLI parse error exits 2 naming the option" "[ $rc -eq 2 ] && grep -qF -- '--width' <<<\"\$out\""
+expect_error "unwritable output extension" "--out" "$T" render cornell --width 32 --height 18 --out "$D/err/x.jpg"
+expect_error "a size the machine cannot hold" "GiB" "$T" render cornell --width 16384 --height 16384 --stereo --out "$D/err/x.png"
 expect_error "interleaved N not a multiple of k" "multiple" "$T" render cornell --pipeline interleaved-raster \
   --width 32 --height 18 --set interleaved_raster.samples=6 --set interleaved_raster.spp=4 --out "$D/err/x.png"
 expect_error "interleaved k below 1" "out of range" "$T" render cornell --pipeline interleaved-rt \
