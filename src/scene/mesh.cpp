@@ -49,17 +49,39 @@ void computeNormals(Mesh& m, float creaseDeg) {
   out.positions.reserve(m.positions.size());
   std::map<std::pair<uint32_t, uint32_t>, uint32_t> remap;  // (vertex, smoothing group rep) -> new
   std::vector<uint32_t> newIndices(m.indices.size());
+  // A corner's group depends only on its face's normal: corners of faces with the same normal
+  // at a vertex reuse it (a fan of 100k coplanar triangles costs 100k, not 100k^2). Around a
+  // vertex of more than kMaxCreaseValence faces, all of them form one group.
+  constexpr size_t kMaxCreaseValence = 1024;
+  struct Group {
+    Vec3 nf, sum;
+    uint32_t rep;
+  };
+  std::vector<std::vector<Group>> groups(m.positions.size());
   for (size_t t = 0; t < nt; ++t) {
     Vec3 nf = normalize(faceN[t]);
     for (int k = 0; k < 3; ++k) {
       uint32_t v = m.indices[3 * t + k];
+      const bool crowded = vertexFaces[v].size() > kMaxCreaseValence;
+      const Group* known = nullptr;
+      for (const Group& g : groups[v])
+        if (crowded || (g.nf.x == nf.x && g.nf.y == nf.y && g.nf.z == nf.z)) {
+          known = &g;
+          break;
+        }
       Vec3 sum(0.0f);
       uint32_t rep = UINT32_MAX;  // smallest face id in this corner's group: a stable key
-      for (uint32_t f : vertexFaces[v]) {
-        if (dot(normalize(faceN[f]), nf) >= cosCrease) {
-          sum += faceN[f];
-          rep = std::min(rep, f);
+      if (known) {
+        sum = known->sum;
+        rep = known->rep;
+      } else {
+        for (uint32_t f : vertexFaces[v]) {
+          if (crowded || dot(normalize(faceN[f]), nf) >= cosCrease) {
+            sum += faceN[f];
+            rep = std::min(rep, f);
+          }
         }
+        if (groups[v].size() < 64) groups[v].push_back({nf, sum, rep});
       }
       auto key = std::make_pair(v, rep);
       auto it = remap.find(key);

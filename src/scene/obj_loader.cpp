@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -11,6 +12,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "scene/loaders.h"
+#include "scene/polygon_triangulation.h"
 
 namespace tandem {
 namespace fs = std::filesystem;
@@ -101,6 +103,61 @@ void checkVertexLines(const std::string& path) {
   }
 }
 
+// Faces of more than kHugeFace vertices: tinyobjloader stores a face's vertex count in a byte and
+// triangulates in quadratic time (a 100k-vertex face took minutes). When a file has such faces,
+// its text is handed to tinyobjloader with each of them replaced by our triangles
+// (scene/polygon_triangulation.h, bounded time), and its MTL libraries' text beside it. Returns
+// false (nothing to do) for the usual file.
+constexpr size_t kHugeFace = 200;
+
+bool rewriteHugeFaces(const std::string& path, std::string& obj, std::string& mtl) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::vector<Vec3> positions;
+  std::ostringstream out;
+  std::vector<std::string> libs;
+  bool huge = false;
+  for (size_t n = 1; std::getline(in, line); ++n) {
+    if (line.size() > 1 && line[0] == 'v' && (line[1] == ' ' || line[1] == '\t')) {
+      std::istringstream ss(line.substr(2));
+      Vec3 v{0.0f};
+      ss >> v.x >> v.y >> v.z;
+      positions.push_back(v);
+    } else if (line.rfind("mtllib", 0) == 0) {
+      std::istringstream ss(line.substr(6));
+      std::string name;
+      while (ss >> name) libs.push_back(name);
+    } else if (line.size() > 1 && line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
+      std::istringstream ss(line.substr(2));
+      std::vector<std::string> tokens;
+      std::string tok;
+      while (ss >> tok) tokens.push_back(tok);
+      if (tokens.size() > kHugeFace) {
+        huge = true;
+        std::vector<Vec3> polygon;
+        for (const std::string& t : tokens) {
+          long i = std::strtol(t.c_str(), nullptr, 10);
+          if (i < 0) i += long(positions.size()) + 1;  // relative to the vertices so far
+          if (i < 1 || size_t(i) > positions.size())
+            throw InputError(path, "line " + std::to_string(n), "vertex index out of range");
+          polygon.push_back(positions[size_t(i - 1)]);
+        }
+        for (const auto& t : triangulatePolygon(polygon))
+          out << "f " << tokens[t[0]] << ' ' << tokens[t[1]] << ' ' << tokens[t[2]] << '\n';
+        continue;
+      }
+    }
+    out << line << '\n';
+  }
+  if (!huge) return false;
+  obj = out.str();
+  for (const std::string& lib : libs) {
+    std::ifstream m(fs::path(path).parent_path() / lib, std::ios::binary);
+    mtl += std::string(std::istreambuf_iterator<char>(m), std::istreambuf_iterator<char>()) + '\n';
+  }
+  return true;
+}
+
 }  // namespace
 
 Scene loadObj(const std::string& path) {
@@ -111,7 +168,10 @@ Scene loadObj(const std::string& path) {
   config.vertex_color = false;
   config.mtl_search_path = fs::path(path).parent_path().string();
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
+  std::string objText, mtlText;
+  const bool rewritten = rewriteHugeFaces(path, objText, mtlText);
+  if (!(rewritten ? reader.ParseFromString(objText, mtlText, config)
+                  : reader.ParseFromFile(path, config))) {
     std::string err = reader.Error();
     while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
     throw InputError(path, "", "cannot parse OBJ: " + (err.empty() ? "unknown error" : err));
