@@ -236,3 +236,17 @@ TEST(BadInput, LensFields) {
                         std::to_string(blades) + "}}",
                     {"camera.apertureBlades", "at least 3"});
 }
+
+// A buffer URI naming a directory (here the file's own folder) made tinygltf's reader allocate
+// 2^63 bytes (found by fuzz_gltf): only regular files are read.
+TEST(BadInput, GltfBufferUriNamingAFolder) {
+  for (const char* uri : {"", ".", "%2E"})
+    expectLoadError("dir.gltf",
+                    kTriangleGltfHead +
+                        R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "buffers": [{"byteLength": 36, "uri": ")" +
+                        std::string(uri) + R"("}]})",
+                    {"cannot parse glTF"});
+}
