@@ -1,6 +1,7 @@
 // OBJ + MTL via tinyobjloader. Each (shape, material) pair becomes one object.
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -27,7 +28,10 @@ int loadTexture(Scene& s, std::map<std::string, int>& cache, const std::string& 
                 const std::string& baseDir, const std::string& name, const std::string& field,
                 bool srgb) {
   if (name.empty()) return -1;
-  std::string path = (fs::path(baseDir) / name).string();
+  // MTL files written on Windows name textures with backslashes (".\\wood.jpg").
+  std::string portable = name;
+  std::replace(portable.begin(), portable.end(), '\\', '/');
+  std::string path = (fs::path(baseDir) / portable).string();
   auto key = path + (srgb ? "#srgb" : "#linear");
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
@@ -106,12 +110,46 @@ void checkVertexLines(const std::string& path) {
 // Faces of more than kHugeFace vertices: tinyobjloader stores a face's vertex count in a byte and
 // triangulates in quadratic time (a 100k-vertex face took minutes). When a file has such faces,
 // its text is handed to tinyobjloader with each of them replaced by our triangles
-// (scene/polygon_triangulation.h, bounded time), and its MTL libraries' text beside it. Returns
-// false (nothing to do) for the usual file.
+// (scene/polygon_triangulation.h, bounded time), and its MTL libraries' text beside it; so is a
+// file whose text had to be decoded (decodeText). Returns false (nothing to do) for the usual
+// file.
 constexpr size_t kHugeFace = 200;
 
-bool rewriteHugeFaces(const std::string& path, std::string& obj, std::string& mtl) {
+// The file's text as UTF-8 without a byte-order mark: a UTF-8 BOM is dropped, UTF-16 (either
+// byte order, by its BOM) is narrowed when it holds only ASCII and refused otherwise. Returns
+// false when the file needed nothing of that.
+bool decodeText(const std::string& path, std::string& text) {
   std::ifstream in(path, std::ios::binary);
+  std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto at = [&](size_t i) { return static_cast<unsigned char>(raw[i]); };
+  if (raw.size() >= 3 && at(0) == 0xEF && at(1) == 0xBB && at(2) == 0xBF) {
+    text = raw.substr(3);
+    return true;
+  }
+  if (raw.size() >= 2 && ((at(0) == 0xFF && at(1) == 0xFE) || (at(0) == 0xFE && at(1) == 0xFF))) {
+    const bool little = at(0) == 0xFF;
+    text.clear();
+    for (size_t i = 2; i + 1 < raw.size(); i += 2) {
+      const unsigned lo = little ? at(i) : at(i + 1), hi = little ? at(i + 1) : at(i);
+      if (hi != 0 || lo >= 0x80)
+        throw InputError(path, "", "UTF-16 text with characters beyond ASCII: save it as UTF-8");
+      text += char(lo);
+    }
+    return true;
+  }
+  return false;
+}
+
+bool rewriteHugeFaces(const std::string& path, std::string& obj, std::string& mtl) {
+  std::string decoded;
+  const bool recoded = decodeText(path, decoded);
+  std::ifstream file;
+  std::istringstream memory;
+  if (recoded)
+    memory.str(decoded);
+  else
+    file.open(path, std::ios::binary);
+  std::istream& in = recoded ? static_cast<std::istream&>(memory) : file;
   std::string line;
   std::vector<Vec3> positions;
   std::ostringstream out;
@@ -149,7 +187,7 @@ bool rewriteHugeFaces(const std::string& path, std::string& obj, std::string& mt
     }
     out << line << '\n';
   }
-  if (!huge) return false;
+  if (!huge && !recoded) return false;
   obj = out.str();
   for (const std::string& lib : libs) {
     std::ifstream m(fs::path(path).parent_path() / lib, std::ios::binary);

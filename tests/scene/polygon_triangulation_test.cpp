@@ -6,6 +6,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/error.h"
+#include "core/image_io.h"
 #include "scene/loaders.h"
 #include "scene/polygon_triangulation.h"
 #include "test_util.h"
@@ -96,5 +98,47 @@ TEST(ObjLoader, HugePolygonsLoad) {
     for (const Mesh& m : s.meshes) tris += m.triangleCount();
     EXPECT_EQ(tris + s.stats.degenerateTriangles, size_t(n - 2)) << path;
     EXPECT_GT(tris, size_t(n / 2)) << path;
+  }
+}
+
+// Text encodings and Windows paths: a UTF-8 byte-order mark, UTF-16 of either byte order, and an
+// MTL texture written ".\name.png" load like the plain file.
+TEST(ObjLoader, ByteOrderMarksAndWindowsTexturePaths) {
+  const auto dir = test::scratchDir("obj_encodings");
+  const std::string body =
+      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+      "usemtl wood\nf 1/1 2/2 3/3 4/4\n";
+  {
+    std::ofstream m(dir / "m.mtl");
+    m << "newmtl wood\nKd 1 1 1\nmap_Kd .\\wood.png\n";
+    Buffer tex(2, 2, 3, 0.5f);
+    writePng((dir / "wood.png").string(), tex);
+  }
+  auto write = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream f(dir / name, std::ios::binary);
+    f << bytes;
+    return (dir / name).string();
+  };
+  std::string le = "\xFF\xFE", be = "\xFE\xFF";
+  for (char c : body) {
+    le += c, le += '\0';
+    be += '\0', be += c;
+  }
+  for (const std::string& path : {write("plain.obj", body), write("bom.obj", "\xEF\xBB\xBF" + body),
+                                  write("le.obj", le), write("be.obj", be)}) {
+    const Scene s = loadScene(path);
+    size_t tris = 0;
+    for (const Mesh& m : s.meshes) tris += m.triangleCount();
+    EXPECT_EQ(tris, 2u) << path;
+    ASSERT_FALSE(s.materials.empty()) << path;
+    EXPECT_GE(s.materials.back().diffuseTexture, 0) << path << ": the texture was not found";
+  }
+  const char wideBytes[] = "\xFF\xFEv\0 \0\xE9\0";  // UTF-16 "v é": beyond ASCII
+  const std::string wide(wideBytes, sizeof wideBytes - 1);
+  try {
+    loadScene(write("wide.obj", wide));
+    ADD_FAILURE() << "no error for UTF-16 beyond ASCII";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("UTF-16"), std::string::npos) << e.what();
   }
 }
