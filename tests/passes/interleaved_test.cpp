@@ -26,6 +26,12 @@ CameraDesc pinholeCamera() {
 }
 
 // One emissive 1 x 1 m square at z = -2 (4 m from the camera), over a black sky.
+// Where the left and right edges of oneSquare's centre row (at rest) project, in pixels.
+bool squareEdges(const CameraDesc& cd, int w, int h, Vec2& left, Vec2& right) {
+  const Camera cam = Camera::make(cd, w, h);
+  return cam.project({-0.5f, 0, -2}, left) && cam.project({0.5f, 0, -2}, right);
+}
+
 Scene oneSquare() {
   Scene s = test::emissiveSquares();
   s.objects.resize(1);
@@ -65,10 +71,8 @@ TEST(Interleaved, MotionBlurOfAMovingSquareIsItsSweptPathWithLinearRamps) {
   s.objects[0].animation = {{0.0f, a}, {1.0f, b}};
   const int W = 96, H = 64;
   const CameraDesc cd = pinholeCamera();
-  const Camera cam = Camera::make(cd, W, H);
   Vec2 left, right;
-  ASSERT_TRUE(cam.project({-0.5f, 0, -2}, left));
-  ASSERT_TRUE(cam.project({0.5f, 0, -2}, right));
+  ASSERT_TRUE(squareEdges(cd, W, H, left, right));
   const float L0 = left.x, S = right.x - left.x, D = S;
   const int row = int(left.y);
   for (const char* pipeline : {"interleaved-raster", "interleaved-rt"}) {
@@ -253,10 +257,8 @@ Scene movingSquare() {
 // 4 m, exactly its own projected width; the sky does not move.
 TEST(MotionBlur, VelocityIsTheDisplacementOverTheShutter) {
   const CameraDesc cd = pinholeCamera();
-  const Camera cam = Camera::make(cd, 96, 64);
   Vec2 left, right;
-  ASSERT_TRUE(cam.project({-0.5f, 0, -2}, left));
-  ASSERT_TRUE(cam.project({0.5f, 0, -2}, right));
+  ASSERT_TRUE(squareEdges(cd, 96, 64, left, right));
   auto r = renderMoving(movingSquare(), "postfx-motion-blur", cd);
   const Buffer& v = r->context().input("velocity");
   const int row = int(left.y);
@@ -282,10 +284,8 @@ TEST(MotionBlur, VelocityIsTheDisplacementOverTheShutter) {
 // RMS 0.17 over the path against the analytic profile; interleaved sampling: below 0.035).
 TEST(MotionBlur, PostProcessBlurFollowsTheSweptPath) {
   const CameraDesc cd = pinholeCamera();
-  const Camera cam = Camera::make(cd, 96, 64);
   Vec2 left, right;
-  ASSERT_TRUE(cam.project({-0.5f, 0, -2}, left));
-  ASSERT_TRUE(cam.project({0.5f, 0, -2}, right));
+  ASSERT_TRUE(squareEdges(cd, 96, 64, left, right));
   const float L0 = left.x, S = right.x - left.x, D = S;
   const int row = int(left.y);
   auto r = renderMoving(movingSquare(), "postfx-motion-blur", cd);
