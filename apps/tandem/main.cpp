@@ -1,5 +1,6 @@
 // tandem: the hybrid renderer's command line. Verbs: render, reference, info, compare, bench,
 // experiment, export, view.
+#include <csignal>
 #include <cstdio>
 #include <map>
 
@@ -7,6 +8,9 @@
 #include "verbs.h"
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) should fail the write, which FileCommit reports and cleans
+  // up, rather than kill the process with a half-written temporary left behind.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"Tandem: a hybrid rasterization + ray tracing renderer"};
   app.require_subcommand(1);
   std::map<std::string, tandem::VerbRunner> verbs = {

@@ -9,6 +9,7 @@
 
 #include "cli_options.h"
 #include "core/error.h"
+#include "core/file_commit.h"
 #include "core/image_io.h"
 #include "eval/reference_cache.h"
 #include "mpi_cluster.h"
@@ -89,9 +90,12 @@ struct ReferenceVerb {
     const fs::path base = dir / stem;
     const std::string png = isFile && hasExtension(out, ".png") ? out : base.string() + ".png";
     const std::string exr = isFile && hasExtension(out, ".exr") ? out : base.string() + ".exr";
-    writeBuffer(png, img.hdr);  // ACES, as the reference pipeline's tonemap
-    writeExr(exr, img.hdr);
-    writeExr(base.string() + ".variance.exr", img.variance);
+    FileCommit files;                              // all three or none
+    files.stage(png, encodeBuffer(png, img.hdr));  // ACES, as the reference pipeline's tonemap
+    files.stage(exr, encodeExr(exr, img.hdr));
+    files.stage(base.string() + ".variance.exr",
+                encodeExr(base.string() + ".variance.exr", img.variance));
+    files.commit();
     std::printf("wrote %s\nwrote %s\nwrote %s\n", png.c_str(), exr.c_str(),
                 (base.string() + ".variance.exr").c_str());
     return 0;

@@ -8,6 +8,7 @@
 
 #include "cli_options.h"
 #include "core/error.h"
+#include "core/file_commit.h"
 #include "core/image_io.h"
 #include "pipeline/aov.h"
 #include "pipeline/renderer.h"
@@ -66,26 +67,31 @@ struct RenderVerb {
                   ctx.counters["raster/triangles_in"], ctx.counters["raster/triangles_culled"],
                   ctx.counters["raster/triangles_clipped"],
                   ctx.counters["raster/triangles_binned"]);
+    // Every output is staged first and renamed into place together: all files or none.
     const std::string& outName = renderer.pipeline().output;
+    FileCommit files;
+    std::vector<std::string> written;
+    auto stage = [&](const std::string& path, const std::vector<unsigned char>& bytes) {
+      files.stage(path, bytes);
+      written.push_back(path);
+    };
     if (isFile) {
-      writeBuffer(out, ctx.input(outName));
-      std::printf("wrote %s\n", out.c_str());
+      stage(out, encodeBuffer(out, ctx.input(outName)));
     } else {
       std::string png = base.string() + ".png";
-      writeBuffer(png, ctx.input(outName));
-      std::printf("wrote %s\n", png.c_str());
+      stage(png, encodeBuffer(png, ctx.input(outName)));
       if (ctx.buffers.count("hdr")) {
         std::string exr = base.string() + ".exr";
-        writeExr(exr, ctx.input("hdr"));
-        std::printf("wrote %s\n", exr.c_str());
+        stage(exr, encodeExr(exr, ctx.input("hdr")));
       }
     }
     for (const std::string& a : aovs) {
       std::string ext = isFile && hasExtension(out, ".exr") ? ".exr" : ".png";
       std::string p = base.string() + "_" + a + ext;
-      writeBuffer(p, ctx.input(a));
-      std::printf("wrote %s\n", p.c_str());
+      stage(p, encodeBuffer(p, ctx.input(a)));
     }
+    files.commit();
+    for (const std::string& p : written) std::printf("wrote %s\n", p.c_str());
     return 0;
   }
 };

@@ -9,14 +9,14 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
-#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "core/error.h"
+#include "core/file_commit.h"
 
 namespace tandem {
 namespace fs = std::filesystem;
@@ -31,52 +31,45 @@ bool hasExtension(const std::string& path, const std::string& ext) {
 
 namespace {
 
-// A temporary sibling name unique to this process; renamed over `path` once complete.
-std::string tempName(const std::string& path) {
-  fs::path p(path);
-  // Built with append(): GCC 12 warns falsely (-Wrestrict) on a chain of string operator+.
-  std::string name(".");
-  name.append(p.filename().string()).append(".tmp").append(std::to_string(getpid()));
-  return (p.parent_path() / name).string();
-}
-
-void commit(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path, "", "cannot rename temporary file into place");
-  }
-}
-
-void checkWritable(const std::string& path, const Buffer& img) {
+void checkEncodable(const std::string& path, const Buffer& img) {
   if (img.width <= 0 || img.height <= 0 || img.channels <= 0)
     throw InputError(path, "", "refusing to write an empty image");
-  fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw InputError(path, "", "output folder does not exist");
+}
+
+// OpenEXR writes through a stream; this one collects the file in memory, so the bytes reach
+// the disk through the one checked write path (FileCommit).
+class MemoryStream : public Imf::OStream {
+ public:
+  MemoryStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    if (pos_ + size_t(n) > bytes.size()) bytes.resize(pos_ + size_t(n));
+    std::memcpy(bytes.data() + pos_, c, size_t(n));
+    pos_ += size_t(n);
+  }
+  uint64_t tellp() override { return pos_; }
+  void seekp(uint64_t pos) override { pos_ = size_t(pos); }
+  std::vector<unsigned char> bytes;
+
+ private:
+  size_t pos_ = 0;
+};
+
+void appendBytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<unsigned char>*>(context);
+  const auto* p = static_cast<const unsigned char*>(data);
+  out->insert(out->end(), p, p + size);
 }
 
 }  // namespace
 
 void writeTextFile(const std::string& path, const std::string& text) {
-  fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw InputError(path, "", "output folder does not exist");
-  std::string tmp = tempName(path);
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f || !(f << text) || !f.flush()) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(path, "", "cannot write");
-    }
-  }
-  commit(tmp, path);
+  FileCommit c;
+  c.stage(path, text);
+  c.commit();
 }
 
-void writePng(const std::string& path, const Buffer& img) {
-  checkWritable(path, img);
+std::vector<unsigned char> encodePng(const std::string& path, const Buffer& img) {
+  checkEncodable(path, img);
   int c = std::min(img.channels, 4);
   std::vector<unsigned char> bytes(img.pixelCount() * c);
   for (size_t i = 0; i < img.pixelCount(); ++i)
@@ -85,20 +78,18 @@ void writePng(const std::string& path, const Buffer& img) {
       v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
       bytes[i * c + k] = static_cast<unsigned char>(std::lround(v * 255.0f));
     }
-  std::string tmp = tempName(path);
-  if (!stbi_write_png(tmp.c_str(), img.width, img.height, c, bytes.data(), img.width * c)) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw InputError(path, "", "PNG write failed");
-  }
-  commit(tmp, path);
+  std::vector<unsigned char> file;
+  if (!stbi_write_png_to_func(appendBytes, &file, img.width, img.height, c, bytes.data(),
+                              img.width * c))
+    throw InputError(path, "", "PNG encoding failed");
+  return file;
 }
 
-void writeExr(const std::string& path, const Buffer& img, bool half) {
-  checkWritable(path, img);
+std::vector<unsigned char> encodeExr(const std::string& path, const Buffer& img, bool half) {
+  checkEncodable(path, img);
   static const char* kRgba[] = {"R", "G", "B", "A"};
   int c = std::min(img.channels, 4);
-  std::string tmp = tempName(path);
+  MemoryStream stream;
   try {
     Imf::Header header(img.width, img.height);
     Imf::FrameBuffer fb;
@@ -114,15 +105,22 @@ void writeExr(const std::string& path, const Buffer& img, bool half) {
       fb.insert(name, Imf::Slice(type, (char*)(base + k * bytes), bytes * img.channels,
                                  bytes * img.channels * img.width));
     }
-    Imf::OutputFile file(tmp.c_str(), header);
+    // The file is complete (line-offset table included) once OutputFile is destroyed.
+    Imf::OutputFile file(stream, header);
     file.setFrameBuffer(fb);
     file.writePixels(img.height);
   } catch (const std::exception& e) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw InputError(path, "", std::string("EXR write failed: ") + e.what());
+    throw InputError(path, "", std::string("EXR encoding failed: ") + e.what());
   }
-  commit(tmp, path);
+  return std::move(stream.bytes);
+}
+
+void writePng(const std::string& path, const Buffer& img) {
+  writeFileAtomically(path, encodePng(path, img));
+}
+
+void writeExr(const std::string& path, const Buffer& img, bool half) {
+  writeFileAtomically(path, encodeExr(path, img, half));
 }
 
 namespace {

@@ -1,8 +1,8 @@
 // Image files: PNG (8-bit sRGB, via stb) and EXR (32-bit float linear, via OpenEXR).
-// Writes go to a temporary name in the same folder and are renamed on success, so a failed
-// write never leaves a partial image.
+// Writes go through FileCommit (core/file_commit.h): complete and checked, or no file at all.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "core/buffer.h"
 
@@ -13,6 +13,10 @@ void writePng(const std::string& path, const Buffer& img);
 // Writes a float EXR with channels R,G,B(,A) or Y for one channel; `half` stores 16-bit floats
 // (relative error < 5e-4: small golden images).
 void writeExr(const std::string& path, const Buffer& img, bool half = false);
+// The files' bytes, for staging several files in one FileCommit (all or none). `path` only
+// names the file in errors.
+std::vector<unsigned char> encodePng(const std::string& path, const Buffer& img);
+std::vector<unsigned char> encodeExr(const std::string& path, const Buffer& img, bool half = false);
 // Loads PNG/JPEG (values in [0,1], display encoded) or EXR (linear float); RGB output.
 Buffer loadImage(const std::string& path);
 // Loads an 8-bit image file for texturing: RGBA in [0,1], not yet linearised.

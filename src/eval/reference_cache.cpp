@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/file_commit.h"
 #include "core/image_io.h"
 #include "pipeline/renderer.h"
 #include "scene/scene_hash.h"
@@ -94,8 +95,11 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   img.relativeError = relativeNoise(img.hdr, img.variance);
   if (!cacheDir.empty() && (!cluster || cluster->rank() == 0)) {
     fs::create_directories(cacheDir);
-    writeExr(base.string() + ".exr", img.hdr);
-    writeExr(base.string() + ".variance.exr", img.variance);
+    // Image, variance and metadata committed together: a cache entry is whole or absent.
+    FileCommit files;
+    files.stage(base.string() + ".exr", encodeExr(base.string() + ".exr", img.hdr));
+    files.stage(base.string() + ".variance.exr",
+                encodeExr(base.string() + ".variance.exr", img.variance));
     nlohmann::json j = {{"scene", job.scene->name},
                         {"width", job.width},
                         {"height", job.height},
@@ -110,7 +114,8 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
                         {"seconds", img.seconds},
                         {"rays", img.rays},
                         {"relativeError", img.relativeError}};
-    writeTextFile(base.string() + ".json", j.dump(2) + "\n");
+    files.stage(base.string() + ".json", j.dump(2) + "\n");
+    files.commit();
   }
   return img;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/color.h"
+#include "core/file_commit.h"
 #include "core/image_io.h"
 
 namespace tandem {
@@ -104,12 +105,12 @@ Buffer visualizeBuffer(const Buffer& b, float scale) {
   return out;
 }
 
+std::vector<unsigned char> encodeBuffer(const std::string& path, const Buffer& b) {
+  return hasExtension(path, ".exr") ? encodeExr(path, b) : encodePng(path, visualizeBuffer(b));
+}
+
 void writeBuffer(const std::string& path, const Buffer& b) {
-  if (hasExtension(path, ".exr")) {
-    writeExr(path, b);
-  } else {
-    writePng(path, visualizeBuffer(b));
-  }
+  writeFileAtomically(path, encodeBuffer(path, b));
 }
 
 }  // namespace tandem

@@ -15,5 +15,7 @@ Buffer visualizeBuffer(const Buffer& b, float scale = 1.0f);
 Vec3 idColor(int id);
 // Writes a buffer to `path`: EXR gets raw values, PNG the visualisation.
 void writeBuffer(const std::string& path, const Buffer& b);
+// The bytes writeBuffer would write, for staging in a FileCommit.
+std::vector<unsigned char> encodeBuffer(const std::string& path, const Buffer& b);
 
 }  // namespace tandem

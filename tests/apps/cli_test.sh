@@ -191,6 +191,10 @@ expect_error "foveation r1 below r0" "r1" "$T" render cornell --pipeline foveate
 out=$("$T" render --width abc 2>&1); rc=$?
 check "a CLI parse error exits 2 naming the option" "[ $rc -eq 2 ] && grep -qF -- '--width' <<<\"\$out\""
 expect_error "unwritable output extension" "--out" "$T" render cornell --width 32 --height 18 --out "$D/err/x.jpg"
+# A full disk, simulated by a file-size limit: the run exits 2 naming the file and leaves nothing
+# (no truncated PNG, no PNG without its EXR, no temporary).
+expect_error "a PNG cut short by a full disk" "write failed" bash -c "ulimit -f 8; \"$T\" render cornell --width 320 --height 180 --out \"$D/err/\""
+expect_error "PNG written but its EXR not: neither kept" ".exr" bash -c "ulimit -f 100; \"$T\" render cornell --width 320 --height 180 --out \"$D/err/\""
 expect_error "a size the machine cannot hold" "GiB" "$T" render cornell --width 16384 --height 16384 --stereo --out "$D/err/x.png"
 expect_error "interleaved N not a multiple of k" "multiple" "$T" render cornell --pipeline interleaved-raster \
   --width 32 --height 18 --set interleaved_raster.samples=6 --set interleaved_raster.spp=4 --out "$D/err/x.png"
