@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "pipeline/renderer.h"
+#include "scene/default_lights.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
 
@@ -112,6 +113,8 @@ void addSceneOptions(CLI::App* app, RenderOptions& o) {
       "Add a directional light: dx,dy,dz[,intensity[,r,g,b]] (travel direction, W/m^2)");
   app->add_option("--emissive-lights", o.emissiveLights,
                   "Emissive meshes as punctual lights: auto (when the scene has none), on, off");
+  app->add_option("--default-lights", o.defaultLights,
+                  "Scenes with no lights: auto (light them with a sun-and-sky rig) or off");
   app->add_flag("--stereo", o.stereo,
                 "Stereo: both eyes side by side (--width and --height give one eye)");
   app->add_option("--ipd", o.ipd, "Stereo interpupillary distance in metres (default 0.064)");
@@ -193,6 +196,8 @@ void validateRenderOptions(const RenderOptions& o) {
     throw InputError("command line", "--convergence", "must be a positive distance in metres");
   if (o.emissiveLights != "auto" && o.emissiveLights != "on" && o.emissiveLights != "off")
     throw InputError("command line", "--emissive-lights", "expected auto, on or off");
+  if (o.defaultLights != "auto" && o.defaultLights != "off")
+    throw InputError("command line", "--default-lights", "expected auto or off");
   // An output file is .png or .exr; anything else with an extension is not a folder name either.
   if (!o.out.empty() && o.out.back() != '/') {
     const std::string ext = std::filesystem::path(o.out).extension().string();
@@ -231,6 +236,13 @@ Scene loadSceneFor(const RenderOptions& o) {
     s.lights.push_back(parseCliLight("--point-light", p, LightType::Point));
   for (const std::string& p : o.sunLights)
     s.lights.push_back(parseCliLight("--sun-light", p, LightType::Directional));
+  if (o.defaultLights == "auto" && needsDefaultLights(s)) {
+    addDefaultLightRig(s, cameraFor(s, o));  // around the view the user will see
+    std::fprintf(stderr,
+                 "tandem: %s has no lights: lit by the default rig (sun, sky, fill); "
+                 "--default-lights off renders it unlit\n",
+                 s.name.c_str());
+  }
   return s;
 }
 

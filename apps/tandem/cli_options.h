@@ -27,6 +27,7 @@ struct RenderOptions {
   float vfov = 0;  // 0 = scene's
   std::vector<std::string> pointLights, sunLights;
   std::string emissiveLights = "auto";  // auto | on | off
+  std::string defaultLights = "auto";   // auto (a rig when the scene has no lights) | off
   std::vector<std::string> set;         // pass parameters: label.param=value
   bool stereo = false;                  // two eyes side by side (--width is one eye)
   float ipd = 0;                        // > 0: interpupillary distance (implies --stereo)
@@ -45,7 +46,8 @@ void addLensOptions(CLI::App* app, RenderOptions& o);
 void addRenderOptions(CLI::App* app, RenderOptions& o);
 // Validates option values; throws InputError naming the option.
 void validateRenderOptions(const RenderOptions& o);
-// Loads the scene, adds command-line lights.
+// Loads the scene, adds command-line lights, and the default lighting rig (announced on
+// stderr) when nothing lights it and --default-lights is auto.
 Scene loadSceneFor(const RenderOptions& o);
 // The scene's stereo settings with --stereo, --ipd and --convergence applied.
 StereoDesc stereoFor(const Scene& s, const RenderOptions& o);

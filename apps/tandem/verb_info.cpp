@@ -22,6 +22,8 @@ VerbRunner addInfoVerb(CLI::App& app) {
   sub->add_option("scene", opts->scene, "Scene file or built-in name");
   sub->add_option("--scene", opts->scene, "Scene file or built-in name");
   sub->add_option("--emissive-lights", opts->emissiveLights, "auto, on or off");
+  sub->add_option("--default-lights", opts->defaultLights,
+                  "auto (a sun-and-sky rig when the scene has no lights) or off");
   sub->add_flag("--objects", *verbose, "List every object");
   return [opts, verbose] {
     validateRenderOptions(*opts);
@@ -42,8 +44,9 @@ VerbRunner addInfoVerb(CLI::App& app) {
     std::printf("meshes       %zu\n", s.meshes.size());
     std::printf("materials    %zu\n", s.materials.size());
     std::printf("textures     %zu\n", s.textures.size());
-    std::printf("lights       %zu (%zu directional, %zu point, %zu spot)\n", s.lights.size(),
-                lightsByType[0], lightsByType[1], lightsByType[2]);
+    std::printf("lights       %zu (%zu directional, %zu point, %zu spot)%s\n", s.lights.size(),
+                lightsByType[0], lightsByType[1], lightsByType[2],
+                s.stats.defaultLightRig ? ", the default rig: the scene has none" : "");
     std::printf("bounds       (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g)\n", b.lo.x, b.lo.y, b.lo.z,
                 b.hi.x, b.hi.y, b.hi.z);
     std::printf("camera       %s, path with %zu keys\n",

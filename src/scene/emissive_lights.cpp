@@ -5,11 +5,36 @@
 
 namespace tandem {
 
+namespace {
+
+// Mean linear colour of a texture's level 0: what an emission texture makes of the factor on
+// average (a mostly black glow map is a faint light, not a lamp).
+Vec3 meanColor(const Texture& t) {
+  const Buffer& b = t.texels;
+  if (b.pixelCount() == 0 || b.channels < 3) return Vec3(1.0f);
+  double sum[3] = {0, 0, 0};
+  for (size_t i = 0; i < b.pixelCount(); ++i)
+    for (int k = 0; k < 3; ++k) sum[k] += b.data[i * size_t(b.channels) + size_t(k)];
+  const double n = double(b.pixelCount());
+  return Vec3(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
+}
+
+}  // namespace
+
+Vec3 meanEmission(const Scene& s, const Material& m) {
+  if (m.emissionTexture < 0) return m.emission;
+  return m.emission * meanColor(s.textures[size_t(m.emissionTexture)]);
+}
+
 int addLightsForEmissiveMeshes(Scene& s) {
   int added = 0;
+  std::vector<Vec3> emission(s.materials.size());
+  for (size_t i = 0; i < s.materials.size(); ++i)
+    emission[i] =
+        maxComponent(s.materials[i].emission) > 0 ? meanEmission(s, s.materials[i]) : Vec3(0.0f);
   for (const Object& o : s.objects) {
-    const Material& m = s.materials[o.material];
-    if (maxComponent(m.emission) <= 0.0f) continue;
+    const Vec3 le = emission[size_t(o.material)];
+    if (maxComponent(le) <= 0.0f) continue;
     const Mesh& mesh = s.meshes[o.mesh];
     Mat4 w = o.worldMatrix(0.0f);
     double area = 0;
@@ -29,8 +54,8 @@ int addLightsForEmissiveMeshes(Scene& s) {
     Light l;
     l.name = "emissive:" + o.name;
     l.fromEmissiveMesh = true;
-    float lum = maxComponent(m.emission);
-    l.color = m.emission / lum;
+    float lum = maxComponent(le);
+    l.color = le / lum;
     // Planar when the summed normal is (almost) as long as the total area.
     bool planar = length(normalSum) > 0.99 * area;
     if (planar) {

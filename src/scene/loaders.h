@@ -23,7 +23,10 @@ Scene loadSceneByExtension(const std::string& path);
 
 // Emissive-mesh conversion (documented in docs/scene-format.md): a planar emitter becomes a
 // spot light with cosine falloff I(theta) = Le * A * cos(theta) over the hemisphere; any other
-// emitter becomes a point light of the same power, I = Le * A / 4. Returns lights added.
+// emitter becomes a point light of the same power, I = Le * A / 4. Le is the emission factor
+// times the emission texture's mean colour. Returns lights added.
 int addLightsForEmissiveMeshes(Scene& s);
+// A material's emitted radiance averaged over its emission texture (the factor when untextured).
+Vec3 meanEmission(const Scene& s, const Material& m);
 
 }  // namespace tandem

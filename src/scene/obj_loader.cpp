@@ -45,6 +45,7 @@ Material convertMaterial(const tinyobj::material_t& m, Scene& s, std::map<std::s
                          const std::string& mtlPath, const std::string& baseDir) {
   Material out;
   out.name = m.name;
+  out.doubleSided = true;  // OBJ has no notion of one-sided faces
   out.ambient = toVec3(m.ambient);
   out.diffuse = toVec3(m.diffuse);
   out.specular = toVec3(m.specular);
@@ -279,7 +280,11 @@ Scene loadObj(const std::string& path) {
           throw InputError(path, "shape '" + shape.name + "'", "normal is NaN or infinite");
       int material = mat;
       if (material < 0) {
-        if (defaultMat < 0) defaultMat = s.addMaterial(Material{});
+        if (defaultMat < 0) {
+          Material plain;
+          plain.doubleSided = true;  // as every OBJ material
+          defaultMat = s.addMaterial(plain);
+        }
         material = defaultMat;
       }
       std::string name = shape.name.empty() ? "shape" : shape.name;

@@ -5,9 +5,13 @@
 
 namespace tandem {
 
-// The scene's camera, or one framing its bounds from the +Z side (like a model viewer); the
-// near plane kept sensible for tiny models seen from close up.
+// The scene's camera, or one framing its bounds (like a model viewer) from the direction
+// autoViewDirection picks; the near plane kept sensible for tiny models seen from close up.
 CameraDesc defaultCamera(const Scene& s);
+// Unit direction from the model's centre towards the automatic camera: front (+Z) and slightly
+// above unless another view shows at least a quarter more of the model's surface (projected
+// area of the faces turned towards it; both sides of double-sided faces).
+Vec3 autoViewDirection(const Scene& s);
 // Keeps the near plane below 5 % of the distance to the target.
 void fitNearPlane(CameraDesc& c);
 // The camera on the scene's path at path time t (seconds); `base` when the scene has no path.
