@@ -4,7 +4,7 @@
 set -euo pipefail
 pkgs=(
   build-essential cmake ninja-build ccache pkg-config
-  libembree-dev libtbb-dev libhwy-dev libtinygltf-dev libtinyobjloader-dev libstb-dev
+  libembree-dev libtbb-dev libhwy-dev libtinygltf-dev libtinyobjloader-dev libstb-dev libdraco-dev
   libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin gnuplot-nox

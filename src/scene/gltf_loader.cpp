@@ -11,6 +11,8 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "scene/gltf_draco.h"
+#include "scene/gltf_preflight.h"
 #include "scene/loaders.h"
 
 namespace tandem {
@@ -19,8 +21,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::set<std::string> kSupportedExtensions = {
-    "KHR_texture_transform", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_emissive_strength", "KHR_lights_punctual"};
+    "KHR_texture_transform",           "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_emissive_strength", "KHR_lights_punctual",        "KHR_draco_mesh_compression"};
 
 struct Ctx {
   const std::string& path;
@@ -29,78 +31,140 @@ struct Ctx {
   std::map<std::pair<int, bool>, int> textureIds;  // (gltf texture, srgb) -> scene texture
 };
 
-// Reads `count` elements of an accessor as floats (normalised integers mapped to [0,1]/[-1,1]).
+// One component at `p` as a float (normalised integers mapped to [0,1] / [-1,1]).
+float decodeComponent(const unsigned char* p, int componentType, bool normalized) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? *p / 255.0f : *p;
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      int8_t b;
+      std::memcpy(&b, p, 1);
+      return normalized ? std::max(b / 127.0f, -1.0f) : b;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t u;
+      std::memcpy(&u, p, 2);
+      return normalized ? u / 65535.0f : u;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t u;
+      std::memcpy(&u, p, 2);
+      return normalized ? std::max(u / 32767.0f, -1.0f) : u;
+    }
+    default:
+      return std::nanf("");  // the caller refuses the componentType before reading
+  }
+}
+
+bool isVertexComponentType(int t) {
+  return t == TINYGLTF_COMPONENT_TYPE_FLOAT || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+         t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+         t == TINYGLTF_COMPONENT_TYPE_SHORT;
+}
+
+// The bytes of `count` elements of `elementSize` bytes, `stride` apart (0: packed), starting
+// `byteOffset` into buffer view `view`: every bound checked against the view and its buffer.
+const unsigned char* viewBytes(const Ctx& c, int view, size_t byteOffset, size_t count,
+                               size_t elementSize, size_t* stride, const std::string& field) {
+  const auto& m = c.model;
+  if (view < 0 || view >= int(m.bufferViews.size()))
+    throw InputError(c.path, field, "bufferView index out of range");
+  const tinygltf::BufferView& bv = m.bufferViews[size_t(view)];
+  if (bv.buffer < 0 || bv.buffer >= int(m.buffers.size()))
+    throw InputError(c.path, field, "buffer index out of range");
+  const auto& buf = m.buffers[size_t(bv.buffer)].data;
+  if (*stride == 0) *stride = elementSize;
+  if (*stride < elementSize) throw InputError(c.path, field, "byteStride below the element size");
+  // Each element takes at least one byte: a larger count is bogus (and could overflow below).
+  if (count > buf.size()) throw InputError(c.path, field, "count exceeds its buffer");
+  const size_t start = bv.byteOffset + byteOffset;
+  if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset)
+    throw InputError(c.path, field, "bufferView extends past its buffer");
+  if (count > 0) {
+    const size_t end = start + *stride * (count - 1) + elementSize;
+    if (end > bv.byteOffset + bv.byteLength)
+      throw InputError(c.path, field, "data extends past its buffer view");
+  }
+  return buf.data() + start;
+}
+
+// Reads an accessor as floats, `wantComponents` per element, sparse substitutions applied.
 std::vector<float> readAccessor(const Ctx& c, int index, int wantComponents,
                                 const std::string& what) {
   const auto& m = c.model;
   if (index < 0 || index >= int(m.accessors.size()))
     throw InputError(c.path, what, "accessor index " + std::to_string(index) + " out of range");
-  const tinygltf::Accessor& a = m.accessors[index];
+  const tinygltf::Accessor& a = m.accessors[size_t(index)];
   const std::string field = what + " (accessor " + std::to_string(index) + ")";
-  int comps = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+  const int comps = tinygltf::GetNumComponentsInType(uint32_t(a.type));
   if (comps != wantComponents)
     throw InputError(c.path, field, "expected " + std::to_string(wantComponents) + " components");
-  if (a.sparse.isSparse) throw InputError(c.path, field, "sparse accessors are not supported");
-  // Without a buffer view the data is all zeros; cap the count so a bogus one cannot make us
-  // allocate without limit (a buffer-backed count is bounded by the buffer checks below).
-  if (a.bufferView < 0) {
-    if (a.count > (size_t(1) << 26))
-      throw InputError(c.path, field, "absurd count without a bufferView");
-    return std::vector<float>(a.count * comps, 0.0f);
+  if (!isVertexComponentType(a.componentType))
+    throw InputError(c.path, field, "unsupported componentType for vertex data");
+  const size_t csize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)));
+  const size_t esize = csize * size_t(comps);
+  // Without a buffer view the data is all zeros (sparse accessors fill some in); cap the count
+  // so a bogus one cannot make us allocate without limit.
+  if (a.bufferView < 0 && a.count > (size_t(1) << 26))
+    throw InputError(c.path, field, "absurd count without a bufferView");
+  std::vector<float> out;
+  if (a.bufferView >= 0) {
+    size_t stride = a.bufferView < int(m.bufferViews.size())
+                        ? m.bufferViews[size_t(a.bufferView)].byteStride
+                        : 0;
+    const unsigned char* base =
+        viewBytes(c, a.bufferView, a.byteOffset, a.count, esize, &stride, field);
+    out.resize(a.count * size_t(comps));
+    for (size_t i = 0; i < a.count; ++i)
+      for (int k = 0; k < comps; ++k)
+        out[i * size_t(comps) + size_t(k)] =
+            decodeComponent(base + i * stride + size_t(k) * csize, a.componentType, a.normalized);
+  } else {
+    out.assign(a.count * size_t(comps), 0.0f);
   }
-  if (a.bufferView >= int(m.bufferViews.size()))
-    throw InputError(c.path, field, "bufferView index out of range");
-  const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
-  if (bv.buffer < 0 || bv.buffer >= int(m.buffers.size()))
-    throw InputError(c.path, field, "buffer index out of range");
-  const auto& buf = m.buffers[bv.buffer].data;
-  int csize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
-  if (csize <= 0) throw InputError(c.path, field, "invalid componentType");
-  size_t stride = bv.byteStride ? bv.byteStride : size_t(csize) * comps;
-  size_t start = bv.byteOffset + a.byteOffset;
-  // Each element takes at least one byte: a larger count is bogus (and could overflow below).
-  if (a.count > buf.size()) throw InputError(c.path, field, "count exceeds its buffer");
-  if (a.count > 0) {
-    size_t end = start + stride * (a.count - 1) + size_t(csize) * comps;
-    if (end > buf.size() || end > bv.byteOffset + bv.byteLength || stride < size_t(csize) * comps)
-      throw InputError(c.path, field, "data extends past its buffer view");
-  }
-  std::vector<float> out(a.count * comps, 0.0f);
-  for (size_t i = 0; i < a.count; ++i)
-    for (int k = 0; k < comps; ++k) {
-      const unsigned char* p = buf.data() + start + i * stride + size_t(k) * csize;
-      float v = 0;
-      switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT:
-          std::memcpy(&v, p, 4);
-          break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-          v = a.normalized ? *p / 255.0f : *p;
-          break;
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-          int8_t b;
-          std::memcpy(&b, p, 1);
-          v = a.normalized ? std::max(b / 127.0f, -1.0f) : b;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          uint16_t u;
-          std::memcpy(&u, p, 2);
-          v = a.normalized ? u / 65535.0f : u;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-          int16_t u;
-          std::memcpy(&u, p, 2);
-          v = a.normalized ? std::max(u / 32767.0f, -1.0f) : u;
-          break;
-        }
-        default:
-          throw InputError(c.path, field, "unsupported componentType for vertex data");
+  if (a.sparse.isSparse) {
+    // Sparse: `count` element indices (strictly increasing) and their packed values.
+    const auto& sp = a.sparse;
+    const std::string sf = field + ".sparse";
+    if (sp.count < 1 || size_t(sp.count) > a.count)
+      throw InputError(c.path, sf + ".count", "must be in [1, accessor count]");
+    const int it = sp.indices.componentType;
+    if (it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      throw InputError(c.path, sf + ".indices.componentType", "must be an unsigned integer type");
+    if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0)
+      throw InputError(c.path, sf, "negative byteOffset");
+    const size_t isize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(it)));
+    size_t istride = 0, vstride = 0;  // sparse data is tightly packed
+    const unsigned char* ip = viewBytes(c, sp.indices.bufferView, size_t(sp.indices.byteOffset),
+                                        size_t(sp.count), isize, &istride, sf + ".indices");
+    const unsigned char* vp = viewBytes(c, sp.values.bufferView, size_t(sp.values.byteOffset),
+                                        size_t(sp.count), esize, &vstride, sf + ".values");
+    for (size_t i = 0; i < size_t(sp.count); ++i) {
+      uint32_t e = 0;
+      if (isize == 1) {
+        e = ip[i];
+      } else if (isize == 2) {
+        uint16_t u;
+        std::memcpy(&u, ip + 2 * i, 2);
+        e = u;
+      } else {
+        std::memcpy(&e, ip + 4 * i, 4);
       }
-      if (!std::isfinite(v)) throw InputError(c.path, field, "value is NaN or infinite");
-      out[i * comps + k] = v;
+      if (e >= a.count)
+        throw InputError(c.path, sf + ".indices", "index " + std::to_string(e) + " out of range");
+      for (int k = 0; k < comps; ++k)
+        out[size_t(e) * size_t(comps) + size_t(k)] =
+            decodeComponent(vp + i * esize + size_t(k) * csize, a.componentType, a.normalized);
     }
+  }
+  for (float v : out)
+    if (!std::isfinite(v)) throw InputError(c.path, field, "value is NaN or infinite");
   return out;
 }
 
@@ -109,40 +173,52 @@ std::vector<uint32_t> readIndices(const Ctx& c, int index, size_t vertexCount) {
   const std::string field = "indices (accessor " + std::to_string(index) + ")";
   if (index < 0 || index >= int(m.accessors.size()))
     throw InputError(c.path, field, "accessor index out of range");
-  const tinygltf::Accessor& a = m.accessors[index];
-  if (a.type != TINYGLTF_TYPE_SCALAR || a.bufferView < 0 ||
-      a.bufferView >= int(m.bufferViews.size()))
+  const tinygltf::Accessor& a = m.accessors[size_t(index)];
+  if (a.type != TINYGLTF_TYPE_SCALAR || a.bufferView < 0 || a.sparse.isSparse)
     throw InputError(c.path, field, "indices must be a scalar accessor with a bufferView");
-  const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
-  if (bv.buffer < 0 || bv.buffer >= int(m.buffers.size()))
-    throw InputError(c.path, field, "buffer index out of range");
-  const auto& buf = m.buffers[bv.buffer].data;
-  int csize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
-  if (csize != 1 && csize != 2 && csize != 4)
+  const int t = a.componentType;
+  if (t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
     throw InputError(c.path, field, "invalid componentType");
-  size_t stride = bv.byteStride ? bv.byteStride : size_t(csize);
-  size_t start = bv.byteOffset + a.byteOffset;
-  if (a.count > buf.size()) throw InputError(c.path, field, "count exceeds its buffer");
-  if (a.count > 0 && (start + stride * (a.count - 1) + csize > buf.size() ||
-                      start + stride * (a.count - 1) + csize > bv.byteOffset + bv.byteLength))
-    throw InputError(c.path, field, "data extends past its buffer view");
+  const size_t csize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(t)));
+  size_t stride =
+      a.bufferView < int(m.bufferViews.size()) ? m.bufferViews[size_t(a.bufferView)].byteStride : 0;
+  const unsigned char* base =
+      viewBytes(c, a.bufferView, a.byteOffset, a.count, csize, &stride, field);
   std::vector<uint32_t> out(a.count);
   for (size_t i = 0; i < a.count; ++i) {
-    const unsigned char* p = buf.data() + start + i * stride;
+    const unsigned char* p = base + i * stride;
     uint32_t v = 0;
-    if (csize == 1)
+    if (csize == 1) {
       v = *p;
-    else if (csize == 2) {
+    } else if (csize == 2) {
       uint16_t u;
       std::memcpy(&u, p, 2);
       v = u;
-    } else
+    } else {
       std::memcpy(&v, p, 4);
+    }
     if (v >= vertexCount)
       throw InputError(c.path, field,
                        "index " + std::to_string(v) + " out of range (" +
                            std::to_string(vertexCount) + " vertices)");
     out[i] = v;
+  }
+  return out;
+}
+
+// Triangle list from a primitive's vertex sequence by glTF topology (spec 3.7.2.1): strips
+// alternate winding so every triangle faces the same way; fans pivot on the first vertex.
+std::vector<uint32_t> trianglesFromTopology(const std::vector<uint32_t>& v, int mode) {
+  std::vector<uint32_t> out;
+  if (mode == TINYGLTF_MODE_TRIANGLES) return v;
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      const size_t odd = i % 2;
+      out.insert(out.end(), {v[i], v[i + 1 + odd], v[i + 2 - odd]});
+    } else {  // TRIANGLE_FAN
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+    }
   }
   return out;
 }
@@ -241,6 +317,8 @@ Material convertMaterial(Ctx& c, int index) {
   m.normalScale = float(gm.normalTexture.scale);
   m.metallicRoughnessTexture =
       texture(c, pbr.metallicRoughnessTexture.index, false, field + ".metallicRoughnessTexture");
+  m.occlusionTexture = texture(c, gm.occlusionTexture.index, false, field + ".occlusionTexture");
+  m.occlusionStrength = std::clamp(float(gm.occlusionTexture.strength), 0.0f, 1.0f);
   // KHR_texture_transform on the base colour texture sets the material's tiling/offset.
   auto tt = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
   if (tt != pbr.baseColorTexture.extensions.end()) {
@@ -285,40 +363,71 @@ void addPrimitive(Ctx& c, const tinygltf::Mesh& gmesh, int meshIndex, size_t pri
   const tinygltf::Primitive& p = gmesh.primitives[primIndex];
   const std::string field =
       "meshes[" + std::to_string(meshIndex) + "].primitives[" + std::to_string(primIndex) + "]";
-  if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES)
-    throw InputError(c.path, field + ".mode", "only TRIANGLES primitives are supported");
+  const int mode = p.mode == -1 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    if (mode < 0 || mode > TINYGLTF_MODE_TRIANGLE_FAN)
+      throw InputError(c.path, field + ".mode", "unknown mode " + std::to_string(mode));
+    ++c.scene.stats.skippedPrimitives;  // points and lines: nothing to shade
+    return;
+  }
   auto pos = p.attributes.find("POSITION");
   if (pos == p.attributes.end()) throw InputError(c.path, field, "no POSITION attribute");
+  // Attribute values from the accessors, or from the Draco stream that replaces them.
+  std::map<std::string, std::vector<float>> values;
+  std::vector<uint32_t> sequence;
+  bool indexed = p.indices >= 0;
+  const std::pair<const char*, int> wanted[] = {
+      {"POSITION", 3}, {"NORMAL", 3}, {"TEXCOORD_0", 2}, {"TANGENT", 4}};
+  auto draco = p.extensions.find("KHR_draco_mesh_compression");
+  if (draco != p.extensions.end()) {
+    const std::string df = field + ".extensions.KHR_draco_mesh_compression";
+    const tinygltf::Value& ext = draco->second;
+    if (!ext.Has("bufferView") || !ext.Get("bufferView").IsInt() || !ext.Has("attributes") ||
+        !ext.Get("attributes").IsObject())
+      throw InputError(c.path, df, "needs a bufferView and an attributes object");
+    const tinygltf::Value& ids = ext.Get("attributes");
+    std::map<std::string, std::pair<int, int>> request;
+    for (const auto& [name, comps] : wanted)
+      if (p.attributes.count(name) && ids.Has(name) && ids.Get(name).IsInt())
+        request[name] = {ids.Get(name).GetNumberAsInt(), comps};
+    if (!request.count("POSITION")) throw InputError(c.path, df, "no POSITION attribute id");
+    size_t stride = 0;
+    const int view = ext.Get("bufferView").GetNumberAsInt();
+    const size_t length = view >= 0 && view < int(c.model.bufferViews.size())
+                              ? c.model.bufferViews[size_t(view)].byteLength
+                              : 0;
+    const unsigned char* bytes = viewBytes(c, view, 0, length, 1, &stride, df + ".bufferView");
+    DracoPrimitive d = decodeDracoPrimitive(bytes, length, request, c.path, df);
+    values = std::move(d.attributes);
+    sequence = std::move(d.indices);
+    indexed = true;
+  } else {
+    for (const auto& [name, comps] : wanted)
+      if (auto it = p.attributes.find(name); it != p.attributes.end())
+        values[name] = readAccessor(c, it->second, comps, field + "." + name);
+  }
   Mesh mesh;
-  std::vector<float> v = readAccessor(c, pos->second, 3, field + ".POSITION");
+  const std::vector<float>& v = values["POSITION"];
   for (size_t i = 0; i < v.size() / 3; ++i)
     mesh.positions.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
-  if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
-    v = readAccessor(c, it->second, 3, field + ".NORMAL");
-    if (v.size() / 3 != mesh.positions.size())
-      throw InputError(c.path, field + ".NORMAL", "count differs from POSITION");
-    for (size_t i = 0; i < v.size() / 3; ++i)
-      mesh.normals.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
+  const size_t n = mesh.positions.size();
+  for (const auto& [name, comps] : wanted) {
+    if (!values.count(name) || std::string(name) == "POSITION") continue;
+    const std::vector<float>& a = values[name];
+    if (a.size() / size_t(comps) != n)
+      throw InputError(c.path, field + "." + name, "count differs from POSITION");
+    for (size_t i = 0; i < n; ++i) {
+      const float* e = &a[i * size_t(comps)];
+      if (comps == 2) mesh.uvs.push_back({e[0], e[1]});
+      if (comps == 3) mesh.normals.push_back({e[0], e[1], e[2]});
+      if (comps == 4) mesh.tangents.push_back({e[0], e[1], e[2], e[3] < 0 ? -1.0f : 1.0f});
+    }
   }
-  if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
-    v = readAccessor(c, it->second, 2, field + ".TEXCOORD_0");
-    if (v.size() / 2 != mesh.positions.size())
-      throw InputError(c.path, field + ".TEXCOORD_0", "count differs from POSITION");
-    for (size_t i = 0; i < v.size() / 2; ++i) mesh.uvs.push_back({v[2 * i], v[2 * i + 1]});
-  }
-  if (auto it = p.attributes.find("TANGENT"); it != p.attributes.end()) {
-    v = readAccessor(c, it->second, 4, field + ".TANGENT");
-    if (v.size() / 4 != mesh.positions.size())
-      throw InputError(c.path, field + ".TANGENT", "count differs from POSITION");
-    for (size_t i = 0; i < v.size() / 4; ++i)
-      mesh.tangents.push_back(
-          {v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3] < 0 ? -1.0f : 1.0f});
-  }
-  if (p.indices >= 0) {
-    mesh.indices = readIndices(c, p.indices, mesh.positions.size());
-  } else {
-    for (uint32_t i = 0; i < mesh.positions.size(); ++i) mesh.indices.push_back(i);
-  }
+  if (draco == p.extensions.end() && indexed) sequence = readIndices(c, p.indices, n);
+  if (!indexed)
+    for (uint32_t i = 0; i < n; ++i) sequence.push_back(i);
+  mesh.indices = trianglesFromTopology(sequence, mode);
   if (mesh.indices.size() % 3) throw InputError(c.path, field, "index count not a multiple of 3");
   c.scene.stats.degenerateTriangles += removeDegenerateTriangles(mesh);
   if (mesh.indices.empty()) return;
@@ -396,15 +505,19 @@ bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const st
 }  // namespace
 
 Scene loadGltf(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "", "file not found");
+  const GltfSource src = preflightGltf(path);
   tinygltf::TinyGLTF loader;
   tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
                                   &readRegularFile, &tinygltf::WriteWholeFile, nullptr};
   loader.SetFsCallbacks(callbacks);
   tinygltf::Model model;
   std::string err, warn;
-  bool ok = hasExtension(path, ".glb") ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                                       : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const std::string baseDir = fs::absolute(path).parent_path().string();
+  bool ok = src.binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, src.bytes.data(),
+                                                     unsigned(src.bytes.size()), baseDir)
+                       : loader.LoadASCIIFromString(&model, &err, &warn,
+                                                    reinterpret_cast<const char*>(src.bytes.data()),
+                                                    unsigned(src.bytes.size()), baseDir);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n')) err.pop_back();
     throw InputError(path, "", "cannot parse glTF: " + (err.empty() ? "unknown error" : err));
@@ -466,7 +579,12 @@ Scene loadGltf(const std::string& path) {
   } else {
     for (int n = 0; n < int(model.nodes.size()); ++n) visit(n, Mat4(), 0);
   }
-  if (s.objects.empty()) throw InputError(path, "", "no triangle meshes");
+  if (s.objects.empty())
+    throw InputError(path, "",
+                     s.stats.skippedPrimitives
+                         ? "no triangle meshes (" + std::to_string(s.stats.skippedPrimitives) +
+                               " point or line primitives skipped)"
+                         : std::string("no triangle meshes"));
   validateScene(s, path);
   return s;
 }

@@ -35,13 +35,16 @@ struct Material {
   // glTF metallic-roughness texture (B = metallic, G = roughness): when present, diffuse,
   // specular, exponent and reflectivity are derived per texel from these factors.
   int metallicRoughnessTexture = -1;
+  // glTF occlusion (R channel): scales the ambient term only, by 1 + strength (occlusion - 1).
+  int occlusionTexture = -1;
+  float occlusionStrength = 1.0f;
   Vec3 baseColor{1, 1, 1};
   float metallic = 0.0f, roughness = 1.0f;
 
   // Maps a mesh UV to texture space: offset + R(rotation) * (uv * tiling).
   bool hasTexture() const {
     return diffuseTexture >= 0 || emissionTexture >= 0 || specularTexture >= 0 ||
-           metallicRoughnessTexture >= 0 || normalTexture >= 0;
+           metallicRoughnessTexture >= 0 || normalTexture >= 0 || occlusionTexture >= 0;
   }
   Vec2 transformUv(Vec2 uv) const;
 };

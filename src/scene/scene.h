@@ -46,6 +46,7 @@ struct Skybox {
 struct LoadStats {
   size_t degenerateTriangles = 0;    // skipped while loading
   std::vector<std::string> sources;  // files this scene was built from
+  size_t skippedPrimitives = 0;      // glTF points and lines (nothing to shade)
   bool defaultLightRig = false;      // lit by addDefaultLightRig (the file has no lights)
 };
 

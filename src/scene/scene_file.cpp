@@ -29,6 +29,15 @@ std::string resolve(const FileCtx& c, const std::string& p) {
   return (q.is_absolute() ? q : c.dir / q).lexically_normal().string();
 }
 
+// A model the scene file refers to; its errors name the scene file and field as well.
+Scene loadModelFor(const FileCtx& c, const std::string& model, const std::string& field) {
+  try {
+    return loadSceneByExtension(model);
+  } catch (const InputError& e) {
+    throw InputError(c.path, field, e.what());
+  }
+}
+
 int readTexture(FileCtx& c, JsonFields& f, const std::string& key, bool srgb) {
   std::string name = f.string(key, "");
   if (name.empty()) return -1;
@@ -140,7 +149,7 @@ void readObject(FileCtx& c, const Json& j, size_t index) {
   };
   if (f.has("file")) {
     std::string p = resolve(c, f.string("file", ""));
-    Scene sub = loadSceneByExtension(p);
+    Scene sub = loadModelFor(c, p, f.field("file"));
     size_t first = c.scene.objects.size();
     // With animation the keyframes place the model; otherwise the object's transform does.
     c.scene.append(sub, keys.empty() ? xf.matrix() : Mat4(), material);
@@ -351,7 +360,7 @@ Scene loadSceneFile(const std::string& path) {
   JsonFields f(root, path, "");
   if (f.has("base")) {
     std::string base = f.string("base", "");
-    s = isBuiltinScene(base) ? makeBuiltinScene(base) : loadSceneByExtension(resolve(c, base));
+    s = isBuiltinScene(base) ? makeBuiltinScene(base) : loadModelFor(c, resolve(c, base), "base");
     for (size_t i = 0; i < s.materials.size(); ++i) c.materials[s.materials[i].name] = int(i);
   }
   s.name = fs::path(path).stem().string();

@@ -19,6 +19,8 @@ void hashScene(Hasher& h, const Scene& s) {
     h.pod(int(m.alphaMode)).pod(m.alphaCutoff).pod(m.diffuseTexture).pod(m.emissionTexture);
     h.pod(m.specularTexture).pod(m.normalTexture).pod(m.normalScale);
     h.pod(m.metallicRoughnessTexture).pod(m.baseColor).pod(m.metallic).pod(m.roughness);
+    // Hashed only when present, so cache keys of scenes without it stay as they were.
+    if (m.occlusionTexture >= 0) h.pod(m.occlusionTexture).pod(m.occlusionStrength);
   }
   for (const Texture& t : s.textures)
     h.pod(t.texels.width)

@@ -83,6 +83,9 @@ inline SurfaceSample resolveSurfaceInline(const TriangleSetup& tri, Vec3 origin,
     s.specularExponent = bp.exponent;
     s.reflectivity = bp.reflectivity;
   }
+  if (mat.occlusionTexture >= 0)  // after the metallic-roughness terms, which reset ambient
+    s.ambient =
+        s.ambient * (1.0f + mat.occlusionStrength * (sampleTex(mat.occlusionTexture).x - 1.0f));
   s.ior = mat.ior;
   s.opacity = mat.opacity;
   if (mat.alphaMode == AlphaMode::Blend) s.opacity = std::min(s.opacity, s.diffuseOpacity);

@@ -141,9 +141,9 @@ TEST(BadInput, DegenerateTrianglesAreSkippedAndCounted) {
 TEST(BadInput, GltfRequiredExtensionUnsupported) {
   expectLoadError(
       "l.gltf",
-      R"({"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_draco_mesh_compression"],
-                                 "extensionsUsed": ["KHR_draco_mesh_compression"]})",
-      {"extensionsRequired", "KHR_draco_mesh_compression"});
+      R"({"asset": {"version": "2.0"}, "extensionsRequired": ["EXT_meshopt_compression"],
+                                 "extensionsUsed": ["EXT_meshopt_compression"]})",
+      {"extensionsRequired", "EXT_meshopt_compression"});
 }
 
 TEST(BadInput, GltfAccessorOutOfRange) {

@@ -63,6 +63,19 @@ TEST(PolygonTriangulation, ConvexAndConcavePolygonsAreTiled) {
   // An L shape (one reflex corner).
   expectTiling({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}});
   EXPECT_TRUE(triangulatePolygon({{0, 0, 0}, {1, 0, 0}}).empty());
+  // Large non-convex polygons are ear-clipped too (reflex vertices looked up in a grid), not
+  // fanned: a fan of a star overlaps itself and leaves gaps.
+  expectTiling(star(2000, 0.7f, false));
+  expectTiling(star(50000, 0.9f, true));
+  // Collinear vertices along the edges of a non-convex polygon.
+  std::vector<Vec3> comb;
+  for (int i = 0; i <= 100; ++i) comb.push_back({float(i) * 0.01f, 0, 0});
+  for (int i = 0; i < 20; ++i) {
+    const float x = 1.0f - float(i) * 0.05f;
+    comb.push_back({x, 1, 0});
+    comb.push_back({x - 0.025f, 0.5f, 0});
+  }
+  expectTiling(comb);
 }
 
 // A polygon in another plane: the projection drops the right axis.
@@ -76,8 +89,8 @@ TEST(PolygonTriangulation, PolygonsInAnyPlane) {
   EXPECT_NEAR(sum, signedArea(s), 1e-6);
 }
 
-// A face of 100k vertices (tinyobjloader's triangulation took minutes) and a non-convex one past
-// the ear-clipping bound load, every vertex kept.
+// A face of 100k vertices (tinyobjloader's triangulation took minutes) and a large non-convex
+// one load, every vertex kept.
 TEST(ObjLoader, HugePolygonsLoad) {
   const auto dir = test::scratchDir("huge_polygon");
   for (const bool convex : {true, false}) {

@@ -1,0 +1,126 @@
+#include "scene/gltf_preflight.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/image_io.h"
+
+namespace tandem {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+uint32_t readU32(const unsigned char* p) {
+  uint32_t v;
+  std::memcpy(&v, p, 4);  // GLB is little-endian, as is every machine Tandem runs on
+  return v;
+}
+
+void putU32(std::vector<unsigned char>& out, uint32_t v) {
+  unsigned char b[4];
+  std::memcpy(b, &v, 4);
+  out.insert(out.end(), b, b + 4);
+}
+
+// glTF 1.0 keyed its top-level collections by id (objects); 2.0 lists them (arrays).
+bool looksLikeGltf1(const json& j) {
+  if (j.contains("asset") && j["asset"].is_object() && j["asset"].contains("version") &&
+      j["asset"]["version"].is_string())
+    return j["asset"]["version"].get<std::string>().rfind("1", 0) == 0;
+  for (const char* k : {"meshes", "accessors", "nodes", "materials", "buffers", "bufferViews"})
+    if (j.contains(k) && j[k].is_object()) return true;
+  return false;
+}
+
+[[noreturn]] void gltf1(const std::string& path) {
+  throw InputError(path, "asset.version",
+                   "glTF 1.0 is not supported: convert the file to glTF 2.0 (for example with "
+                   "gltf-pipeline or Blender)");
+}
+
+// Drops "indices" from primitives carrying KHR_draco_mesh_compression: the compressed stream
+// holds the triangles; the accessor has no bufferView, which tinygltf refuses. True if any.
+bool stripDracoIndices(json& j) {
+  bool any = false;
+  if (!j.contains("meshes") || !j["meshes"].is_array()) return false;
+  for (json& mesh : j["meshes"]) {
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+      continue;
+    for (json& prim : mesh["primitives"]) {
+      if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
+          !prim["extensions"].contains("KHR_draco_mesh_compression"))
+        continue;
+      prim.erase("indices");
+      any = true;
+    }
+  }
+  return any;
+}
+
+}  // namespace
+
+GltfSource preflightGltf(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "", "file not found");
+  const uintmax_t size = fs::file_size(path, ec);
+  if (ec || size > (uintmax_t(1) << 34)) throw InputError(path, "", "unreadable or over 16 GiB");
+  GltfSource src;
+  src.bytes.resize(size_t(size));
+  std::ifstream in(path, std::ios::binary);
+  if (size > 0 && !in.read(reinterpret_cast<char*>(src.bytes.data()), std::streamsize(size)))
+    throw InputError(path, "", "cannot read");
+  src.binary = hasExtension(path, ".glb");
+  if (src.bytes.empty()) throw InputError(path, "", "empty file");
+
+  // The JSON: the whole file, or a GLB's first chunk.
+  size_t jsonStart = 0, jsonLength = src.bytes.size();
+  if (src.binary) {
+    const unsigned char* b = src.bytes.data();
+    if (src.bytes.size() < 12 || std::memcmp(b, "glTF", 4) != 0)
+      throw InputError(path, "header", "not a binary glTF (magic 'glTF' missing)");
+    if (readU32(b + 4) == 1) gltf1(path);  // KHR_binary_glTF
+    if (readU32(b + 4) != 2)
+      throw InputError(path, "header", "unknown GLB version " + std::to_string(readU32(b + 4)));
+    if (src.bytes.size() < 20 || readU32(b + 16) != 0x4E4F534Au)
+      throw InputError(path, "chunk 0", "the first chunk must be JSON");
+    jsonStart = 20;
+    jsonLength = readU32(b + 12);
+    if (jsonLength > src.bytes.size() - 20)
+      throw InputError(path, "chunk 0", "JSON chunk length exceeds the file");
+  }
+  json j = json::parse(src.bytes.begin() + long(jsonStart),
+                       src.bytes.begin() + long(jsonStart + jsonLength), nullptr, false);
+  // Unparseable JSON is left to tinygltf, whose message names the position.
+  if (j.is_discarded() || !j.is_object()) return src;
+  if (looksLikeGltf1(j)) gltf1(path);
+  if (!stripDracoIndices(j)) return src;
+  src.usesDraco = true;
+  const std::string text = j.dump();
+  if (!src.binary) {
+    src.bytes.assign(text.begin(), text.end());
+    return src;
+  }
+  // Rebuild the GLB around the new JSON chunk (padded with spaces to 4 bytes), binary chunks
+  // copied as they were.
+  std::vector<unsigned char> glb;
+  const size_t padded = (text.size() + 3) & ~size_t(3);
+  const size_t rest = src.bytes.size() - (20 + jsonLength);
+  if (20 + padded + rest > 0xFFFFFFFFu) throw InputError(path, "header", "GLB over 4 GiB");
+  glb.reserve(20 + padded + rest);
+  putU32(glb, 0x46546C67u);  // "glTF"
+  putU32(glb, 2);
+  putU32(glb, uint32_t(12 + 8 + padded + rest));
+  putU32(glb, uint32_t(padded));
+  putU32(glb, 0x4E4F534Au);
+  glb.insert(glb.end(), text.begin(), text.end());
+  glb.insert(glb.end(), padded - text.size(), ' ');
+  glb.insert(glb.end(), src.bytes.begin() + long(20 + jsonLength), src.bytes.end());
+  src.bytes = std::move(glb);
+  return src;
+}
+
+}  // namespace tandem
