@@ -215,6 +215,8 @@ Vec3 PathTracer::radiance(Vec3 o, Vec3 d, float time, SobolSampler& rng) const {
       if (rng.uniform() < fresnelDielectric(-dot(d, facing), eta) ||
           !refractDir(d, facing, eta, next))
         next = reflectDir(d, facing);
+      else if (s.material >= 0)  // what passes through is filtered (OBJ Tf)
+        beta = beta * scene_.materials[size_t(s.material)].transmissionFilter;
       d = normalize(next);
     } else if (lobe < t + m) {
       d = normalize(reflectDir(d, facing));

@@ -120,7 +120,7 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
         diffuse = sh.diffuse;
         opacity = sh.opacity;
       }
-      t = t * (Vec3(1.0f) - vmin(diffuse, Vec3(1.0f))) * (1.0f - opacity);
+      t = t * (Vec3(1.0f) - vmin(diffuse, Vec3(1.0f))) * (1.0f - opacity) * mat.transmissionFilter;
       if (maxComponent(t) > 0.0f) args->valid[i] = 0;
     }
   }

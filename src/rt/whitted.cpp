@@ -72,7 +72,9 @@ Vec3 Whitted::refractionFrom(const SurfaceSample& s, Vec3 d, int depth, float im
   float eta = entering ? scene_.environmentIor / s.ior : s.ior / scene_.environmentIor;
   Vec3 dir;
   if (!refractDir(d, n, eta, dir)) dir = normalize(reflectDir(d, n));  // total internal reflection
-  return traceSecondary(offsetRayOrigin(s, dir), dir, depth, importance);
+  const Vec3 filter =
+      s.material >= 0 ? scene_.materials[size_t(s.material)].transmissionFilter : Vec3(1.0f);
+  return traceSecondary(offsetRayOrigin(s, dir), dir, depth, importance) * filter;
 }
 
 Vec3 Whitted::primaryReflection(const SurfaceSample& s, Vec3 d) const {

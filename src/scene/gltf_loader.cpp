@@ -444,6 +444,13 @@ void addPrimitive(Ctx& c, const tinygltf::Mesh& gmesh, int meshIndex, size_t pri
     if (defaultMaterial < 0) defaultMaterial = c.scene.addMaterial(Material{});
     material = defaultMaterial;
   }
+  // glTF: a normal-mapped mesh without TANGENT gets MikkTSpace tangents (spec 3.7.2.1).
+  if (c.scene.materials[size_t(material)].normalTexture >= 0 && mesh.tangents.empty() &&
+      mesh.uvs.size() == mesh.positions.size()) {
+    if (mesh.normals.size() != mesh.positions.size()) computeNormals(mesh);
+    for (Vec3& nrm : mesh.normals) nrm = length(nrm) > 0 ? normalize(nrm) : Vec3(0, 1, 0);
+    computeMikkTSpaceTangents(mesh);
+  }
   std::string name = gmesh.name.empty() ? "mesh" + std::to_string(meshIndex) : gmesh.name;
   if (gmesh.primitives.size() > 1) name += "/" + std::to_string(primIndex);
   int obj = c.scene.addObject(name, c.scene.addMesh(std::move(mesh)), material);

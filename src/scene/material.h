@@ -11,18 +11,19 @@ enum class AlphaMode { Opaque, Mask, Blend };
 
 struct Material {
   std::string name = "default";
-  Vec3 emission{0, 0, 0};          // radiance emitted (W/sr/m^2), >= 0
-  Vec3 ambient{1, 1, 1};           // multiplies the scene's global ambient colour
-  Vec3 diffuse{0.8f, 0.8f, 0.8f};  // albedo in [0,1]
-  float diffuseOpacity = 1.0f;     // Table 1 diffuse A (also glTF base-colour alpha)
-  Vec3 specular{0, 0, 0};          // specular colour in [0,1]
-  float specularExponent = 1.0f;   // Blinn-Phong exponent in [1, 255] (Table 1 footnote a)
-  float reflectivity = 0.0f;       // optical R: mirror reflection weight in [0,1]
-  float ior = 1.0f;                // optical G: index of refraction, >= 1 typical
-  float opacity = 1.0f;            // optical B: 1 opaque, 0 fully transmissive
-  Vec2 tiling{1, 1};               // texture tiling (scale of UV)
-  Vec2 offset{0, 0};               // texture offset
-  float uvRotation = 0.0f;         // KHR_texture_transform rotation (radians)
+  Vec3 emission{0, 0, 0};            // radiance emitted (W/sr/m^2), >= 0
+  Vec3 ambient{1, 1, 1};             // multiplies the scene's global ambient colour
+  Vec3 diffuse{0.8f, 0.8f, 0.8f};    // albedo in [0,1]
+  float diffuseOpacity = 1.0f;       // Table 1 diffuse A (also glTF base-colour alpha)
+  Vec3 specular{0, 0, 0};            // specular colour in [0,1]
+  float specularExponent = 1.0f;     // Blinn-Phong exponent in [1, 255] (Table 1 footnote a)
+  float reflectivity = 0.0f;         // optical R: mirror reflection weight in [0,1]
+  float ior = 1.0f;                  // optical G: index of refraction, >= 1 typical
+  float opacity = 1.0f;              // optical B: 1 opaque, 0 fully transmissive
+  Vec3 transmissionFilter{1, 1, 1};  // OBJ Tf: the colour light keeps passing through
+  Vec2 tiling{1, 1};                 // texture tiling (scale of UV)
+  Vec2 offset{0, 0};                 // texture offset
+  float uvRotation = 0.0f;           // KHR_texture_transform rotation (radians)
   bool castsShadows = true;
   bool doubleSided = false;
   AlphaMode alphaMode = AlphaMode::Opaque;

@@ -1,5 +1,6 @@
 #include "scene/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -130,6 +131,76 @@ void computeTangents(Mesh& m) {
     t = normalize(t);
     float w = dot(cross(n, t), bit[v]) < 0.0f ? -1.0f : 1.0f;
     m.tangents[v] = Vec4(t, w);
+  }
+}
+
+void computeMikkTSpaceTangents(Mesh& m) {
+  // MikkTSpace's construction (Mikkelsen 2008, the glTF default when a normal-mapped mesh has
+  // no tangents), so normal maps baked against it shade as their bakers intended: at each
+  // corner the face's dP/du is projected onto the vertex normal's plane and weighted by the
+  // corner angle measured in that plane; corners are summed per vertex and per UV orientation
+  // (mirrored faces form their own group, and a vertex used by both orientations is split);
+  // w is the group's orientation, so the bitangent w * cross(n, t) follows dP/dv.
+  const size_t nv = m.positions.size();
+  enum : uint8_t { kNone = 0, kPreserving = 1, kMirrored = 2 };
+  std::vector<uint8_t> used(nv, kNone);
+  std::vector<int8_t> faceOrientation(m.triangleCount(), 0);  // +1, -1, 0 (no UV area)
+  std::vector<Vec3> faceTangent(m.triangleCount(), Vec3(0.0f));
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    const uint32_t* i = &m.indices[3 * t];
+    const Vec3 e1 = m.positions[i[1]] - m.positions[i[0]];
+    const Vec3 e2 = m.positions[i[2]] - m.positions[i[0]];
+    const Vec2 d1 = m.uvs[i[1]] - m.uvs[i[0]], d2 = m.uvs[i[2]] - m.uvs[i[0]];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    const Vec3 dPdu = (e1 * d2.y - e2 * d1.y) * (1.0f / det);
+    if (!(std::abs(det) > 1e-20f) || !isFinite(dPdu)) continue;
+    faceOrientation[t] = det > 0 ? 1 : -1;
+    faceTangent[t] = dPdu;
+    for (int k = 0; k < 3; ++k) used[i[k]] |= det > 0 ? kPreserving : kMirrored;
+  }
+  // Split vertices whose corners disagree on orientation: mirrored faces get a copy.
+  std::vector<uint32_t> mirroredCopy(nv, UINT32_MAX);
+  for (size_t v = 0; v < nv; ++v)
+    if (used[v] == (kPreserving | kMirrored)) {
+      mirroredCopy[v] = uint32_t(m.positions.size());
+      m.positions.push_back(m.positions[v]);
+      m.normals.push_back(m.normals[v]);
+      m.uvs.push_back(m.uvs[v]);
+    }
+  for (size_t t = 0; t < m.triangleCount(); ++t)
+    if (faceOrientation[t] < 0)
+      for (int k = 0; k < 3; ++k)
+        if (mirroredCopy[m.indices[3 * t + k]] != UINT32_MAX)
+          m.indices[3 * t + k] = mirroredCopy[m.indices[3 * t + k]];
+  const size_t n = m.positions.size();
+  std::vector<Vec3> sum(n, Vec3(0.0f));
+  std::vector<float> sign(n, 1.0f);
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    if (faceOrientation[t] == 0) continue;
+    const uint32_t* i = &m.indices[3 * t];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = i[k];
+      const Vec3 nrm = m.normals[v];
+      auto inPlane = [&](Vec3 x) { return x - nrm * dot(nrm, x); };
+      const Vec3 t0 = inPlane(faceTangent[t]);
+      const Vec3 ea = inPlane(m.positions[i[(k + 1) % 3]] - m.positions[v]);
+      const Vec3 eb = inPlane(m.positions[i[(k + 2) % 3]] - m.positions[v]);
+      const float la = length(ea), lb = length(eb), lt = length(t0);
+      if (!(la > 0 && lb > 0 && lt > 0)) continue;
+      const float angle = std::acos(std::clamp(dot(ea, eb) / (la * lb), -1.0f, 1.0f));
+      sum[v] += t0 * (angle / lt);
+      sign[v] = float(faceOrientation[t]);
+    }
+  }
+  m.tangents.resize(n);
+  for (size_t v = 0; v < n; ++v) {
+    const Vec3 nrm = m.normals[v];
+    Vec3 t = sum[v] - nrm * dot(nrm, sum[v]);
+    if (!(dot(t, t) > 1e-20f) || !isFinite(t)) {
+      Vec3 b;
+      orthonormalBasis(nrm, t, b);
+    }
+    m.tangents[v] = Vec4(normalize(t), sign[v]);
   }
 }
 

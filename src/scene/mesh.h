@@ -26,6 +26,10 @@ size_t removeDegenerateTriangles(Mesh& m);
 void computeNormals(Mesh& m, float creaseDeg = 60.0f);
 // Per-vertex tangents from UV derivatives (Lengyel's method), Gram-Schmidt against normals.
 void computeTangents(Mesh& m);
+// Tangents built as MikkTSpace builds them (glTF's rule for normal-mapped meshes without
+// TANGENT): angle-weighted dP/du projected per corner onto the vertex normal's plane, summed per
+// UV orientation (a vertex used by both orientations is split). Needs normals and UVs.
+void computeMikkTSpaceTangents(Mesh& m);
 // Fills missing attributes (normals, tangents, uvs) so every mesh is complete.
 void completeMesh(Mesh& m);
 

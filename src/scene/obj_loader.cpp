@@ -64,13 +64,22 @@ Material convertMaterial(const tinyobj::material_t& m, Scene& s, std::map<std::s
       out.opacity = std::min(out.opacity, 0.1f);
       out.reflectivity = m.illum == 4 ? std::clamp(maxComponent(out.specular), 0.0f, 1.0f) : 0.0f;
       break;
-    case 6:  // refraction, ray traced
-    case 7:  // refraction + Fresnel
+    case 6:  // refraction and ray-traced reflection
       out.opacity = 0.0f;
+      out.reflectivity = std::clamp(maxComponent(out.specular), 0.0f, 1.0f);
       break;
+    case 7: {  // refraction, reflection weighted by Fresnel: Schlick's F0 of the IOR, times Ks
+      out.opacity = 0.0f;
+      const float f0 = (out.ior - 1.0f) / (out.ior + 1.0f);
+      out.reflectivity = std::clamp(maxComponent(out.specular) * f0 * f0, 0.0f, 1.0f);
+      break;
+    }
     default:
       break;
   }
+  // Tf filters what a transmissive material lets through; tinyobjloader leaves 0 when absent.
+  const Vec3 tf = toVec3(m.transmittance);
+  if (maxComponent(tf) > 0.0f) out.transmissionFilter = vmin(vmax(tf, Vec3(0.0f)), Vec3(1.0f));
   for (float* c : {&out.diffuse.x, &out.diffuse.y, &out.diffuse.z, &out.specular.x, &out.specular.y,
                    &out.specular.z})
     *c = std::clamp(*c, 0.0f, 1.0f);

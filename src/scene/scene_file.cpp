@@ -50,25 +50,28 @@ int readTexture(FileCtx& c, JsonFields& f, const std::string& key, bool srgb) {
   return id;
 }
 
-Material readMaterial(FileCtx& c, const Json& j, const std::string& name,
-                      const std::string& where) {
+// A material from JSON; fields not given keep `m`'s values (the defaults, or a base model's
+// material being edited).
+Material readMaterial(FileCtx& c, const Json& j, const std::string& name, const std::string& where,
+                      Material m = {}) {
   JsonFields f(j, c.path, where);
-  Material m;
   m.name = name;
   m.emission = f.vec3("emission", m.emission);
   m.ambient = f.vec3("ambient", m.ambient);
   m.diffuse = f.vec3("diffuse", m.diffuse);
-  m.diffuseOpacity = f.number("diffuseOpacity", 1.0f, 0.0f, 1.0f);
+  m.diffuseOpacity = f.number("diffuseOpacity", m.diffuseOpacity, 0.0f, 1.0f);
   m.specular = f.vec3("specular", m.specular);
   m.specularExponent = f.number("specularExponent", m.specularExponent, 1.0f, 4096.0f);
-  m.reflectivity = f.number("reflectivity", 0.0f, 0.0f, 1.0f);
-  m.ior = f.number("ior", 1.0f, 0.1f, 10.0f);
-  m.opacity = f.number("opacity", 1.0f, 0.0f, 1.0f);
+  m.reflectivity = f.number("reflectivity", m.reflectivity, 0.0f, 1.0f);
+  m.ior = f.number("ior", m.ior, 0.1f, 10.0f);
+  m.opacity = f.number("opacity", m.opacity, 0.0f, 1.0f);
+  m.transmissionFilter = f.vec3("transmissionFilter", m.transmissionFilter);
   m.tiling = f.vec2("tiling", m.tiling);
   m.offset = f.vec2("offset", m.offset);
-  m.castsShadows = f.boolean("castsShadows", true);
-  m.doubleSided = f.boolean("doubleSided", false);
-  std::string alpha = f.string("alphaMode", "opaque");
+  m.castsShadows = f.boolean("castsShadows", m.castsShadows);
+  m.doubleSided = f.boolean("doubleSided", m.doubleSided);
+  const char* modes[] = {"opaque", "mask", "blend"};
+  std::string alpha = f.string("alphaMode", modes[int(m.alphaMode)]);
   if (alpha == "opaque")
     m.alphaMode = AlphaMode::Opaque;
   else if (alpha == "mask")
@@ -77,11 +80,15 @@ Material readMaterial(FileCtx& c, const Json& j, const std::string& name,
     m.alphaMode = AlphaMode::Blend;
   else
     f.fail("alphaMode", "expected opaque, mask or blend, got '" + alpha + "'");
-  m.alphaCutoff = f.number("alphaCutoff", 0.5f, 0.0f, 1.0f);
-  m.diffuseTexture = readTexture(c, f, "diffuseMap", true);
-  m.emissionTexture = readTexture(c, f, "emissionMap", true);
-  m.specularTexture = readTexture(c, f, "specularMap", true);
-  m.normalTexture = readTexture(c, f, "normalMap", false);
+  m.alphaCutoff = f.number("alphaCutoff", m.alphaCutoff, 0.0f, 1.0f);
+  auto texture = [&](const char* key, bool srgb, int& slot) {
+    const int t = readTexture(c, f, key, srgb);
+    if (t >= 0) slot = t;
+  };
+  texture("diffuseMap", true, m.diffuseTexture);
+  texture("emissionMap", true, m.emissionTexture);
+  texture("specularMap", true, m.specularTexture);
+  texture("normalMap", false, m.normalTexture);
   f.finish();
   for (Vec3 v : {m.emission, m.ambient, m.diffuse, m.specular})
     if (v.x < 0 || v.y < 0 || v.z < 0) throw InputError(c.path, where, "colours must be >= 0");
@@ -365,6 +372,18 @@ Scene loadSceneFile(const std::string& path) {
   }
   s.name = fs::path(path).stem().string();
   s.stats.sources.push_back(path);
+  if (f.has("materialEdits")) {
+    // Changes to the base model's materials by name: only the fields given change.
+    const Json& edits = f.raw("materialEdits");
+    if (!edits.is_object()) f.fail("materialEdits", "expected an object of name -> fields");
+    for (auto it = edits.begin(); it != edits.end(); ++it) {
+      const std::string where = "materialEdits." + it.key();
+      bool found = false;
+      for (Material& m : s.materials)
+        if (m.name == it.key()) m = readMaterial(c, it.value(), it.key(), where, m), found = true;
+      if (!found) throw InputError(path, where, "the base has no material of that name");
+    }
+  }
   if (f.has("materials")) {
     const Json& mats = f.raw("materials");
     if (!mats.is_object()) f.fail("materials", "expected an object of name -> material");

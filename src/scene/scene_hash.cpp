@@ -21,6 +21,8 @@ void hashScene(Hasher& h, const Scene& s) {
     h.pod(m.metallicRoughnessTexture).pod(m.baseColor).pod(m.metallic).pod(m.roughness);
     // Hashed only when present, so cache keys of scenes without it stay as they were.
     if (m.occlusionTexture >= 0) h.pod(m.occlusionTexture).pod(m.occlusionStrength);
+    const Vec3 tf = m.transmissionFilter;
+    if (tf.x < 1.0f || tf.y < 1.0f || tf.z < 1.0f) h.pod(tf);
   }
   for (const Texture& t : s.textures)
     h.pod(t.texels.width)

@@ -364,3 +364,31 @@ TEST(Whitted, PaperRulesAtMaxDepthAndOutsideTheMask) {
   none.renderFrame(1, cam);
   for (float v : none.context().input("shadow").data) ASSERT_EQ(v, 1.0f);
 }
+
+// A clear pane with a transmission filter (OBJ Tf) in front of a white sky: what passes through
+// is the sky times the filter, in the Whitted ray tracer and in the path tracer alike.
+TEST(TransmissionFilter, TintsWhatPassesThroughInWhittedAndPathTracer) {
+  Scene s;
+  Material glass;
+  glass.diffuse = glass.specular = Vec3(0.0f);
+  glass.opacity = 0.0f;
+  glass.ior = 1.0f;  // no bending: the pixel sees the sky straight behind
+  glass.transmissionFilter = {0.5f, 1.0f, 0.25f};
+  glass.doubleSided = true;
+  Transform xf;
+  xf.rotationDeg = {90, 0, 0};  // facing the camera (+z)
+  xf.scale = {3, 1, 3};
+  s.addObject("pane", s.addMesh(makePlane()), s.addMaterial(glass), xf);
+  s.skybox.color = {1, 1, 1};
+  CameraDesc cam;
+  cam.position = {0, 0, 3};
+  cam.lookAt = {0, 0, 0};
+  for (const char* pipeline : {"rt-only", "reference"}) {
+    const Buffer img = test::renderHdr(s, pipeline, cam, {}, 0.0f, 32, 32);
+    const Vec3 c = img.rgb(16, 16);
+    // The pane is one surface, crossed once: sky * filter.
+    EXPECT_NEAR(c.x, 0.5f, 0.02f) << pipeline;
+    EXPECT_NEAR(c.y, 1.0f, 0.02f) << pipeline;
+    EXPECT_NEAR(c.z, 0.25f, 0.02f) << pipeline;
+  }
+}

@@ -143,3 +143,63 @@ TEST(GltfVersion, GltfOneIsNamed) {
 
 }  // namespace
 }  // namespace tandem
+
+namespace tandem {
+namespace {
+
+// Two unit quads side by side in z = 0 sharing the edge x = 1; the right one's u runs backwards
+// (a mirrored UV island, as symmetric models have).
+Mesh mirroredQuads() {
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}};
+  m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}, {0, 1}};
+  m.normals.assign(6, Vec3(0, 0, 1));
+  m.indices = {0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2};
+  return m;
+}
+
+TEST(MikkTSpaceTangents, FollowDPduAndSplitMirroredVertices) {
+  Mesh m = mirroredQuads();
+  computeMikkTSpaceTangents(m);
+  ASSERT_EQ(m.positions.size(), 8u) << "the two shared vertices are split";
+  ASSERT_EQ(m.tangents.size(), m.positions.size());
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    const uint32_t* i = &m.indices[3 * t];
+    const bool mirrored = t >= 2;
+    for (int k = 0; k < 3; ++k) {
+      const Vec4 tg = m.tangents[i[k]];
+      // T along dP/du (+x on the left, -x on the mirrored right), w the orientation, and the
+      // bitangent w * cross(n, t) along dP/dv (+y) on both.
+      EXPECT_NEAR(tg.x, mirrored ? -1.0f : 1.0f, 1e-6f);
+      EXPECT_EQ(tg.w, mirrored ? -1.0f : 1.0f);
+      const Vec3 b = cross(m.normals[i[k]], Vec3(tg.x, tg.y, tg.z)) * tg.w;
+      EXPECT_NEAR(b.y, 1.0f, 1e-6f);
+    }
+  }
+}
+
+TEST(MikkTSpaceTangents, UnitOrthogonalAndAlongDPduOnACurvedMesh) {
+  Mesh m = makeUvSphere(24, 12);
+  computeMikkTSpaceTangents(m);
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    const uint32_t* i = &m.indices[3 * t];
+    const Vec3 e1 = m.positions[i[1]] - m.positions[i[0]],
+               e2 = m.positions[i[2]] - m.positions[i[0]];
+    const Vec2 d1 = m.uvs[i[1]] - m.uvs[i[0]], d2 = m.uvs[i[2]] - m.uvs[i[0]];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    if (std::abs(det) < 1e-12f) continue;
+    const Vec3 dPdu = (e1 * d2.y - e2 * d1.y) * (1.0f / det);
+    for (int k = 0; k < 3; ++k) {
+      const Vec4 tg = m.tangents[i[k]];
+      const Vec3 t3(tg.x, tg.y, tg.z), n = m.normals[i[k]];
+      EXPECT_NEAR(length(t3), 1.0f, 1e-4f);
+      EXPECT_NEAR(dot(t3, n), 0.0f, 1e-4f);
+      if (std::abs(dot(n, Vec3(0, 1, 0))) < 0.9f) {  // away from the poles' fans
+        EXPECT_GT(dot(t3, normalize(dPdu)), 0.8f);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tandem

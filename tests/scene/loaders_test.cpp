@@ -34,6 +34,32 @@ TEST(ObjLoader, IllumAndIorMapToOpticalProperties) {
   EXPECT_EQ(mirror->reflectivity, 1.0f);  // illum 5
   EXPECT_EQ(glass->opacity, 0.0f);        // illum 7
   EXPECT_FLOAT_EQ(glass->ior, 2.5f);      // Ni 2.5
+  // illum 7 reflects by Fresnel: Ks times Schlick's F0 = ((2.5 - 1) / (2.5 + 1))^2.
+  EXPECT_NEAR(glass->reflectivity, 0.3f * (1.5f / 3.5f) * (1.5f / 3.5f), 1e-6f);
+  EXPECT_FLOAT_EQ(glass->transmissionFilter.y, 0.1f);  // Tf 0.1
+  EXPECT_EQ(mirror->transmissionFilter.x, 1.0f);       // no Tf: nothing filtered
+}
+
+TEST(SceneFile, MaterialEditsChangeOnlyTheGivenFieldsOfBaseMaterials) {
+  // cornell_spheres.json keeps the clear glass sphere the heuristic experiment was measured on.
+  Scene s = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/cornell_spheres.json");
+  const Material* glass = nullptr;
+  for (const Material& m : s.materials)
+    if (m.name == "rightSphere") glass = &m;
+  ASSERT_TRUE(glass);
+  EXPECT_EQ(glass->transmissionFilter.x, 1.0f);
+  EXPECT_EQ(glass->reflectivity, 0.0f);
+  EXPECT_FLOAT_EQ(glass->ior, 2.5f);  // untouched fields stay the MTL's
+  EXPECT_EQ(glass->opacity, 0.0f);
+  auto dir = test::scratchDir("material_edits");
+  writeText(dir / "bad.json", R"({"base": ")" + sharedScene("CornellBox/CornellBox-Sphere.obj") +
+                                  R"(", "materialEdits": {"noSuchMaterial": {"ior": 1.2}}})");
+  try {
+    loadScene((dir / "bad.json").string());
+    FAIL() << "an edit of a missing material loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("materialEdits.noSuchMaterial"), std::string::npos);
+  }
 }
 
 TEST(EmissiveLights, CornellLightBecomesCosineSpotWithKeTimesArea) {
