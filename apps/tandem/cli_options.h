@@ -15,7 +15,9 @@ namespace tandem {
 
 struct RenderOptions {
   std::string scene = "cornell";  // path or built-in name
-  std::string pipeline = "deferred";
+  // The best-looking interactive pipeline: ray-traced shadows, reflections and refractions on
+  // the raster G-buffer where the heuristic sends rays, anti-aliased over frames (TAA).
+  std::string pipeline = "hybrid-heuristic-taa";
   int width = 1280, height = 720;  // [1, 16384]
   std::string resolution;          // --resolution: a named size (fhd, quest2), applied when parsed
   std::string out;                 // image file or folder

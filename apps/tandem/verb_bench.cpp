@@ -104,6 +104,8 @@ struct BenchVerb {
 
 VerbRunner addBenchVerb(CLI::App& app) {
   auto verb = std::make_shared<BenchVerb>();
+  // The base frame every speed figure is quoted against (render and view default to the hybrid).
+  verb->opts.pipeline = "deferred";
   CLI::App* sub = app.add_subcommand("bench", "Time a pipeline along the scene's camera path");
   sub->add_option("scene", verb->opts.scene, "Scene (same as --scene)");
   addRenderOptions(sub, verb->opts);

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "eval/experiment_dof.h"
 #include "eval/experiment_foveated.h"
+#include "eval/experiment_gallery.h"
 #include "eval/experiment_heuristic.h"
 #include "eval/experiment_interleaved.h"
 #include "eval/experiment_sweep.h"
@@ -129,10 +130,26 @@ struct ExperimentVerb {
       if (!o.scenes.empty()) throw InputError("command line", "--scenes", "not for interleaved");
       return runInterleavedExperiment(io);
     }
+    if (runner == "gallery") {
+      GalleryOptions go = galleryOptionsFromJson(j, file.string());
+      go.out = o.out.empty() ? "out/experiment-" + file.stem().string() : o.out;
+      if (o.width) go.width = o.width;
+      if (o.height) go.height = o.height;
+      if (o.frames) {
+        go.frames = o.frames;
+        for (GalleryRow& r : go.rows) r.frames = 0;  // --frames sets every row's
+      }
+      if (!o.scenes.empty()) throw InputError("command line", "--scenes", "not for a gallery");
+      auto limit = threads > 0 ? std::make_unique<tbb::global_control>(
+                                     tbb::global_control::max_allowed_parallelism, threads)
+                               : nullptr;
+      return runGallery(go);
+    }
     if (runner != "sweep")
-      throw InputError(
-          file.string(), "runner",
-          "'" + runner + "' is not sweep, heuristic, taa, hybrid-dof, foveated or interleaved");
+      throw InputError(file.string(), "runner",
+                       "'" + runner +
+                           "' is not sweep, heuristic, taa, hybrid-dof, foveated, interleaved or "
+                           "gallery");
     if (staticFrames != -1 || pathFrames != -1 || budget >= 0 || budgetMs >= 0)
       throw InputError("command line", "--static-frames/--path-frames/--budget/--budget-ms",
                        "apply to the heuristic runner only");

@@ -23,7 +23,8 @@ expect_error() {
 for v in render reference info compare bench experiment export view; do "$T" $v --help >/dev/null; check "$v --help" "[ $? -eq 0 ]"; done
 
 "$T" render --width 160 --height 90 --out "$D/demo" --aov depth,normal,object_id,motion >/dev/null
-check "render writes png+exr+aovs" "[ -s $D/demo/cornell_deferred.png ] && [ -s $D/demo/cornell_deferred.exr ] && [ -s $D/demo/cornell_deferred_object_id.png ]"
+# The default pipeline is the hybrid (ray-traced effects on the raster G-buffer, TAA).
+check "render writes png+exr+aovs (default pipeline: the hybrid)" "[ -s $D/demo/cornell_hybrid-heuristic-taa.png ] && [ -s $D/demo/cornell_hybrid-heuristic-taa.exr ] && [ -s $D/demo/cornell_hybrid-heuristic-taa_object_id.png ]"
 "$T" render cornell --width 160 --height 90 --pipeline deferred-rt-gbuffer --out "$D/rt.png" >/dev/null
 check "rt pipeline renders" "[ -s $D/rt.png ]"
 "$T" render "$SRC/scenes/dof_fg.json" --pipeline hybrid-dof --width 96 --height 54 --frames 3 \
@@ -44,7 +45,8 @@ check "interleaved-raster renders with its sample and tile views" \
 "$T" render "$SRC/scenes/interleaved_motion.json" --pipeline hybrid-motion-blur --shutter 0.1 --width 64 --height 36 \
   --aov mb_mask --out "$D/il/" >/dev/null
 check "hybrid-motion-blur renders with its mask" "[ -s $D/il/interleaved_motion_hybrid-motion-blur_mb_mask.png ]"
-out=$("$T" compare "$D/demo/cornell_deferred.png" "$D/rt.png" --heatmap "$D/heat.png" --flip-map "$D/flip.png")
+"$T" render cornell --pipeline deferred --width 160 --height 90 --out "$D/deferred.png" >/dev/null
+out=$("$T" compare "$D/deferred.png" "$D/rt.png" --heatmap "$D/heat.png" --flip-map "$D/flip.png")
 check "compare raster vs rt output" "grep -q ssim <<<\"\$out\" && grep -q '^flip ' <<<\"\$out\" && [ -s $D/heat.png ] && [ -s $D/flip.png ]"
 ssim=$(awk '/^ssim/ {print $2}' <<<"$out")
 check "raster and rt images agree (SSIM >= 0.98, got $ssim)" "awk -v s=$ssim 'BEGIN{exit !(s >= 0.98)}'"
@@ -182,7 +184,7 @@ expect_error "parallel up" "--up" "$T" render --camera-pos 0,5,0 --look-at 0,0,0
 expect_error "bad scene leaves no new folder" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/newdir/"
 echo '{"objects": [{"shape": "cube", "rotaton": [0,0,0]}]}' > "$D/bad.json"
 expect_error "unknown scene field" "objects[0].rotaton: unknown field" "$T" render --scene "$D/bad.json" --out "$D/err/x.png"
-expect_error "compare size mismatch" "differs" "$T" compare "$D/demo/cornell_deferred.png" "$D/bunny.png"
+expect_error "compare size mismatch" "differs" "$T" compare "$D/demo/cornell_hybrid-heuristic-taa.png" "$D/bunny.png"
 expect_error "compare missing file" "not found" "$T" compare "$D/nope.png" "$D/bunny.png"
 expect_error "info missing" "not found" "$T" info /nonexistent.gltf
 expect_error "unknown named resolution" "--resolution" "$T" render cornell --resolution 8k --out "$D/err/x.png"
@@ -195,6 +197,18 @@ expect_error "unwritable output extension" "--out" "$T" render cornell --width 3
 # (no truncated PNG, no PNG without its EXR, no temporary).
 expect_error "a PNG cut short by a full disk" "write failed" bash -c "ulimit -f 8; \"$T\" render cornell --width 320 --height 180 --out \"$D/err/\""
 expect_error "PNG written but its EXR not: neither kept" ".exr" bash -c "ulimit -f 100; \"$T\" render cornell --width 320 --height 180 --out \"$D/err/\""
+# A model with no lights: lit by the default rig (announced), or unlit on request.
+printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n' > "$D/quad.obj"
+out=$("$T" render "$D/quad.obj" --pipeline deferred --width 64 --height 36 --out "$D/quad.png" 2>&1); rc=$?
+check "unlit model: the default rig is announced" "[ $rc -eq 0 ] && grep -q 'default rig' <<<\"\$out\""
+out=$("$T" info "$D/quad.obj" 2>/dev/null)
+check "info names the default rig" "grep -q 'the default rig' <<<\"\$out\""
+out=$("$T" info "$D/quad.obj" --default-lights off 2>&1)
+check "--default-lights off leaves it unlit" "grep -q '^lights       0' <<<\"\$out\" && ! grep -q 'default rig' <<<\"\$out\""
+expect_error "--default-lights value" "--default-lights" "$T" render "$D/quad.obj" --default-lights maybe --out "$D/err/x.png"
+# The demo gallery (what scripts/demo.sh shows), tiny: a contact sheet and index.html.
+"$T" experiment demo --width 64 --height 36 --frames 2 --out "$D/gallery" >/dev/null
+check "demo gallery writes its contact sheet and index" "[ -s $D/gallery/contact_sheet.png ] && [ -s $D/gallery/index.html ] && grep -q rt-dof $D/gallery/demo.csv"
 expect_error "a size the machine cannot hold" "GiB" "$T" render cornell --width 16384 --height 16384 --stereo --out "$D/err/x.png"
 expect_error "interleaved N not a multiple of k" "multiple" "$T" render cornell --pipeline interleaved-raster \
   --width 32 --height 18 --set interleaved_raster.samples=6 --set interleaved_raster.spp=4 --out "$D/err/x.png"

@@ -171,6 +171,14 @@ def make_draco():
              "nodes": [{"mesh": 0, "rotation": [0.2, 0.3, 0.0, 0.93]}], "scenes": [{"nodes": [0]}], "scene": 0}
         return json.dumps(d, indent=1)
     write("draco_cube.gltf", doc({"POSITION": 0, "TEXCOORD_0": 1, "NORMAL": 2}), "render")
+    # The same as binary glTF: JSON chunk, then the Draco stream in the BIN chunk.
+    d = json.loads(doc({"POSITION": 0, "TEXCOORD_0": 1, "NORMAL": 2}))
+    del d["buffers"][0]["uri"]
+    j = json.dumps(d).encode()
+    j += b" " * ((4 - len(j) % 4) % 4)
+    b = drc + b"\0" * ((4 - len(drc) % 4) % 4)
+    write("draco_cube.glb", b"glTF" + struct.pack("<II", 2, 12 + 8 + len(j) + 8 + len(b)) +
+          struct.pack("<I", len(j)) + b"JSON" + j + struct.pack("<I", len(b)) + b"BIN\0" + b, "render")
     write("draco_wrong_attribute_id.gltf", doc({"POSITION": 0, "TEXCOORD_0": 1, "NORMAL": 7}), "error",
           "Draco attribute id 7")
     d = json.loads(doc({"POSITION": 0, "TEXCOORD_0": 1, "NORMAL": 2}))
