@@ -38,6 +38,9 @@ VerbRunner addInfoVerb(CLI::App& app) {
     for (const auto& src : s.stats.sources) std::printf("source       %s\n", src.c_str());
     std::printf("triangles    %zu\n", s.triangleCount());
     std::printf("degenerate   %zu (skipped while loading)\n", s.stats.degenerateTriangles);
+    if (s.stats.skippedPrimitives)
+      std::printf("skipped      %zu glTF point or line primitives (nothing to shade)\n",
+                  s.stats.skippedPrimitives);
     std::printf("objects      %zu (%zu emissive, %zu animated)\n", s.objects.size(), emissive,
                 size_t(std::count_if(s.objects.begin(), s.objects.end(),
                                      [](const Object& o) { return o.animated(); })));

@@ -85,7 +85,8 @@ Buffer contactSheet(const std::vector<std::vector<Cell>>& rows, const std::vecto
   const int titleBar = kGlyphHeight * scale + pad * 2;
   size_t cols = 0;
   for (const auto& r : rows) cols = std::max(cols, r.size());
-  Buffer sheet(int(cols) * (w + pad) + pad, int(rows.size()) * (h + bar + titleBar) + pad, 3, 0.08f);
+  Buffer sheet(int(cols) * (w + pad) + pad, int(rows.size()) * (h + bar + titleBar) + pad, 3,
+               0.08f);
   const Vec3 text(0.92f), dim(0.65f);
   for (size_t ri = 0; ri < rows.size(); ++ri) {
     const int top = int(ri) * (h + bar + titleBar) + pad;
@@ -143,8 +144,8 @@ int runGallery(const GalleryOptions& o) {
       table.push_back({row.label, c.caption, c.pipeline, fmt(c.ms, 1),
                        self ? "(reference)" : fmt(m.psnr, 1), self ? "" : fmt(m.ssim, 4)});
       files.stage((fs::path(o.out) / c.file).string(), encodePng(c.file, c.image));
-      report.image(c.file, row.label + ": " + c.caption + " (" + c.pipeline + ", " +
-                               fmt(c.ms, 1) + " ms per frame)");
+      report.image(c.file, row.label + ": " + c.caption + " (" + c.pipeline + ", " + fmt(c.ms, 1) +
+                               " ms per frame)");
     }
   }
   const Buffer sheet = contactSheet(cells, o.rows, o.width, o.height);
