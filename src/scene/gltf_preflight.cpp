@@ -91,6 +91,17 @@ GltfSource preflightGltf(const std::string& path) {
     jsonLength = readU32(b + 12);
     if (jsonLength > src.bytes.size() - 20)
       throw InputError(path, "chunk 0", "JSON chunk length exceeds the file");
+    if (readU32(b + 8) > src.bytes.size())
+      throw InputError(path, "header", "length exceeds the file");
+    // tinygltf 2.7 checks the BIN chunk's length against the file without its 8-byte chunk
+    // header, and reads up to 8 bytes past the end (found by fuzz_glb): check it here.
+    const size_t binHeader = 20 + jsonLength;
+    if (binHeader < src.bytes.size()) {
+      if (src.bytes.size() - binHeader < 8)
+        throw InputError(path, "chunk 1", "truncated chunk header");
+      if (readU32(b + binHeader) > src.bytes.size() - binHeader - 8)
+        throw InputError(path, "chunk 1", "BIN chunk length exceeds the file");
+    }
   }
   json j = json::parse(src.bytes.begin() + long(jsonStart),
                        src.bytes.begin() + long(jsonStart + jsonLength), nullptr, false);

@@ -179,6 +179,11 @@ def make_draco():
     b = drc + b"\0" * ((4 - len(drc) % 4) % 4)
     write("draco_cube.glb", b"glTF" + struct.pack("<II", 2, 12 + 8 + len(j) + 8 + len(b)) +
           struct.pack("<I", len(j)) + b"JSON" + j + struct.pack("<I", len(b)) + b"BIN\0" + b, "render")
+    # A BIN chunk claiming 4 bytes more than the file holds (tinygltf 2.7 reads past the end:
+    # found by fuzz_glb); the header's total length is the true one.
+    glb = (b"glTF" + struct.pack("<II", 2, 12 + 8 + len(j) + 8 + len(b)) + struct.pack("<I", len(j)) + b"JSON" + j +
+           struct.pack("<I", len(b) + 4) + b"BIN\0" + b)
+    write("glb_bin_chunk_overrun.glb", glb, "error", "BIN chunk length exceeds the file")
     write("draco_wrong_attribute_id.gltf", doc({"POSITION": 0, "TEXCOORD_0": 1, "NORMAL": 7}), "error",
           "Draco attribute id 7")
     d = json.loads(doc({"POSITION": 0, "TEXCOORD_0": 1, "NORMAL": 2}))
