@@ -200,8 +200,18 @@ bool rewriteHugeFaces(const std::string& path, std::string& obj, std::string& mt
   if (!huge && !recoded) return false;
   obj = out.str();
   for (const std::string& lib : libs) {
-    std::ifstream m(fs::path(path).parent_path() / lib, std::ios::binary);
-    mtl += std::string(std::istreambuf_iterator<char>(m), std::istreambuf_iterator<char>()) + '\n';
+    // Regular files only: reading a folder named by `mtllib` throws from inside libstdc++
+    // (found by fuzz_obj). A missing library is left out, as tinyobjloader does.
+    const fs::path mp = fs::path(path).parent_path() / lib;
+    std::error_code ec;
+    if (!fs::is_regular_file(mp, ec)) continue;
+    std::ifstream m(mp, std::ios::binary);
+    try {
+      mtl +=
+          std::string(std::istreambuf_iterator<char>(m), std::istreambuf_iterator<char>()) + '\n';
+    } catch (const std::exception& e) {
+      throw InputError(mp.string(), "", std::string("cannot read: ") + e.what());
+    }
   }
   return true;
 }

@@ -213,6 +213,9 @@ def make_obj():
     write("glass_tf_illum7.obj", "mtllib glass.mtl\nusemtl glass\n" + tri, "render")
     write("glass.mtl", "newmtl glass\nKd 0.1 0.1 0.1\nKs 1 1 1\nNi 1.5\nTf 0.6 1 0.7\nillum 7\n", None)
     write("missing_mtl.obj", "mtllib nowhere.mtl\nusemtl x\n" + tri, "render")
+    # mtllib naming a folder, in a file Tandem rewrites (a byte-order mark): read as no library
+    # (reading the folder threw from inside libstdc++: found by fuzz_obj).
+    write("mtllib_names_a_folder.obj", b"\xef\xbb\xbf" + ("mtllib textures\nusemtl x\n" + tri).encode(), "render")
     write("empty.obj", b"", "error", "")
     write("vertices_only.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "error", "no triangles")
     write("index_out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "error", "")
