@@ -54,11 +54,12 @@ class EarClipper {
     const size_t budget = kWorkPerVertex * n_ + 4096;
     uint32_t b = 0;
     while (left > 3) {
-      if (reflexLeft_ == 0) break;  // what is left is convex: a fan
       const uint32_t a = prev_[b], c = next_[b];
       // A vertex on the line through its neighbours cuts off no area: always safe to clip.
       const double turn = sign_ * cross2(p(a), p(b), p(c));
-      const bool ear = turn == 0 || (turn > 0 && empty(a, b, c, &work));
+      // Once no reflex vertex remains the rest is convex: every convex corner is an ear, and
+      // clipping on (rather than fanning) keeps the triangles well shaped.
+      const bool ear = turn == 0 || (turn > 0 && (reflexLeft_ == 0 || empty(a, b, c, &work)));
       if (ear || misses > left || work > budget) {
         if (work > budget) {
           // Out of budget (a contrived input): the rest as a fan around b.
