@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <set>
 
@@ -488,25 +487,11 @@ void addLight(Ctx& c, int lightIndex, const Mat4& world) {
 // tinygltf's own reader sizes its buffer from tellg(): a buffer or image URI naming a directory
 // (or anything that is not a regular file) made it allocate 2^63 bytes (found by fuzz_gltf). Read
 // only regular files, of a size we could hold.
-bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                     void*) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    if (err) *err += "not a regular file: " + path + "\n";
-    return false;
-  }
-  const uintmax_t size = fs::file_size(path, ec);
-  if (ec || size > (uintmax_t(1) << 34)) {
-    if (err) *err += "unreadable or larger than 16 GiB: " + path + "\n";
-    return false;
-  }
-  std::ifstream in(path, std::ios::binary);
-  out->resize(size_t(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) {
-    if (err) *err += "cannot read: " + path + "\n";
-    return false;
-  }
-  return true;
+bool readFileCallback(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      void*) {
+  const std::string problem = readRegularFile(path, *out);
+  if (!problem.empty() && err) *err += problem + ": " + path + "\n";
+  return problem.empty();
 }
 
 }  // namespace
@@ -515,7 +500,7 @@ Scene loadGltf(const std::string& path) {
   const GltfSource src = preflightGltf(path);
   tinygltf::TinyGLTF loader;
   tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
-                                  &readRegularFile, &tinygltf::WriteWholeFile, nullptr};
+                                  &readFileCallback, &tinygltf::WriteWholeFile, nullptr};
   loader.SetFsCallbacks(callbacks);
   tinygltf::Model model;
   std::string err, warn;

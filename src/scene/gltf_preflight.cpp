@@ -63,16 +63,22 @@ bool stripDracoIndices(json& j) {
 
 }  // namespace
 
-GltfSource preflightGltf(const std::string& path) {
+std::string readRegularFile(const std::string& path, std::vector<unsigned char>& out) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path, "", "file not found");
+  if (!fs::is_regular_file(path, ec)) return "file not found";
   const uintmax_t size = fs::file_size(path, ec);
-  if (ec || size > (uintmax_t(1) << 34)) throw InputError(path, "", "unreadable or over 16 GiB");
-  GltfSource src;
-  src.bytes.resize(size_t(size));
+  if (ec || size > (uintmax_t(1) << 34)) return "unreadable or larger than 16 GiB";
+  out.resize(size_t(size));
   std::ifstream in(path, std::ios::binary);
-  if (size > 0 && !in.read(reinterpret_cast<char*>(src.bytes.data()), std::streamsize(size)))
-    throw InputError(path, "", "cannot read");
+  if (size > 0 && !in.read(reinterpret_cast<char*>(out.data()), std::streamsize(size)))
+    return "cannot read";
+  return "";
+}
+
+GltfSource preflightGltf(const std::string& path) {
+  GltfSource src;
+  if (const std::string problem = readRegularFile(path, src.bytes); !problem.empty())
+    throw InputError(path, "", problem);
   src.binary = hasExtension(path, ".glb");
   if (src.bytes.empty()) throw InputError(path, "", "empty file");
 

@@ -16,6 +16,11 @@ struct GltfSource {
   std::vector<unsigned char> bytes;
 };
 
+// Reads a regular file of at most 16 GiB into `out`: "" on success, else the problem ("file
+// not found" for anything that is not a regular file, e.g. a folder a URI decodes to). Used for
+// the glTF file and, as tinygltf's reader, for its buffers and images.
+std::string readRegularFile(const std::string& path, std::vector<unsigned char>& out);
+
 // Reads `path` (.gltf or .glb) and checks it; throws InputError naming the file and field.
 GltfSource preflightGltf(const std::string& path);
 
