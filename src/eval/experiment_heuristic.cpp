@@ -217,9 +217,10 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
       double rtMs = passMs(bt, "rt_secondary");
       res.budgetRtMs.push_back(rtMs);
       bool within = std::abs(rtMs - o.budgetMs) <= o.tolerance * o.budgetMs;
-      // The budget binds when something visible was left out; otherwise the RT stage simply
-      // had less to do than the budget allows.
-      bool binds = budget.counter("heuristic/selected") < budget.counter("heuristic/nodes");
+      // The budget binds when something visible was left out (not selected, or cut by the
+      // deadline); otherwise the RT stage simply had less to do than the budget allows.
+      bool binds = budget.counter("heuristic/selected") < budget.counter("heuristic/nodes") ||
+                   budget.counter("rt_secondary/tiles_cut") > 0;
       res.withinBand += within;
       res.binding += binds;
       res.bindingWithin += binds && within;

@@ -222,7 +222,48 @@ std::vector<ParamDesc> HeuristicPass::params() const {
        0,
        1,
        "cost from the rays actually traced per pixel, recursion included",
+       {}},
+      {"deadline",
+       ParamType::Bool,
+       0,
+       0,
+       1,
+       "ms budget: rt_secondary stops at the budget, most relevant pixels first",
+       {}},
+      {"overcommit",
+       ParamType::Float,
+       1.6,
+       1,
+       4,
+       "deadline: select this many times the budget (the deadline cuts the least relevant)",
        {}}};
+}
+
+double HeuristicPass::tracedCost(const RtStats& stats) const {
+  double cost = 0;
+  for (size_t o = 0; o < std::min(stats.pixels.size(), pricePerPixel_.size()); ++o)
+    for (size_t e = 0; e < size_t(kEffectCount); ++e)
+      cost += double(stats.pixels[o][e]) * pricePerPixel_[o][e];
+  return cost;
+}
+
+void HeuristicPass::writeOrder(const std::vector<HeuristicNode>& nodes, bool perEffect,
+                               Buffer& order) const {
+  std::vector<double> relevancy(order.data.size(), 0.0);
+  for (const HeuristicNode& node : nodes) relevancy[size_t(node.id)] = node.relevancy;
+  std::vector<HeuristicNode> chosen;
+  for (int id : selected_) chosen.push_back({id, 0.0, relevancy[size_t(id)]});
+  std::stable_sort(chosen.begin(), chosen.end(), [](const HeuristicNode& a, const HeuristicNode& b) {
+    return a.relevancy > b.relevancy;
+  });
+  std::fill(order.data.begin(), order.data.end(), -1.0f);
+  for (size_t r = 0; r < chosen.size(); ++r) {
+    const int id = chosen[r].id;
+    if (perEffect)
+      order.data[size_t(id)] = float(r);  // id = object * kEffectCount + effect
+    else
+      for (int e = 0; e < kEffectCount; ++e) order.data[size_t(id * kEffectCount + e)] = float(r);
+  }
 }
 
 void HeuristicPass::resetHistory() {
@@ -271,8 +312,9 @@ void HeuristicPass::execute(FrameContext& ctx) {
   // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
   const Buffer* prevStats = ctx.previous(*this, "rt_stats");
   const RtStats rtStats = prevStats ? readRtStats(*prevStats) : RtStats{};
+  const bool deadline = param("budget_ms") > 0 && param("deadline") != 0;
   if (rtStats.ms > 0 && selectedFrame_ >= 0 && selectedFrame_ == ctx.serial - 1)
-    calibration_.observe(selectedCost_, rtStats.ms);
+    calibration_.observe(deadline ? tracedCost(rtStats) : selectedCost_, rtStats.ms);
   updateMeasurements(rtStats);
   measuredRays_.resize(n);
 
@@ -287,7 +329,9 @@ void HeuristicPass::execute(FrameContext& ctx) {
   // CPU ms per wall ms of the RT pass; its prior, the worker count).
   const bool msBudget = param("budget_ms") > 0;
   // This frame's RT pass times each object and effect.
-  ctx.output(*this, "rt_request").data[0] = msBudget ? 1.0f : 0.0f;
+  Buffer& request = ctx.output(*this, "rt_request");
+  request.data[0] = msBudget ? 1.0f : 0.0f;
+  request.data[1] = deadline ? float(param("budget_ms")) : 0.0f;
   if (!calibrationPrior_) {
     calibration_ = BudgetCalibration(double(tbb::this_task_arena::max_concurrency()));
     calibrationPrior_ = true;
@@ -312,10 +356,16 @@ void HeuristicPass::execute(FrameContext& ctx) {
           p = area[e] > 0 ? sum[e] / area[e] : h.q[e] / BudgetCalibration::kPriorRaysPerMs;
       }
     nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"), &perPixel);
+    pricePerPixel_.assign(n, {});
+    for (const ObjectHeuristic& h : evaluated_)
+      for (size_t e = 0; e < size_t(kEffectCount); ++e)
+        pricePerPixel_[size_t(h.object)][e] =
+            perPixel[size_t(h.object)][e] * scene.objects[size_t(h.object)].heuristic.E;
   } else {
     nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"));
   }
   budget_ = msBudget ? calibration_.unitsFor(param("budget_ms")) : param("budget");
+  if (deadline) budget_ *= param("overcommit");
   if (param("select_all") != 0) {
     selected_.clear();
     for (const HeuristicNode& node : nodes) selected_.push_back(node.id);
@@ -356,6 +406,7 @@ void HeuristicPass::execute(FrameContext& ctx) {
   ctx.counters["heuristic/budget"] = budget_;
   ctx.counters["heuristic/selected_cost"] = selectedCost_;
   ctx.counters["heuristic/partial_fraction"] = partial_.id >= 0 ? partial_.fraction : 0.0;
+  writeOrder(nodes, perEffect, ctx.output(*this, "heuristic_order", int(n), 1));
   Buffer& mask = ctx.output(*this, "heuristic_mask");
   const float partialObject = partial_.id >= 0 ? float(objectOf(partial_.id)) : -2.0f;
   const uint8_t partialBits = partial_.id >= 0 ? bitsOf(partial_.id) : 0;

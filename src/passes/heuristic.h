@@ -15,9 +15,16 @@
 //    central part of the most relevant node left out (mask set on that share of its pixels
 //    nearest the view centre);
 //  - count_recursion: Q is the rays per pixel the RT pass actually traced for the object and
-//    effect (recursion included), the paper's Q being the prior until it has been traced.
+//    effect (recursion included), the paper's Q being the prior until it has been traced;
+//  - deadline (ms budget): the budget becomes rt_secondary's deadline. The walk selects
+//    `overcommit` times the budget, rt_secondary traces the selection most relevant first and
+//    stops at the deadline (what it reached is its traced_mask), so a misprediction costs the
+//    least relevant pixels instead of time. The calibration then learns from the cost of what was
+//    traced.
 // Inputs: object_id, rt_stats (last frame's, a history input). Outputs: heuristic_mask (3
-// channels), rt_request (1 x 1: 1 asks rt_secondary to time each object and effect).
+// channels), rt_request (1 x 1: [1 asks rt_secondary to time each object and effect, deadline ms
+// or 0]), heuristic_order (objects x 1: per effect, the node's rank by relevancy among the
+// selected, 0 first; -1 not selected).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -123,7 +130,8 @@ class HeuristicPass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override {
     return {{"heuristic_mask", 3, BufferKind::Mask},
-            {"rt_request", 1, BufferKind::Mask, Extent::fixed(1, 1)}};
+            {"rt_request", 2, BufferKind::Mask, Extent::fixed(1, 1)},
+            {"heuristic_order", kEffectCount, BufferKind::List, Extent::any()}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
@@ -138,6 +146,8 @@ class HeuristicPass : public Pass {
 
  private:
   void updateMeasurements(const RtStats& stats);
+  double tracedCost(const RtStats& stats) const;
+  void writeOrder(const std::vector<HeuristicNode>& nodes, bool perEffect, Buffer& order) const;
 
   std::vector<uint8_t> selectedLast_;  // effect bits per object
   std::vector<ObjectHeuristic> evaluated_;
@@ -148,6 +158,9 @@ class HeuristicPass : public Pass {
   BudgetCalibration calibration_;
   bool calibrationPrior_ = false;  // prior set to the worker count on first use
   std::vector<std::array<double, kEffectCount>> msPerPixel_;  // measured, smoothed
+  // Deadline mode: last frame's price of one traced pixel of each object and effect (cost units),
+  // for the cost of what rt_secondary actually traced.
+  std::vector<std::array<double, kEffectCount>> pricePerPixel_;
   double budget_ = 0, selectedCost_ = 0;
   PartialNode partial_;
   int64_t selectedFrame_ = -1;

@@ -1,8 +1,14 @@
 #include "passes/rt_secondary.h"
 
 #include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
 
 #include "core/cycle_clock.h"
+#include "passes/ranked_tiles.h"
 #include "passes/rt_stats.h"
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
@@ -60,12 +66,17 @@ std::vector<ParamDesc> RTSecondaryPass::params() const {
 std::vector<BufferSlot> RTSecondaryPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
   in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
-  in.push_back({"rt_request", 1, BufferKind::Mask, Extent::fixed(1, 1), false, true});
+  in.push_back({"rt_request", 2, BufferKind::Mask, Extent::fixed(1, 1), false, true});
+  in.push_back({"heuristic_order", kEffectCount, BufferKind::List, Extent::any(), false, true});
   return in;
 }
 
 std::vector<BufferSlot> RTSecondaryPass::outputs() const {
-  return {{"shadow", 3}, {"reflection", 3}, {"refraction", 3}, rtStatsSlot(false)};
+  return {{"shadow", 3},
+          {"reflection", 3},
+          {"refraction", 3},
+          {"traced_mask", kEffectCount, BufferKind::Mask},
+          rtStatsSlot(false)};
 }
 
 namespace {
@@ -74,6 +85,30 @@ struct EffectTally {
   std::array<uint64_t, kEffectCount> pixels{}, rays{}, ticks{};
 };
 using EffectTallies = std::vector<EffectTally>;
+
+// Deadline mode: every worker takes the ranked tiles in order and traces them until the deadline;
+// the tiles left are skipped (traced_mask 0: the fallback covers them). Returns how many were.
+template <class Trace, class Skip>
+size_t traceUntilDeadline(const std::vector<RankedTile>& queue, Clock::time_point deadline,
+                          Trace&& trace, Skip&& skip) {
+  std::atomic<size_t> next{0}, cut{0};
+  const int workers = tbb::this_task_arena::max_concurrency();
+  tbb::parallel_for(
+      0, workers,
+      [&](int) {
+        for (size_t i; (i = next.fetch_add(1)) < queue.size();) {
+          const RankedTile& t = queue[i];
+          if (Clock::now() < deadline) {
+            trace(*t.view, t.x0, t.y0, t.x1, t.y1);
+          } else {
+            skip(t.x0, t.y0, t.x1, t.y1);
+            cut.fetch_add(1, std::memory_order_relaxed);
+          }
+        }
+      },
+      tbb::simple_partitioner());
+  return cut.load();
+}
 }  // namespace
 
 void RTSecondaryPass::execute(FrameContext& ctx) {
@@ -90,13 +125,26 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   Buffer& shadow = ctx.output(*this, "shadow");
   Buffer& reflection = ctx.output(*this, "reflection");
   Buffer& refraction = ctx.output(*this, "refraction");
+  Buffer& traced = ctx.output(*this, "traced_mask");
   const Buffer* request = ctx.optionalInput(*this, "rt_request");
   const bool timed = request && request->data[0] > 0.5f;
+  const double deadlineMs = request && request->channels > 1 ? request->data[1] : 0.0;
   const float outsideShadow = float(param("outside_mask_shadow"));
   tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
-  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
+  // Listing 8a: 0 in all three outside the mask (`outside_mask_shadow` = 1 keeps the shadow buffer
+  // neutral there instead; blend never reads it outside the mask).
+  auto skipTile = [&](int x0, int y0, int x1, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        shadow.setRgb(x, y, Vec3(outsideShadow));
+        reflection.setRgb(x, y, Vec3(0.0f));
+        refraction.setRgb(x, y, Vec3(0.0f));
+        traced.setRgb(x, y, Vec3(0.0f));
+      }
+  };
+  auto traceTile = [&](const View& v, int x0, int y0, int x1, int y1) {
     LightVisibility8 vis(scene.lights.size());
-    EffectTallies& tally = tallies.local();
+    EffectTally* tally = tallies.local().data();
     // 4x2 pixel blocks: a block's shadow rays go as 8-wide packets, its shadow shading as one
     // batch; reflections and refractions recurse pixel by pixel.
     for (int by = y0; by < y1; by += 2)
@@ -119,8 +167,6 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
             py[n] = y;
             ++n;
           }
-        // Listing 8a: 0 in all three outside the mask (`outside_mask_shadow` = 1 keeps the
-        // shadow buffer neutral there instead; blend never reads it outside the mask).
         Vec3 shadowRgb[8], reflectionRgb[8], refractionRgb[8];
         int lane[8], m = 0;
         SurfaceSample shadowed[8];
@@ -182,9 +228,27 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
           shadow.setRgb(px[k], py[k], shadowRgb[k]);
           reflection.setRgb(px[k], py[k], reflectionRgb[k]);
           refraction.setRgb(px[k], py[k], refractionRgb[k]);
+          traced.setRgb(px[k], py[k],
+                        Vec3(want[k][0] ? 1.0f : 0.0f, want[k][1] ? 1.0f : 0.0f,
+                             want[k][2] ? 1.0f : 0.0f));
         }
       }
-  });
+  };
+  Clock::time_point deadline{};
+  if (deadlineMs > 0) {
+    // The deadline leaves room for the tail measured last time: the tiles in flight when it
+    // passed and what follows them here.
+    deadline = start + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double, std::milli>(deadlineMs - tailMs_));
+    const std::vector<RankedTile> queue =
+        rankTiles(ctx.views, mask, ctx.input(*this, "object_id"),
+                  ctx.optionalInput(*this, "heuristic_order"), skipTile);
+    const size_t cut = traceUntilDeadline(queue, deadline, traceTile, skipTile);
+    ctx.counters["rt_secondary/tiles_cut"] = double(cut);
+    if (cut == 0) deadline = {};  // nothing was cut: the tail says nothing
+  } else {
+    parallelViewTiles(ctx.views, traceTile);
+  }
   RtStats stats;
   stats.timeEffects = timed;
   stats.pixels.assign(objects, {});
@@ -200,6 +264,10 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
       }
   });
   stats.ms = msSince(start);
+  if (deadline != Clock::time_point{}) {
+    const double tail = std::max(0.0, std::chrono::duration<double, std::milli>(Clock::now() - deadline).count());
+    tailMs_ = std::min(0.5 * tailMs_ + 0.5 * tail, 0.5 * deadlineMs);
+  }
   writeRtStats(stats, ctx.output(*this, "rt_stats", int(objects) + 1, 1));
   ctx.passRays += double(rt.raysTraced() - raysBefore);
 }

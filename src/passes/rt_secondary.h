@@ -2,9 +2,11 @@
 // G-buffer (no primary rays): shadow rays to every light (Listing 8b), reflection and refraction
 // rays with recursion (Listing 8c, rt/whitted.h). Outside the mask all three are 0 (Listing 8a;
 // Figure 5's buffers), or the shadow 1 with outside_mask_shadow = 1.
-// Inputs: G-buffer sample targets, heuristic_mask, rt_request (optional: 1 times each object and
-// effect). Outputs: shadow, reflection, refraction, rt_stats (what it traced, for the next
-// frame's heuristic).
+// Inputs: G-buffer sample targets, heuristic_mask, rt_request (optional: [1 times each object and
+// effect, a deadline in ms or 0]), heuristic_order (optional: the nodes' ranks, the order tiles
+// are traced in under a deadline). Outputs: shadow, reflection, refraction, traced_mask (the
+// heuristic mask where it was traced: all of it, unless the deadline cut the tail), rt_stats
+// (what it traced, for the next frame's heuristic).
 // Parameters: max_depth, importance_cutoff.
 #pragma once
 #include "pipeline/pass.h"
@@ -26,6 +28,10 @@ class RTSecondaryPass : public Pass {
   std::vector<BufferSlot> outputs() const override;
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+  void resetHistory() override { tailMs_ = 0; }
+
+ private:
+  double tailMs_ = 0;  // deadline mode: smoothed time from the deadline to the pass's end
 };
 
 }  // namespace tandem

@@ -2,6 +2,7 @@
 // measurements, the ms-budget calibration and the equivalences between modes.
 #include <gtest/gtest.h>
 
+#include <mutex>
 #include <random>
 
 #include <tbb/task_arena.h>
@@ -11,6 +12,7 @@
 #include "passes/blend.h"
 
 #include "passes/heuristic.h"
+#include "passes/ranked_tiles.h"
 #include "passes/reflection_probes.h"
 #include "passes/shadow_maps.h"
 #include "pipeline/frame_context.h"
@@ -117,10 +119,12 @@ TEST(HybridEffects, ModesAgreeAtTheExtremes) {
 
 // The ms budget: costs are predicted CPU ms (visible pixels x the CPU ms per pixel the RT pass
 // measured for that object and effect), and T = budget_ms x (predicted ms selected last frame /
-// RT wall ms last frame). The measured wall time is set by hand so the check is exact.
+// RT wall ms last frame). The measured wall time is set by hand so the check is exact. (Without
+// the deadline: the prediction alone holds the budget.)
 TEST(HybridEffects, MsBudgetCalibratesFromTheLastRtPass) {
   Scene s = makeSpheresScene();
-  auto r = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=10"}, 96, 54);
+  auto r = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=10", "heuristic.deadline=0"},
+                        96, 54);
   r->renderFrame(0, s.camera);
   const HeuristicPass& h = heuristicOf(*r);
   const double threads = double(tbb::this_task_arena::max_concurrency());
@@ -143,6 +147,101 @@ TEST(HybridEffects, MsBudgetCalibratesFromTheLastRtPass) {
       else
         EXPECT_EQ(st.cpuMs[o][e], 0.0) << o << " " << e;
     }
+}
+
+// The deadline: T is `overcommit` times the calibrated budget, and the calibration learns from
+// the cost of what was traced (here all of it: 1 s is far more than a 96 x 54 frame needs, so
+// nothing is cut and the traced mask is the heuristic mask).
+TEST(HybridEffects, DeadlineOvercommitsAndCalibratesOnTheTracedCost) {
+  Scene s = makeSpheresScene();
+  auto r = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1000", "heuristic.overcommit=2"},
+                        96, 54);
+  r->renderFrame(0, s.camera);
+  const HeuristicPass& h = heuristicOf(*r);
+  const double threads = double(tbb::this_task_arena::max_concurrency());
+  EXPECT_DOUBLE_EQ(h.lastBudget(), 2 * 1000 * threads);
+  const double cost1 = h.lastSelectedCost();
+  ASSERT_GT(cost1, 0);
+  const FrameContext& ctx = r->context();
+  EXPECT_TRUE(sameBuffer(ctx.input("traced_mask"), ctx.input("heuristic_mask")));
+  EXPECT_EQ(ctx.counters.at("rt_secondary/tiles_cut"), 0.0);
+  Buffer& prev = r->context().history.at("rt_stats");
+  prev.at(prev.width - 1, 0)[0] = 4.0f;
+  r->renderFrame(1, s.camera);
+  // Nothing was cut, so the traced cost is the selected cost (the same pixels at the same price).
+  EXPECT_NEAR(h.lastBudget(), 2 * 1000 * cost1 / 4.0, 1e-6 * h.lastBudget());
+}
+
+// A deadline no tile can meet (everything selected, 1 fs to trace it) cuts every tile: nothing is
+// traced and the frame is the zero-budget frame (everything from the fallbacks), pixel for pixel;
+// a deadline nothing reaches draws what the same selection draws without one.
+TEST(HybridEffects, DeadlineCutsToTheFallbackAndOtherwiseChangesNothing) {
+  Scene s = makeSpheresScene();
+  auto cut = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1e-12", "heuristic.select_all=1"},
+                          96, 54);
+  cut->renderFrame(0, s.camera);
+  const FrameContext& ctx = cut->context();
+  ASSERT_FALSE(heuristicOf(*cut).lastSelection().empty());  // something was selected...
+  EXPECT_GT(ctx.counters.at("rt_secondary/tiles_cut"), 0.0);
+  for (float v : ctx.input("traced_mask").data) ASSERT_EQ(v, 0.0f);  // ...and nothing traced
+  auto none = makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0"}, 96, 54);
+  none->renderFrame(0, s.camera);
+  EXPECT_TRUE(sameBuffer(cut->output(), none->output()));
+
+  auto late = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1e5"}, 96, 54);
+  auto off = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1e5", "heuristic.deadline=0"},
+                          96, 54);
+  late->renderFrame(0, s.camera);
+  off->renderFrame(0, s.camera);
+  EXPECT_EQ(heuristicOf(*late).lastSelection().size(), heuristicOf(*off).lastSelection().size());
+  EXPECT_TRUE(sameBuffer(late->context().input("traced_mask"),
+                         late->context().input("heuristic_mask")));
+  EXPECT_TRUE(sameBuffer(late->output(), off->output()));
+}
+
+// Under a deadline tiles go most relevant node first, then nearest the view centre; tiles with
+// nothing masked are handed back as empty, not queued.
+TEST(HybridEffects, RankedTilesGoByRankThenCentre) {
+  const int w = 64, h = 32;
+  std::vector<View> views(1);
+  views[0].camera.width = w;
+  views[0].camera.height = h;
+  Buffer mask(w, h, kEffectCount), ids(w, h, 1), order(2, 1, kEffectCount);
+  std::fill(ids.data.begin(), ids.data.end(), -1.0f);
+  // Object 0 (rank 1, reflection) fills the left half, object 1 (rank 0, shadow) the top-right
+  // tile; the bottom-right tile has nothing masked.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (x < 32) {
+        ids.at(x, y)[0] = 0;
+        mask.at(x, y)[kReflection] = 1;
+      } else if (x >= 48 && y < 16) {
+        ids.at(x, y)[0] = 1;
+        mask.at(x, y)[kShadow] = 1;
+      }
+    }
+  std::fill(order.data.begin(), order.data.end(), -1.0f);
+  order.at(0, 0)[kReflection] = 1;
+  order.at(1, 0)[kShadow] = 0;
+  std::vector<std::array<int, 2>> empty;
+  std::mutex m;
+  const std::vector<RankedTile> tiles =
+      rankTiles(views, mask, ids, &order, [&](int x0, int y0, int, int) {
+        std::lock_guard<std::mutex> lock(m);
+        empty.push_back({x0, y0});
+      });
+  ASSERT_EQ(tiles.size(), 5u);  // 4 tiles of object 0, 1 of object 1
+  EXPECT_EQ(tiles[0].x0, 48);   // rank 0 first
+  EXPECT_EQ(tiles[0].y0, 0);
+  // Then object 0's tiles, the two beside the centre (x 16..31) before the two at the edge.
+  EXPECT_EQ(tiles[1].x0, 16);
+  EXPECT_EQ(tiles[2].x0, 16);
+  EXPECT_EQ(tiles[3].x0, 0);
+  EXPECT_EQ(tiles[4].x0, 0);
+  for (size_t i = 1; i < tiles.size(); ++i) EXPECT_LE(tiles[i - 1].key, tiles[i].key);
+  std::sort(empty.begin(), empty.end());
+  const std::vector<std::array<int, 2>> expectEmpty = {{32, 0}, {32, 16}, {48, 16}};
+  EXPECT_EQ(empty, expectEmpty);
 }
 
 // Raster shadow maps: under an occluder a point is in shadow, beside it lit, for a directional
