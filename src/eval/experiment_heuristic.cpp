@@ -115,7 +115,9 @@ StaticResult runStatic(Run& run, const CameraDesc& cam, const HeuristicExperimen
   if (run.heuristic) {
     r.selected = size_t(run.counter("heuristic/selected"));
     r.visible = size_t(run.counter("heuristic/visible_objects"));
-    r.mask = run.renderer->context().input("heuristic_mask");
+    // What was ray traced: the mask less the tiles a deadline cut.
+    const FrameContext& ctx = run.renderer->context();
+    r.mask = ctx.input(ctx.has("traced_mask") ? "traced_mask" : "heuristic_mask");
   }
   return r;
 }
@@ -220,7 +222,7 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
       // The budget binds when something visible was left out (not selected, or cut by the
       // deadline); otherwise the RT stage simply had less to do than the budget allows.
       bool binds = budget.counter("heuristic/selected") < budget.counter("heuristic/nodes") ||
-                   budget.counter("rt_secondary/tiles_cut") > 0;
+                   budget.counter("rt_secondary/items_cut") > 0;
       res.withinBand += within;
       res.binding += binds;
       res.bindingWithin += binds && within;

@@ -253,9 +253,9 @@ void HeuristicPass::writeOrder(const std::vector<HeuristicNode>& nodes, bool per
   for (const HeuristicNode& node : nodes) relevancy[size_t(node.id)] = node.relevancy;
   std::vector<HeuristicNode> chosen;
   for (int id : selected_) chosen.push_back({id, 0.0, relevancy[size_t(id)]});
-  std::stable_sort(chosen.begin(), chosen.end(), [](const HeuristicNode& a, const HeuristicNode& b) {
-    return a.relevancy > b.relevancy;
-  });
+  std::stable_sort(
+      chosen.begin(), chosen.end(),
+      [](const HeuristicNode& a, const HeuristicNode& b) { return a.relevancy > b.relevancy; });
   std::fill(order.data.begin(), order.data.end(), -1.0f);
   for (size_t r = 0; r < chosen.size(); ++r) {
     const int id = chosen[r].id;

@@ -86,11 +86,12 @@ struct EffectTally {
 };
 using EffectTallies = std::vector<EffectTally>;
 
-// Deadline mode: every worker takes the ranked tiles in order and traces them until the deadline;
-// the tiles left are skipped (traced_mask 0: the fallback covers them). Returns how many were.
-template <class Trace, class Skip>
+// Deadline mode: every worker takes the ranked work items in order and traces them until the
+// deadline; the items left stay cleared (traced_mask 0: the fallback covers them). Returns how
+// many were left.
+template <class Trace>
 size_t traceUntilDeadline(const std::vector<RankedTile>& queue, Clock::time_point deadline,
-                          Trace&& trace, Skip&& skip) {
+                          Trace&& trace) {
   std::atomic<size_t> next{0}, cut{0};
   const int workers = tbb::this_task_arena::max_concurrency();
   tbb::parallel_for(
@@ -98,12 +99,10 @@ size_t traceUntilDeadline(const std::vector<RankedTile>& queue, Clock::time_poin
       [&](int) {
         for (size_t i; (i = next.fetch_add(1)) < queue.size();) {
           const RankedTile& t = queue[i];
-          if (Clock::now() < deadline) {
-            trace(*t.view, t.x0, t.y0, t.x1, t.y1);
-          } else {
-            skip(t.x0, t.y0, t.x1, t.y1);
+          if (Clock::now() < deadline)
+            trace(*t.view, t.x0, t.y0, t.x1, t.y1, int64_t(t.rank));
+          else  // left as cleared: not traced
             cut.fetch_add(1, std::memory_order_relaxed);
-          }
         }
       },
       tbb::simple_partitioner());
@@ -133,7 +132,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
   // Listing 8a: 0 in all three outside the mask (`outside_mask_shadow` = 1 keeps the shadow buffer
   // neutral there instead; blend never reads it outside the mask).
-  auto skipTile = [&](int x0, int y0, int x1, int y1) {
+  auto clearTile = [&](int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         shadow.setRgb(x, y, Vec3(outsideShadow));
@@ -142,7 +141,11 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         traced.setRgb(x, y, Vec3(0.0f));
       }
   };
-  auto traceTile = [&](const View& v, int x0, int y0, int x1, int y1) {
+  const Buffer& ids = ctx.input(*this, "object_id");
+  const Buffer* order = ctx.optionalInput(*this, "heuristic_order");
+  // `rank` < 0: every masked effect, every output written. Otherwise (a deadline's work item) only
+  // the effects of that node rank, and only their outputs (the tile was cleared beforehand).
+  auto traceTile = [&](const View& v, int x0, int y0, int x1, int y1, int64_t rank) {
     LightVisibility8 vis(scene.lights.size());
     EffectTally* tally = tallies.local().data();
     // 4x2 pixel blocks: a block's shadow rays go as 8-wide packets, its shadow shading as one
@@ -158,7 +161,9 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
             const int x = bx + i, y = by + j;
             if (x >= x1 || y >= y1) continue;
             const float* m = mask.at(x, y);
-            for (int e = 0; e < kEffectCount; ++e) want[n][e] = m[e] > 0.5f;
+            for (int e = 0; e < kEffectCount; ++e)
+              want[n][e] = m[e] > 0.5f &&
+                           (rank < 0 || nodeRank(order, ids.at(x, y)[0], e) == uint32_t(rank));
             hit[n] = (want[n][0] || want[n][1] || want[n][2]) && g.read(x, y, s[n]);
             Vec3 origin;
             if (hit[n])
@@ -225,12 +230,22 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
               account(kRefraction);
             }
           }
-          shadow.setRgb(px[k], py[k], shadowRgb[k]);
-          reflection.setRgb(px[k], py[k], reflectionRgb[k]);
-          refraction.setRgb(px[k], py[k], refractionRgb[k]);
-          traced.setRgb(px[k], py[k],
-                        Vec3(want[k][0] ? 1.0f : 0.0f, want[k][1] ? 1.0f : 0.0f,
-                             want[k][2] ? 1.0f : 0.0f));
+          if (rank < 0) {
+            shadow.setRgb(px[k], py[k], shadowRgb[k]);
+            reflection.setRgb(px[k], py[k], reflectionRgb[k]);
+            refraction.setRgb(px[k], py[k], refractionRgb[k]);
+            traced.setRgb(
+                px[k], py[k],
+                Vec3(want[k][0] ? 1.0f : 0.0f, want[k][1] ? 1.0f : 0.0f, want[k][2] ? 1.0f : 0.0f));
+            continue;
+          }
+          Buffer* out[kEffectCount] = {&shadow, &reflection, &refraction};
+          const Vec3 value[kEffectCount] = {shadowRgb[k], reflectionRgb[k], refractionRgb[k]};
+          for (int e = 0; e < kEffectCount; ++e)
+            if (want[k][e]) {
+              out[e]->setRgb(px[k], py[k], value[e]);
+              traced.at(px[k], py[k])[e] = 1.0f;
+            }
         }
       }
   };
@@ -240,14 +255,14 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
     // passed and what follows them here.
     deadline = start + std::chrono::duration_cast<Clock::duration>(
                            std::chrono::duration<double, std::milli>(deadlineMs - tailMs_));
-    const std::vector<RankedTile> queue =
-        rankTiles(ctx.views, mask, ctx.input(*this, "object_id"),
-                  ctx.optionalInput(*this, "heuristic_order"), skipTile);
-    const size_t cut = traceUntilDeadline(queue, deadline, traceTile, skipTile);
-    ctx.counters["rt_secondary/tiles_cut"] = double(cut);
+    const std::vector<RankedTile> queue = rankTiles(ctx.views, mask, ids, order, clearTile);
+    const size_t cut = traceUntilDeadline(queue, deadline, traceTile);
+    ctx.counters["rt_secondary/items_cut"] = double(cut);
     if (cut == 0) deadline = {};  // nothing was cut: the tail says nothing
   } else {
-    parallelViewTiles(ctx.views, traceTile);
+    parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
+      traceTile(v, x0, y0, x1, y1, -1);
+    });
   }
   RtStats stats;
   stats.timeEffects = timed;
@@ -265,7 +280,8 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   });
   stats.ms = msSince(start);
   if (deadline != Clock::time_point{}) {
-    const double tail = std::max(0.0, std::chrono::duration<double, std::milli>(Clock::now() - deadline).count());
+    const double tail =
+        std::max(0.0, std::chrono::duration<double, std::milli>(Clock::now() - deadline).count());
     tailMs_ = std::min(0.5 * tailMs_ + 0.5 * tail, 0.5 * deadlineMs);
   }
   writeRtStats(stats, ctx.output(*this, "rt_stats", int(objects) + 1, 1));

@@ -123,8 +123,8 @@ TEST(HybridEffects, ModesAgreeAtTheExtremes) {
 // the deadline: the prediction alone holds the budget.)
 TEST(HybridEffects, MsBudgetCalibratesFromTheLastRtPass) {
   Scene s = makeSpheresScene();
-  auto r = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=10", "heuristic.deadline=0"},
-                        96, 54);
+  auto r =
+      makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=10", "heuristic.deadline=0"}, 96, 54);
   r->renderFrame(0, s.camera);
   const HeuristicPass& h = heuristicOf(*r);
   const double threads = double(tbb::this_task_arena::max_concurrency());
@@ -164,7 +164,7 @@ TEST(HybridEffects, DeadlineOvercommitsAndCalibratesOnTheTracedCost) {
   ASSERT_GT(cost1, 0);
   const FrameContext& ctx = r->context();
   EXPECT_TRUE(sameBuffer(ctx.input("traced_mask"), ctx.input("heuristic_mask")));
-  EXPECT_EQ(ctx.counters.at("rt_secondary/tiles_cut"), 0.0);
+  EXPECT_EQ(ctx.counters.at("rt_secondary/items_cut"), 0.0);
   Buffer& prev = r->context().history.at("rt_stats");
   prev.at(prev.width - 1, 0)[0] = 4.0f;
   r->renderFrame(1, s.camera);
@@ -177,30 +177,31 @@ TEST(HybridEffects, DeadlineOvercommitsAndCalibratesOnTheTracedCost) {
 // a deadline nothing reaches draws what the same selection draws without one.
 TEST(HybridEffects, DeadlineCutsToTheFallbackAndOtherwiseChangesNothing) {
   Scene s = makeSpheresScene();
-  auto cut = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1e-12", "heuristic.select_all=1"},
-                          96, 54);
+  auto cut = makeRenderer(s, "hybrid-budget",
+                          {"heuristic.budget_ms=1e-12", "heuristic.select_all=1"}, 96, 54);
   cut->renderFrame(0, s.camera);
   const FrameContext& ctx = cut->context();
   ASSERT_FALSE(heuristicOf(*cut).lastSelection().empty());  // something was selected...
-  EXPECT_GT(ctx.counters.at("rt_secondary/tiles_cut"), 0.0);
+  EXPECT_GT(ctx.counters.at("rt_secondary/items_cut"), 0.0);
   for (float v : ctx.input("traced_mask").data) ASSERT_EQ(v, 0.0f);  // ...and nothing traced
   auto none = makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0"}, 96, 54);
   none->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(cut->output(), none->output()));
 
   auto late = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1e5"}, 96, 54);
-  auto off = makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1e5", "heuristic.deadline=0"},
-                          96, 54);
+  auto off =
+      makeRenderer(s, "hybrid-budget", {"heuristic.budget_ms=1e5", "heuristic.deadline=0"}, 96, 54);
   late->renderFrame(0, s.camera);
   off->renderFrame(0, s.camera);
   EXPECT_EQ(heuristicOf(*late).lastSelection().size(), heuristicOf(*off).lastSelection().size());
-  EXPECT_TRUE(sameBuffer(late->context().input("traced_mask"),
-                         late->context().input("heuristic_mask")));
+  EXPECT_TRUE(
+      sameBuffer(late->context().input("traced_mask"), late->context().input("heuristic_mask")));
   EXPECT_TRUE(sameBuffer(late->output(), off->output()));
 }
 
-// Under a deadline tiles go most relevant node first, then nearest the view centre; tiles with
-// nothing masked are handed back as empty, not queued.
+// Under a deadline the work items (a tile and a node rank) go most relevant node first, then
+// nearest the view centre, then by position; a tile holding two nodes is two items; every tile is
+// prepared once.
 TEST(HybridEffects, RankedTilesGoByRankThenCentre) {
   const int w = 64, h = 32;
   std::vector<View> views(1);
@@ -208,14 +209,14 @@ TEST(HybridEffects, RankedTilesGoByRankThenCentre) {
   views[0].camera.height = h;
   Buffer mask(w, h, kEffectCount), ids(w, h, 1), order(2, 1, kEffectCount);
   std::fill(ids.data.begin(), ids.data.end(), -1.0f);
-  // Object 0 (rank 1, reflection) fills the left half, object 1 (rank 0, shadow) the top-right
-  // tile; the bottom-right tile has nothing masked.
+  // Object 0 (rank 1, reflection) fills x < 36, object 1 (rank 0, shadow) x >= 40 in the top
+  // row of tiles; the bottom-right tile has nothing masked.
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      if (x < 32) {
+      if (x < 36) {
         ids.at(x, y)[0] = 0;
         mask.at(x, y)[kReflection] = 1;
-      } else if (x >= 48 && y < 16) {
+      } else if (x >= 40 && y < 16) {
         ids.at(x, y)[0] = 1;
         mask.at(x, y)[kShadow] = 1;
       }
@@ -223,25 +224,27 @@ TEST(HybridEffects, RankedTilesGoByRankThenCentre) {
   std::fill(order.data.begin(), order.data.end(), -1.0f);
   order.at(0, 0)[kReflection] = 1;
   order.at(1, 0)[kShadow] = 0;
-  std::vector<std::array<int, 2>> empty;
+  EXPECT_EQ(nodeRank(&order, 1, kShadow), 0u);
+  EXPECT_EQ(nodeRank(&order, 1, kReflection), kUnrankedNode);
+  EXPECT_EQ(nodeRank(nullptr, 0, kReflection), kUnrankedNode);
+  std::vector<std::array<int, 2>> prepared;
   std::mutex m;
-  const std::vector<RankedTile> tiles =
+  const std::vector<RankedTile> items =
       rankTiles(views, mask, ids, &order, [&](int x0, int y0, int, int) {
         std::lock_guard<std::mutex> lock(m);
-        empty.push_back({x0, y0});
+        prepared.push_back({x0, y0});
       });
-  ASSERT_EQ(tiles.size(), 5u);  // 4 tiles of object 0, 1 of object 1
-  EXPECT_EQ(tiles[0].x0, 48);   // rank 0 first
-  EXPECT_EQ(tiles[0].y0, 0);
-  // Then object 0's tiles, the two beside the centre (x 16..31) before the two at the edge.
-  EXPECT_EQ(tiles[1].x0, 16);
-  EXPECT_EQ(tiles[2].x0, 16);
-  EXPECT_EQ(tiles[3].x0, 0);
-  EXPECT_EQ(tiles[4].x0, 0);
-  for (size_t i = 1; i < tiles.size(); ++i) EXPECT_LE(tiles[i - 1].key, tiles[i].key);
-  std::sort(empty.begin(), empty.end());
-  const std::vector<std::array<int, 2>> expectEmpty = {{32, 0}, {32, 16}, {48, 16}};
-  EXPECT_EQ(empty, expectEmpty);
+  EXPECT_EQ(prepared.size(), 8u);
+  // Rank 0: tile (32, 0) (centre 8, -8 from the view's) before (48, 0) (24, -8). Rank 1: four
+  // tiles 8 columns and 8 rows from the centre, by position, then the two at the left edge.
+  const std::vector<std::array<int, 3>> expect = {{0, 32, 0}, {0, 48, 0},  {1, 16, 0}, {1, 16, 16},
+                                                  {1, 32, 0}, {1, 32, 16}, {1, 0, 0},  {1, 0, 16}};
+  ASSERT_EQ(items.size(), expect.size());
+  for (size_t i = 0; i < items.size(); ++i) {
+    EXPECT_EQ(int(items[i].rank), expect[i][0]) << i;
+    EXPECT_EQ(items[i].x0, expect[i][1]) << i;
+    EXPECT_EQ(items[i].y0, expect[i][2]) << i;
+  }
 }
 
 // Raster shadow maps: under an occluder a point is in shadow, beside it lit, for a directional
