@@ -76,8 +76,9 @@ inline float length(Vec3 v) {
   return std::sqrt(dot(v, v));
 }
 inline Vec3 normalize(Vec3 v) {
-  float l = length(v);
-  return l > 0 ? v / l : Vec3(0, 0, 0);
+  // The test on the squared length (the same outcome) does not wait for the square root.
+  const float l2 = dot(v, v);
+  return l2 > 0 ? v / std::sqrt(l2) : Vec3(0, 0, 0);
 }
 inline Vec3 vmin(Vec3 a, Vec3 b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};

@@ -5,16 +5,6 @@
 
 namespace tandem {
 
-Vec2 Material::transformUv(Vec2 uv) const {
-  Vec2 s = uv * tiling;
-  if (uvRotation != 0.0f) {
-    // KHR_texture_transform rotates counter-clockwise in UV space.
-    float c = std::cos(uvRotation), n = std::sin(uvRotation);
-    s = {c * s.x + n * s.y, -n * s.x + c * s.y};
-  }
-  return s + offset;
-}
-
 BlinnPhongTerms fromMetallicRoughness(Vec3 base, float metal, float rough) {
   metal = std::clamp(metal, 0.0f, 1.0f);
   rough = std::clamp(rough, 0.0f, 1.0f);

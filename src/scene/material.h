@@ -1,6 +1,7 @@
 // Tandem's material: every property of seed 002 Table 1 plus what glTF/OBJ need.
 // Colours are linear RGB. Texture indices are -1 when absent.
 #pragma once
+#include <cmath>
 #include <string>
 
 #include "core/math.h"
@@ -47,7 +48,15 @@ struct Material {
     return diffuseTexture >= 0 || emissionTexture >= 0 || specularTexture >= 0 ||
            metallicRoughnessTexture >= 0 || normalTexture >= 0 || occlusionTexture >= 0;
   }
-  Vec2 transformUv(Vec2 uv) const;
+  Vec2 transformUv(Vec2 uv) const {  // inline: the raster resolve calls it every pixel
+    Vec2 s = uv * tiling;
+    if (uvRotation != 0.0f) {
+      // KHR_texture_transform rotates counter-clockwise in UV space.
+      float c = std::cos(uvRotation), n = std::sin(uvRotation);
+      s = {c * s.x + n * s.y, -n * s.x + c * s.y};
+    }
+    return s + offset;
+  }
 };
 
 // Metallic-roughness -> Blinn-Phong terms (docs/scene-format.md), used by the glTF loader for the

@@ -12,8 +12,10 @@
 
 namespace tandem {
 
-inline SurfaceSample resolveSurfaceInline(const TriangleSetup& tri, Vec3 origin, Vec3 dir,
-                                          const float* knownTuv, float pixelSpread) {
+[[gnu::always_inline]] inline SurfaceSample resolveSurfaceInline(const TriangleSetup& tri,
+                                                                 Vec3 origin, Vec3 dir,
+                                                                 const float* knownTuv,
+                                                                 float pixelSpread) {
   const Scene& scene = *tri.fs->scene;
   const FrameObject& fo = *tri.fo;
   const Material& mat = *tri.mat;
@@ -29,66 +31,62 @@ inline SurfaceSample resolveSurfaceInline(const TriangleSetup& tri, Vec3 origin,
   v = std::clamp(v, 0.0f, 1.0f - u);
   const float w = 1.0f - u - v;
 
-  SurfaceSample s;
-  s.object = tri.object;
-  s.material = tri.materialIndex;
-  s.t = t;
-  s.position = a * w + b * u + c * v;
-  s.geoNormal = tri.geoNormal;
+  // Every field is computed into a local and the sample built once at the end: a default-built
+  // sample is zero-filled first (a `rep stos` per pixel) and then overwritten.
+  const Vec3 position = a * w + b * u + c * v;
+  Vec3 geoNormal = tri.geoNormal;
   Vec3 n = normalize(tri.n[0] * w + tri.n[1] * u + tri.n[2] * v);
-  if (mat.doubleSided && dot(s.geoNormal, dir) > 0) {
-    s.geoNormal = -s.geoNormal;
+  if (mat.doubleSided && dot(geoNormal, dir) > 0) {
+    geoNormal = -geoNormal;
     n = -n;
   }
   Vec2 uvMesh = tri.uv[0] * w + tri.uv[1] * u + tri.uv[2] * v;
-  s.uv = mat.transformUv(uvMesh);
+  const Vec2 uv = mat.transformUv(uvMesh);
   // Each texture at the level of detail of the pixel's cone: its width at the hit, across the
   // surface (1 / cos), in UV units through the triangle's UV / world scale (and the tiling).
   float footprint = 0.0f;
   if (pixelSpread > 0.0f && mat.hasTexture() && tri.hasUvs) {
     const float dirLength = length(dir);
     if (tri.worldArea > 0.0f && dirLength > 0.0f) {
-      const float cosine = std::abs(dot(s.geoNormal, dir)) / dirLength;
-      const float width = pixelSpread * length(s.position - origin) / std::max(cosine, 0.05f);
+      const float cosine = std::abs(dot(geoNormal, dir)) / dirLength;
+      const float width = pixelSpread * length(position - origin) / std::max(cosine, 0.05f);
       footprint = width * tri.uvPerWorld * std::max(std::abs(mat.tiling.x), std::abs(mat.tiling.y));
     }
   }
   auto sampleTex = [&](int i) {
     const Texture& t = scene.textures[size_t(i)];
-    return t.sample(s.uv, t.lodFor(footprint));
+    return t.sample(uv, t.lodFor(footprint));
   };
 
-  s.diffuse = mat.diffuse;
-  s.diffuseOpacity = mat.diffuseOpacity;
+  Vec3 diffuse = mat.diffuse;
+  float diffuseOpacity = mat.diffuseOpacity;
   if (mat.diffuseTexture >= 0) {
     Vec4 tex = sampleTex(mat.diffuseTexture);
-    s.diffuse = s.diffuse * tex.xyz();
-    s.diffuseOpacity *= tex.w;
+    diffuse = diffuse * tex.xyz();
+    diffuseOpacity *= tex.w;
   }
-  s.ambient = mat.ambient;
-  s.emission = mat.emission;
-  if (mat.emissionTexture >= 0) s.emission = s.emission * sampleTex(mat.emissionTexture).xyz();
-  s.specular = mat.specular;
-  if (mat.specularTexture >= 0) s.specular = s.specular * sampleTex(mat.specularTexture).xyz();
-  s.specularExponent = mat.specularExponent;
-  s.reflectivity = mat.reflectivity;
+  Vec3 ambient = mat.ambient;
+  Vec3 emission = mat.emission;
+  if (mat.emissionTexture >= 0) emission = emission * sampleTex(mat.emissionTexture).xyz();
+  Vec3 specular = mat.specular;
+  if (mat.specularTexture >= 0) specular = specular * sampleTex(mat.specularTexture).xyz();
+  float specularExponent = mat.specularExponent;
+  float reflectivity = mat.reflectivity;
   if (mat.metallicRoughnessTexture >= 0) {
     Vec4 mr = sampleTex(mat.metallicRoughnessTexture);
     Vec3 base = mat.baseColor;
     if (mat.diffuseTexture >= 0) base = base * sampleTex(mat.diffuseTexture).xyz();
     BlinnPhongTerms bp = fromMetallicRoughness(base, mat.metallic * mr.z, mat.roughness * mr.y);
-    s.diffuse = bp.diffuse;
-    s.ambient = bp.diffuse;
-    s.specular = bp.specular;
-    s.specularExponent = bp.exponent;
-    s.reflectivity = bp.reflectivity;
+    diffuse = bp.diffuse;
+    ambient = bp.diffuse;
+    specular = bp.specular;
+    specularExponent = bp.exponent;
+    reflectivity = bp.reflectivity;
   }
   if (mat.occlusionTexture >= 0)  // after the metallic-roughness terms, which reset ambient
-    s.ambient =
-        s.ambient * (1.0f + mat.occlusionStrength * (sampleTex(mat.occlusionTexture).x - 1.0f));
-  s.ior = mat.ior;
-  s.opacity = mat.opacity;
-  if (mat.alphaMode == AlphaMode::Blend) s.opacity = std::min(s.opacity, s.diffuseOpacity);
+    ambient = ambient * (1.0f + mat.occlusionStrength * (sampleTex(mat.occlusionTexture).x - 1.0f));
+  float opacity = mat.opacity;
+  if (mat.alphaMode == AlphaMode::Blend) opacity = std::min(opacity, diffuseOpacity);
 
   if (mat.normalTexture >= 0) {
     Vec4 tg = fo.tangents[idx[0]] * w + fo.tangents[idx[1]] * u + fo.tangents[idx[2]] * v;
@@ -99,8 +97,10 @@ inline SurfaceSample resolveSurfaceInline(const TriangleSetup& tri, Vec3 origin,
     Vec3 mapped = normalize(tangent * tn.x + bitangent * tn.y + n * tn.z);
     if (isFinite(mapped) && length(mapped) > 0.5f) n = mapped;
   }
-  s.normal = n;
-  return s;
+  return SurfaceSample{
+      position,          n,        geoNormal,        uv,           emission, ambient, diffuse,
+      diffuseOpacity,    specular, specularExponent, reflectivity, mat.ior,  opacity, tri.object,
+      tri.materialIndex, t};
 }
 
 }  // namespace tandem
