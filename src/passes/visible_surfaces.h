@@ -71,7 +71,7 @@ void VisibleSurfaces::resolveTile(const FrameContext& ctx, const View& v, int x0
         TriangleCache::Entry& c = cache.get(fs, object, prim, fresh);
         if (fresh) c.extra = TrianglePlanes::make(o, c.setup.p[0], c.setup.p[1], c.setup.p[2]);
         float tuv[3] = {0, 0, 0};
-        const bool planar = perspective && c.extra.barycentrics(d, tuv[1], tuv[2]);
+        const bool planar = perspective && c.extra.barycentrics(d, tuv[0], tuv[1], tuv[2]);
         return resolveSurfaceInline(c.setup, o, d, planar ? tuv : nullptr, spread);
       }();
       surface(x, y, s, vis.depth[i], Vec2{float(lx) + 0.5f, float(ly) + 0.5f});

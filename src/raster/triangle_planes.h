@@ -12,16 +12,20 @@ namespace tandem {
 
 struct TrianglePlanes {
   Vec3 nu, nv, nw;
+  float tw;  // -(s . Nw): the ray parameter is t = tw / (d . Nw)
 
   static TrianglePlanes make(Vec3 eye, Vec3 a, Vec3 b, Vec3 c) {
     const Vec3 e1 = b - a, e2 = c - a, s = eye - a;
-    return {cross(e2, s), cross(s, e1), cross(e2, e1)};
+    const Vec3 nw = cross(e2, e1);
+    return {cross(e2, s), cross(s, e1), nw, -dot(s, nw)};
   }
-  // Barycentrics (u: vertex b, v: vertex c) along d; false when d runs parallel to the plane.
-  bool barycentrics(Vec3 d, float& u, float& v) const {
+  // Barycentrics (u: vertex b, v: vertex c) and ray parameter t (in units of d) along d; false
+  // when d runs parallel to the plane.
+  bool barycentrics(Vec3 d, float& t, float& u, float& v) const {
     const float w = dot(d, nw);
     if (w == 0.0f) return false;
     const float r = 1.0f / w;
+    t = tw * r;
     u = dot(d, nu) * r;
     v = dot(d, nv) * r;
     return true;

@@ -44,12 +44,16 @@ namespace tandem {
   const Vec2 uv = mat.transformUv(uvMesh);
   // Each texture at the level of detail of the pixel's cone: its width at the hit, across the
   // surface (1 / cos), in UV units through the triangle's UV / world scale (and the tiling).
+  // width = spread x distance / max(cos, 0.05) with distance = t |d| (a known hit's t) and
+  // cos = |g . d| / |d|: one square root and one division.
   float footprint = 0.0f;
   if (pixelSpread > 0.0f && mat.hasTexture() && tri.hasUvs) {
-    const float dirLength = length(dir);
-    if (tri.worldArea > 0.0f && dirLength > 0.0f) {
-      const float cosine = std::abs(dot(geoNormal, dir)) / dirLength;
-      const float width = pixelSpread * length(position - origin) / std::max(cosine, 0.05f);
+    const float dd = dot(dir, dir);
+    if (tri.worldArea > 0.0f && dd > 0.0f) {
+      const float dirLength = std::sqrt(dd);
+      const float along = knownTuv && t > 0.0f ? t * dd : length(position - origin) * dirLength;
+      const float width =
+          pixelSpread * along / std::max(std::abs(dot(geoNormal, dir)), 0.05f * dirLength);
       footprint = width * tri.uvPerWorld * std::max(std::abs(mat.tiling.x), std::abs(mat.tiling.y));
     }
   }
