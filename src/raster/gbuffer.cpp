@@ -42,23 +42,10 @@ void GBufferView::writeBackground(int x, int y, Vec2 mv) {
 }
 
 namespace {
-// Homogeneous point -> pixel coordinates; false behind the camera. (Components one by one: the
-// point usually was just stored as three floats, and a wide load of it would stall.)
-inline bool toPixel(const Mat4& vp, const Camera& c, Vec4 q, Vec2& px) {
-  const float* m = &vp.m[0][0];
-  const Vec4 h{m[0] * q.x + m[1] * q.y + m[2] * q.z + m[3] * q.w,
-               m[4] * q.x + m[5] * q.y + m[6] * q.z + m[7] * q.w,
-               m[8] * q.x + m[9] * q.y + m[10] * q.z + m[11] * q.w,
-               m[12] * q.x + m[13] * q.y + m[14] * q.z + m[15] * q.w};
-  if (h.w <= 1e-8f) return false;
-  px = {(h.x / h.w * 0.5f + 0.5f) * c.width, (0.5f - h.y / h.w * 0.5f) * c.height};
-  return true;
-}
-
 Vec2 screenMotion(const View& v, Vec4 now, Vec4 before) {
   Vec2 a, b;
-  if (!toPixel(v.camera.viewProjUnjittered, v.camera, now, a) ||
-      !toPixel(v.prevCamera.viewProjUnjittered, v.prevCamera, before, b))
+  if (!projectToPixel(v.camera.viewProjUnjittered, v.camera, now, a) ||
+      !projectToPixel(v.prevCamera.viewProjUnjittered, v.prevCamera, before, b))
     return {0, 0};
   return a - b;
 }
@@ -69,16 +56,6 @@ Vec2 motionVector(const FrameScene& fs, const View& view, int object, Vec3 p) {
   if (!fo.moved && !view.cameraMoved) return {0, 0};
   Vec3 prev = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
   return screenMotion(view, Vec4(p, 1.0f), Vec4(prev, 1.0f));
-}
-
-Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 p, Vec2 pixel) {
-  const FrameObject& fo = fs.objects[size_t(object)];
-  if (!fo.moved && !view.cameraMoved) return {0, 0};
-  Vec3 prev = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
-  Vec2 before;
-  if (!toPixel(view.prevCamera.viewProjUnjittered, view.prevCamera, Vec4(prev, 1.0f), before))
-    return {0, 0};
-  return pixel + view.camera.jitter - before;
 }
 
 Vec2 backgroundMotion(const View& view, Vec3 dir) {

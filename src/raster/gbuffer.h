@@ -61,11 +61,34 @@ struct GBufferView {
 // Screen-space motion of a surface point of `object` in `view`: where it is now minus where it was
 // (unjittered cameras).
 Vec2 motionVector(const FrameScene& fs, const View& view, int object, Vec3 worldPos);
+// Homogeneous point -> pixel coordinates of camera c through vp; false behind the camera.
+// (Components one by one: the point usually was just stored as three floats, and a wide load of
+// it would stall.)
+inline bool projectToPixel(const Mat4& vp, const Camera& c, Vec4 q, Vec2& px) {
+  const float* m = &vp.m[0][0];
+  const Vec4 h{m[0] * q.x + m[1] * q.y + m[2] * q.z + m[3] * q.w,
+               m[4] * q.x + m[5] * q.y + m[6] * q.z + m[7] * q.w,
+               m[8] * q.x + m[9] * q.y + m[10] * q.z + m[11] * q.w,
+               m[12] * q.x + m[13] * q.y + m[14] * q.z + m[15] * q.w};
+  if (h.w <= 1e-8f) return false;
+  px = {(h.x / h.w * 0.5f + 0.5f) * c.width, (0.5f - h.y / h.w * 0.5f) * c.height};
+  return true;
+}
+
 // The same for a point known to lie on the camera ray of pixel centre `pixel` (view-local pixel
 // coordinates, centres at +0.5): where it is now needs no projection (the unjittered camera
-// sees it at pixel + jitter), only where it was.
-Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 worldPos,
-                         Vec2 pixel);
+// sees it at pixel + jitter), only where it was. Inline: the raster resolve calls it per pixel.
+inline Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 p,
+                                Vec2 pixel) {
+  const FrameObject& fo = fs.objects[size_t(object)];
+  if (!fo.moved && !view.cameraMoved) return {0, 0};
+  Vec3 prev = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
+  Vec2 before;
+  if (!projectToPixel(view.prevCamera.viewProjUnjittered, view.prevCamera, Vec4(prev, 1.0f),
+                      before))
+    return {0, 0};
+  return pixel + view.camera.jitter - before;
+}
 // Motion of the background seen along `dir` (a point at infinity: only camera rotation moves it).
 Vec2 backgroundMotion(const View& view, Vec3 dir);
 
