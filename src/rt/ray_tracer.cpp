@@ -33,6 +33,10 @@ struct ShadowLane {
   int countedN = 0;
 };
 
+// Ray counters, a power of two known at compile time: a thread's slot is a mask, not a
+// division per ray.
+constexpr size_t kRayCounters = 64;
+
 // Context passed to filter callbacks (Embree's documented pattern of extending the context).
 struct QueryContext {
   RTCIntersectContext ctx;
@@ -128,7 +132,7 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-RayTracer::RayTracer() : rays_(new RayCounter[64]), rayCounters_(64) {
+RayTracer::RayTracer() : rays_(new RayCounter[kRayCounters]), rayCounters_(kRayCounters) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(device_, errorCallback, nullptr);
@@ -189,18 +193,18 @@ bool RayTracer::update(const FrameScene& fs) {
 namespace {
 // Thread slots are unique within an arena; the modulo only matters past 64 threads, where the
 // atomics keep sharing correct (and per-thread differences approximate).
-size_t threadSlot(size_t slots) {
-  int slot = tbb::this_task_arena::current_thread_index();
-  return size_t(slot < 0 ? 0 : slot) % slots;
+size_t threadSlot() {
+  const int slot = tbb::this_task_arena::current_thread_index();
+  return size_t(slot < 0 ? 0 : slot) % kRayCounters;
 }
 }  // namespace
 
 void RayTracer::countRays(uint64_t n) const {
-  rays_[threadSlot(rayCounters_)].n.fetch_add(n, std::memory_order_relaxed);
+  rays_[threadSlot()].n.fetch_add(n, std::memory_order_relaxed);
 }
 
 uint64_t RayTracer::raysOnThisThread() const {
-  return rays_[threadSlot(rayCounters_)].n.load(std::memory_order_relaxed);
+  return rays_[threadSlot()].n.load(std::memory_order_relaxed);
 }
 
 uint64_t RayTracer::raysTraced() const {
