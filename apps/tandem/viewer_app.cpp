@@ -49,12 +49,44 @@ void installRedrawCallbacks(GLFWwindow* w) {
 }
 
 // What the window shows: the frame's image over the whole framebuffer (the render is the
-// window size times the resolution scale; the texture's linear filter upsamples it).
-void drawImage(GLuint tex, int fbWidth, int fbHeight) {
-  ImGui::GetBackgroundDrawList()->AddImage(
-      reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex)), ImVec2(0, 0),
-      ImVec2(float(fbWidth), float(fbHeight)));
-}
+// window size times the resolution scale). Copied with a framebuffer blit, not drawn as a
+// blended, filtered quad: on a software GL (Mesa llvmpipe under Xvfb) the quad cost the
+// renderer's cores several milliseconds a frame. Linear filtering only when the sizes differ.
+struct ImageBlit {
+  using GenFramebuffers = void (*)(GLsizei, GLuint*);
+  using BindFramebuffer = void (*)(GLenum, GLuint);
+  using FramebufferTexture2D = void (*)(GLenum, GLenum, GLenum, GLuint, GLint);
+  using BlitFramebuffer = void (*)(GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLint,
+                                   GLbitfield, GLenum);
+  GenFramebuffers genFramebuffers = nullptr;
+  BindFramebuffer bindFramebuffer = nullptr;
+  FramebufferTexture2D framebufferTexture2D = nullptr;
+  BlitFramebuffer blitFramebuffer = nullptr;
+  GLuint fbo = 0;
+
+  void init(GLuint tex) {
+    genFramebuffers = reinterpret_cast<GenFramebuffers>(glfwGetProcAddress("glGenFramebuffers"));
+    bindFramebuffer = reinterpret_cast<BindFramebuffer>(glfwGetProcAddress("glBindFramebuffer"));
+    framebufferTexture2D =
+        reinterpret_cast<FramebufferTexture2D>(glfwGetProcAddress("glFramebufferTexture2D"));
+    blitFramebuffer = reinterpret_cast<BlitFramebuffer>(glfwGetProcAddress("glBlitFramebuffer"));
+    if (!genFramebuffers || !bindFramebuffer || !framebufferTexture2D || !blitFramebuffer)
+      throw std::runtime_error("the OpenGL driver lacks framebuffer objects (OpenGL 3.0)");
+    genFramebuffers(1, &fbo);
+    bindFramebuffer(0x8CA8 /* GL_READ_FRAMEBUFFER */, fbo);
+    framebufferTexture2D(0x8CA8, 0x8CE0 /* GL_COLOR_ATTACHMENT0 */, GL_TEXTURE_2D, tex, 0);
+    bindFramebuffer(0x8CA8, 0);
+  }
+  // The texture's rows are top first; the window's bottom first: the blit flips them.
+  void draw(int texWidth, int texHeight, int fbWidth, int fbHeight) const {
+    bindFramebuffer(0x8CA8, fbo);
+    bindFramebuffer(0x8CA9 /* GL_DRAW_FRAMEBUFFER */, 0);
+    const bool same = texWidth == fbWidth && texHeight == fbHeight;
+    blitFramebuffer(0, texHeight, texWidth, 0, 0, 0, fbWidth, fbHeight, GL_COLOR_BUFFER_BIT,
+                    same ? GL_NEAREST : GL_LINEAR);
+    bindFramebuffer(0x8CA8, 0);
+  }
+};
 
 // The window refreshes at most kDisplayHz: without a cap the loop spins and, on a software GL
 // (Mesa llvmpipe), redraws the window as fast as it can on the cores the renderer needs.
@@ -150,6 +182,8 @@ int runViewer(const ViewerOptions& o) {
   glBindTexture(GL_TEXTURE_2D, tex);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  ImageBlit blit;
+  blit.init(tex);
 
   int fbw = 0, fbh = 0;
   glfwGetFramebufferSize(window, &fbw, &fbh);
@@ -261,12 +295,15 @@ int runViewer(const ViewerOptions& o) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (texW > 0) drawImage(tex, fbw, fbh);
     if (!o.hideUi) drawPanels(s, worker);
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
-    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
+    if (texW > 0) {
+      blit.draw(texW, texH, fbw, fbh);
+    } else {
+      glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+    }
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     s.viewerMs = float(msSince(t0));
     if (s.frame.serial > 0) s.viewerMsSum += s.viewerMs, ++s.viewerFrames;
@@ -295,6 +332,10 @@ int runViewer(const ViewerOptions& o) {
           s.frame.height, s.history.framesPerSecond(), s.history.averageFrameMs(), s.history.size(),
           s.viewerFrames ? s.viewerMsSum / s.viewerFrames : 0.0,
           s.viewerFrames ? s.presentMsSum / s.viewerFrames : 0.0);
+      std::printf("view: mean ms per pass:");
+      for (const FrameHistory::PassRow& r : s.history.rows())
+        std::printf(" %s %.2f", r.name.c_str(), r.averageMs);
+      std::printf("\n");
       if (!worker.error().empty()) std::printf("view: %s\n", worker.error().c_str());
       if (o.exitAfter) glfwSetWindowShouldClose(window, GLFW_TRUE);
     }
