@@ -329,10 +329,13 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
         for (int py = py0; py <= py1; ++py) {
           int64_t e0 = rowE[0], e1 = rowE[1], e2 = rowE[2];
           size_t row = size_t(py) * W;
-          float zRow = t.zRef + t.dzdy * (py + 0.5f - t.yRef) + t.dzdx * (px0 + 0.5f - t.xRef);
-          for (int px = px0; px <= px1; ++px, zRow += t.dzdx) {
+          // Depth from the plane at each covered pixel, not summed along the row: no chain of
+          // dependent adds through every pixel the box holds (and no rounding carried along).
+          const float zRow =
+              t.zRef + t.dzdy * (py + 0.5f - t.yRef) + t.dzdx * (px0 + 0.5f - t.xRef);
+          for (int px = px0; px <= px1; ++px) {
             if ((e0 | e1 | e2) >= 0) {
-              const float z = zRow;
+              const float z = zRow + t.dzdx * float(px - px0);
               size_t i = row + px;
               if (z > out.depth[i] && z <= 1.0f) {
                 if (!t.alphaMask || alphaKeeps(fs, cam, t, px + 0.5f, py + 0.5f)) {
