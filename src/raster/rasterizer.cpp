@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "raster/raster_tile.h"
 #include "shading/surface_resolve.h"
 
 namespace tandem {
@@ -296,62 +297,43 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
       std::fill(out.object.begin() + row + x0, out.object.begin() + row + x1 + 1, kNoObject);
       std::fill(out.prim.begin() + row + x0, out.prim.begin() + row + x1 + 1, 0u);
     }
+    // Chunks in submission order; inside one, the vector kernel draws every triangle but the
+    // alpha-masked ones, which are drawn here, in their turn, texel by texel.
+    const RasterTile target{
+        out.depth.data(), out.object.data(), out.prim.data(), W, x0, y0, x1, y1};
     for (int ch = 0; ch < chunks; ++ch) {
       const auto& tris = chunkTris_[ch];
-      for (uint32_t id : bins_[ch][tile]) {
-        const SetupTriangle& t = tris[id];
-        int32_t minX = std::min({t.x[0], t.x[1], t.x[2]}),
-                maxX = std::max({t.x[0], t.x[1], t.x[2]});
-        int32_t minY = std::min({t.y[0], t.y[1], t.y[2]}),
-                maxY = std::max({t.y[0], t.y[1], t.y[2]});
-        int px0 = std::max(x0, int((minX - 128 + 255) >> kSubBits));
-        int px1 = std::min(x1, int((maxX - 128) >> kSubBits));
-        int py0 = std::max(y0, int((minY - 128 + 255) >> kSubBits));
-        int py1 = std::min(y1, int((maxY - 128) >> kSubBits));
-        if (px0 > px1 || py0 > py1) continue;
-        // Edge e runs from vertex e to vertex e+1; E_e(p) >= 0 inside (positive orientation).
-        int64_t dx[3], dy[3], bias[3], rowE[3];
-        const int64_t sx = (int64_t(px0) << kSubBits) + 128, sy = (int64_t(py0) << kSubBits) + 128;
-        for (int e = 0; e < 3; ++e) {
-          int a = e, b = (e + 1) % 3;
-          dx[e] = int64_t(t.x[b]) - t.x[a];
-          dy[e] = int64_t(t.y[b]) - t.y[a];
-          // Top-left rule: a shared edge is walked in opposite directions by its two
-          // triangles, so exactly one of them owns pixel centres lying on it.
-          bool owns = dy[e] < 0 || (dy[e] == 0 && dx[e] > 0);
-          bias[e] = owns ? 0 : -1;
-          rowE[e] = dx[e] * (sy - t.y[a]) - dy[e] * (sx - t.x[a]) + bias[e];
-        }
-        // E_e = dx*(py - ya) - dy*(px - xa): with this sign, positive orientation is area > 0
-        // in this formula, which we ensured by swapping during setup.
-        const int64_t stepX[3] = {-dy[0] * 256, -dy[1] * 256, -dy[2] * 256};
-        const int64_t stepY[3] = {dx[0] * 256, dx[1] * 256, dx[2] * 256};
-        for (int py = py0; py <= py1; ++py) {
+      const auto& ids = bins_[ch][tile];
+      for (size_t k = 0; k < ids.size(); ++k) {
+        k = rasterTileTriangles(target, tris.data(), ids.data(), k, ids.size());
+        if (k == ids.size()) break;
+        const SetupTriangle& t = tris[ids[k]];
+        const TriangleBox b = triangleBox(t, x0, y0, x1, y1);
+        if (b.empty()) continue;
+        int64_t rowE[3] = {b.rowE[0], b.rowE[1], b.rowE[2]};
+        for (int py = b.py0; py <= b.py1; ++py) {
           int64_t e0 = rowE[0], e1 = rowE[1], e2 = rowE[2];
-          size_t row = size_t(py) * W;
-          // Depth from the plane at each covered pixel, not summed along the row: no chain of
-          // dependent adds through every pixel the box holds (and no rounding carried along).
+          const size_t row = size_t(py) * W;
+          // Depth from the plane at each covered pixel, as the vector kernel computes it.
           const float zRow =
-              t.zRef + t.dzdy * (py + 0.5f - t.yRef) + t.dzdx * (px0 + 0.5f - t.xRef);
-          for (int px = px0; px <= px1; ++px) {
+              t.zRef + t.dzdy * (py + 0.5f - t.yRef) + t.dzdx * (b.px0 + 0.5f - t.xRef);
+          for (int px = b.px0; px <= b.px1; ++px) {
             if ((e0 | e1 | e2) >= 0) {
-              const float z = zRow + t.dzdx * float(px - px0);
-              size_t i = row + px;
-              if (z > out.depth[i] && z <= 1.0f) {
-                if (!t.alphaMask || alphaKeeps(fs, cam, t, px + 0.5f, py + 0.5f)) {
-                  out.depth[i] = z;
-                  out.object[i] = t.object;
-                  out.prim[i] = t.prim;
-                }
+              const float z = zRow + t.dzdx * float(px - b.px0);
+              const size_t i = row + px;
+              if (z > out.depth[i] && z <= 1.0f && alphaKeeps(fs, cam, t, px + 0.5f, py + 0.5f)) {
+                out.depth[i] = z;
+                out.object[i] = t.object;
+                out.prim[i] = t.prim;
               }
             }
-            e0 += stepX[0];
-            e1 += stepX[1];
-            e2 += stepX[2];
+            e0 += b.stepX[0];
+            e1 += b.stepX[1];
+            e2 += b.stepX[2];
           }
-          rowE[0] += stepY[0];
-          rowE[1] += stepY[1];
-          rowE[2] += stepY[2];
+          rowE[0] += b.stepY[0];
+          rowE[1] += b.stepY[1];
+          rowE[2] += b.stepY[2];
         }
       }
     }
