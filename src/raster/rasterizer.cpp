@@ -48,6 +48,25 @@ inline float planeDist(const Vec4& v, int plane) {
   }
 }
 
+// Bit p set when the vertex lies outside plane p (NaN counts as outside).
+inline unsigned outcode(const Vec4& v) {
+  unsigned code = 0;
+  for (int p = 0; p < 6; ++p)
+    if (!(planeDist(v, p) >= 0)) code |= 1u << p;
+  return code;
+}
+
+// Clip space to the screen: unsnapped position, 8-bit fixed point, depth z / w.
+template <class ScreenVertex>
+inline void project(const Vec4& v, int W, int H, ScreenVertex& out) {
+  const float iw = 1.0f / v.w;
+  out.sx = (v.x * iw * 0.5f + 0.5f) * W;
+  out.sy = (0.5f - v.y * iw * 0.5f) * H;
+  out.x = toFixed(out.sx);
+  out.y = toFixed(out.sy);
+  out.z = v.z * iw;
+}
+
 // Sutherland-Hodgman against the planes in `mask`; returns the vertex count (<= 9).
 int clipPolygon(Vec4* poly, int n, unsigned mask) {
   Vec4 tmp[12];
@@ -108,6 +127,7 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
   // 1. Vertices to clip space, for objects whose bounds reach into the view frustum, and only
   // when the camera or the geometry changed since they were last transformed.
   clip_.resize(fs.objects.size());
+  screen_.resize(fs.objects.size());
   clipKeys_.resize(fs.objects.size());
   objectCulled_.assign(fs.objects.size(), 0);
   for (size_t o = 0; o < fs.objects.size(); ++o) {
@@ -121,17 +141,21 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
     ClipKey& key = clipKeys_[o];
     auto& c = clip_[o];
     if (c.size() == pos.size() && key.geometryVersion == fs.geometryVersion &&
-        key.tau == (atTau ? tau : -1.0f) && sameMatrix(key.viewProj, vp))
+        key.tau == (atTau ? tau : -1.0f) && sameMatrix(key.viewProj, vp) && key.width == W &&
+        key.height == H)
       continue;
-    key = {vp, fs.geometryVersion, atTau ? tau : -1.0f};
+    key = {vp, fs.geometryVersion, atTau ? tau : -1.0f, W, H};
     c.resize(pos.size());
+    auto& sv = screen_[o];
+    sv.resize(pos.size());
     parallelRange(
         pos.size(),
         [&](size_t b, size_t e) {
-          if (atTau)
-            for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(positionAt(fo, i, tau), 1.0f);
-          else
-            for (size_t i = b; i < e; ++i) c[i] = vp * Vec4(pos[i], 1.0f);
+          for (size_t i = b; i < e; ++i) {
+            c[i] = vp * Vec4(atTau ? positionAt(fo, i, tau) : pos[i], 1.0f);
+            sv[i].outcode = outcode(c[i]);
+            if (sv[i].outcode == 0) project(c[i], W, H, sv[i]);
+          }
         },
         4096);
   }
@@ -169,39 +193,35 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
       const Mesh& mesh = scene.meshes[obj.mesh];
       const uint32_t prim = uint32_t(g - firstTri[o]);
       const uint32_t* idx = &mesh.indices[3 * size_t(prim)];
-      const auto& cv = clip_[o];
-      Vec4 poly[12] = {cv[idx[0]], cv[idx[1]], cv[idx[2]]};
+      const auto& sv = screen_[o];
       // Outcodes: trivially reject when all vertices lie outside one plane.
-      unsigned andCode = 0x3f, orCode = 0;
-      for (int k = 0; k < 3; ++k) {
-        unsigned code = 0;
-        for (int p = 0; p < 6; ++p)
-          if (!(planeDist(poly[k], p) >= 0)) code |= 1u << p;  // NaN counts as outside
-        andCode &= code;
-        orCode |= code;
-      }
+      const unsigned andCode = sv[idx[0]].outcode & sv[idx[1]].outcode & sv[idx[2]].outcode,
+                     orCode = sv[idx[0]].outcode | sv[idx[1]].outcode | sv[idx[2]].outcode;
       if (andCode) {
         ++localCulled;
         continue;
       }
+      // Fixed-point screen coordinates: the vertices' own when the triangle lies inside every
+      // plane, else those of the clipped polygon.
       int n = 3;
+      int32_t X[12], Y[12];
+      float Z[12], SX[12], SY[12];
       if (orCode) {
+        const auto& cv = clip_[o];
+        Vec4 poly[12] = {cv[idx[0]], cv[idx[1]], cv[idx[2]]};
         n = clipPolygon(poly, 3, orCode);
         ++localClipped;
         if (n < 3) continue;
-      }
-      // Project to fixed-point screen coordinates.
-      int32_t X[12], Y[12];
-      float Z[12], SX[12], SY[12];
-      for (int k = 0; k < n; ++k) {
-        float iw = 1.0f / poly[k].w;
-        float sx = (poly[k].x * iw * 0.5f + 0.5f) * W;
-        float sy = (0.5f - poly[k].y * iw * 0.5f) * H;
-        SX[k] = sx;
-        SY[k] = sy;
-        X[k] = toFixed(sx);
-        Y[k] = toFixed(sy);
-        Z[k] = poly[k].z * iw;
+        for (int k = 0; k < n; ++k) {
+          ScreenVertex p;
+          project(poly[k], W, H, p);
+          X[k] = p.x, Y[k] = p.y, Z[k] = p.z, SX[k] = p.sx, SY[k] = p.sy;
+        }
+      } else {
+        for (int k = 0; k < 3; ++k) {
+          const ScreenVertex& p = sv[idx[k]];
+          X[k] = p.x, Y[k] = p.y, Z[k] = p.z, SX[k] = p.sx, SY[k] = p.sy;
+        }
       }
       // Triangle fan over the clipped polygon; all pieces share the original's orientation.
       for (int k = 1; k + 1 < n; ++k) {

@@ -85,7 +85,17 @@ class Rasterizer {
     Mat4 viewProj;
     uint64_t geometryVersion = ~0ull;
     float tau = -2.0f;
+    int width = 0, height = 0;
   };
+  // Per object, each vertex's outcode against the clip planes and, where it is inside them
+  // all, its screen position: a vertex is shared by about six triangles, and a triangle inside
+  // every plane (most of them) takes its three vertices from here instead of projecting them.
+  struct ScreenVertex {
+    unsigned outcode;
+    int32_t x, y;     // fixed point
+    float sx, sy, z;  // unsnapped screen position and depth
+  };
+  std::vector<std::vector<ScreenVertex>> screen_;
   std::vector<ClipKey> clipKeys_;
   std::vector<std::vector<SetupTriangle>> chunkTris_;     // per chunk
   std::vector<std::vector<std::vector<uint32_t>>> bins_;  // [chunk][tile] -> triangle index
