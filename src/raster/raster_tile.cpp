@@ -30,6 +30,8 @@ size_t RasterTileTrianglesImpl(const RasterTile& tile, const Rasterizer::SetupTr
   const hn::Rebind<int32_t, decltype(d64)> di;
   const hn::Rebind<uint32_t, decltype(d64)> du;
   const int lanes = int(hn::Lanes(d64));
+  const auto laneIndex = hn::ConvertTo(df, hn::Iota(di, 0));  // 0, 1, 2, ... (once: Iota
+                                                              // goes through the stack)
   HWY_ALIGN int64_t laneSteps[3][HWY_MAX_BYTES / sizeof(int64_t)];
   for (size_t k = first; k < n; ++k) {
     const Rasterizer::SetupTriangle& t = tris[ids[k]];
@@ -65,7 +67,9 @@ size_t RasterTileTrianglesImpl(const RasterTile& tile, const Rasterizer::SetupTr
         hn::StoreMaskBits(d64, covered, bits);
         const auto mf = hn::LoadMaskBits(df, bits);
         const size_t i = row + size_t(px);
-        const auto z = hn::Add(zRowV, hn::Mul(dzdxV, hn::ConvertTo(df, hn::Iota(di, px - b.px0))));
+        // k + lane as a float: exact (small integers), so the same value as float(px - px0).
+        const auto k = hn::Add(hn::Set(df, float(px - b.px0)), laneIndex);
+        const auto z = hn::Add(zRowV, hn::Mul(dzdxV, k));
         const auto depth = hn::LoadU(df, tile.depth + i);
         const auto pass = hn::And(mf, hn::And(hn::Gt(z, depth), hn::Le(z, oneV)));
         hn::BlendedStore(z, pass, df, tile.depth + i);
