@@ -6,12 +6,9 @@
 set -euo pipefail
 SPP="${1:-32}"
 DEPTH="${2:-4}"
-ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-T="${TANDEM:-$ROOT/build/release/apps/tandem/tandem}"
-command -v pathtracer >/dev/null || { echo "needs Embree's pathtracer (apt-get install embree-tools)"; exit 1; }
-W="$(mktemp -d)"
-trap 'rm -rf "$W"' EXIT
-"$T" export --scene atrium --out "$W/atrium.obj" >/dev/null
+# shellcheck source=scripts/embree-side-by-side.sh
+source "$(dirname "$0")/embree-side-by-side.sh" pathtracer
+W="$SCENE_DIR"
 # The built-in atrium's camera and its sun and four lamps (spot omitted: Embree's tutorial has
 # none); Embree takes intensity x colour.
 CAM_T=(--camera-pos -11,2.2,9 --look-at 4,2.5,-3 --vfov 60)

@@ -9,12 +9,9 @@ set -euo pipefail
 W="${1:-1280}"
 H="${2:-720}"
 P="${3:-deferred}"
-ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-T="${TANDEM:-$ROOT/build/release/apps/tandem/tandem}"
-command -v viewer_stream >/dev/null || { echo "needs Embree's viewer_stream (apt-get install embree-tools)"; exit 1; }
-D="$(mktemp -d)"
-trap 'rm -rf "$D"' EXIT
-"$T" export --scene atrium --out "$D/atrium.obj" >/dev/null
+# shellcheck source=scripts/embree-side-by-side.sh
+source "$(dirname "$0")/embree-side-by-side.sh" viewer_stream
+D="$SCENE_DIR"
 echo "atrium, ${W}x${H}, 2 threads, camera (-11, 2.2, 9) -> (4, 2.5, -3), 60 deg"
 embree_out=$(viewer_stream -i "$D/atrium.obj" --size "$W" "$H" --vp -11 2.2 9 --vi 4 2.5 -3 \
   --vu 0 1 0 --fov 60 --threads 2 --benchmark 2 10 -o "$D/embree.ppm" 2>&1)

@@ -53,6 +53,36 @@ inline TriangleBox triangleBox(const Rasterizer::SetupTriangle& t, int x0, int y
   return b;
 }
 
+// Depth at the centre of pixel (px0, py) of the box: the plane z = zRef + dzdx (x - xRef) +
+// dzdy (y - yRef); a pixel k to the right adds dzdx k (not summed pixel by pixel).
+inline float rowDepth(const Rasterizer::SetupTriangle& t, const TriangleBox& b, int py) {
+  return t.zRef + t.dzdy * (py + 0.5f - t.yRef) + t.dzdx * (b.px0 + 0.5f - t.xRef);
+}
+
+// row(py, e) for each row of the box, e the edge values at its first pixel.
+template <class Row>
+inline void walkRows(const TriangleBox& b, Row&& row) {
+  int64_t e[3] = {b.rowE[0], b.rowE[1], b.rowE[2]};
+  for (int py = b.py0; py <= b.py1; ++py) {
+    row(py, e);
+    for (int k = 0; k < 3; ++k) e[k] += b.stepY[k];
+  }
+}
+
+// visit(px, z) for each covered pixel of [px, b.px1] in one row, from the edge values e at px
+// and the row's depth zRow: the pixel-by-pixel walk.
+template <class Visit>
+inline void walkRowPixels(const Rasterizer::SetupTriangle& t, const TriangleBox& b, int px,
+                          const int64_t e[3], float zRow, Visit&& visit) {
+  int64_t e0 = e[0], e1 = e[1], e2 = e[2];
+  for (; px <= b.px1; ++px) {
+    if ((e0 | e1 | e2) >= 0) visit(px, zRow + t.dzdx * float(px - b.px0));
+    e0 += b.stepX[0];
+    e1 += b.stepX[1];
+    e2 += b.stepX[2];
+  }
+}
+
 // Rasterizes tris[ids[i]] for i in [first, n) in order into `tile`, stopping before the first
 // alpha-masked triangle (the caller tests its texels, then resumes after it). Returns the index
 // it stopped at (n when all were drawn).

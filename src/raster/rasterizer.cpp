@@ -330,31 +330,17 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
         const SetupTriangle& t = tris[ids[k]];
         const TriangleBox b = triangleBox(t, x0, y0, x1, y1);
         if (b.empty()) continue;
-        int64_t rowE[3] = {b.rowE[0], b.rowE[1], b.rowE[2]};
-        for (int py = b.py0; py <= b.py1; ++py) {
-          int64_t e0 = rowE[0], e1 = rowE[1], e2 = rowE[2];
+        walkRows(b, [&](int py, const int64_t* e) {
           const size_t row = size_t(py) * W;
-          // Depth from the plane at each covered pixel, as the vector kernel computes it.
-          const float zRow =
-              t.zRef + t.dzdy * (py + 0.5f - t.yRef) + t.dzdx * (b.px0 + 0.5f - t.xRef);
-          for (int px = b.px0; px <= b.px1; ++px) {
-            if ((e0 | e1 | e2) >= 0) {
-              const float z = zRow + t.dzdx * float(px - b.px0);
-              const size_t i = row + px;
-              if (z > out.depth[i] && z <= 1.0f && alphaKeeps(fs, cam, t, px + 0.5f, py + 0.5f)) {
-                out.depth[i] = z;
-                out.object[i] = t.object;
-                out.prim[i] = t.prim;
-              }
+          walkRowPixels(t, b, b.px0, e, rowDepth(t, b, py), [&](int px, float z) {
+            const size_t i = row + px;
+            if (z > out.depth[i] && z <= 1.0f && alphaKeeps(fs, cam, t, px + 0.5f, py + 0.5f)) {
+              out.depth[i] = z;
+              out.object[i] = t.object;
+              out.prim[i] = t.prim;
             }
-            e0 += b.stepX[0];
-            e1 += b.stepX[1];
-            e2 += b.stepX[2];
-          }
-          rowE[0] += b.stepY[0];
-          rowE[1] += b.stepY[1];
-          rowE[2] += b.stepY[2];
-        }
+          });
+        });
       }
     }
   });
