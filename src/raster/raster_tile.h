@@ -30,7 +30,7 @@ struct TriangleBox {
   bool empty() const { return px0 > px1 || py0 > py1; }
 };
 inline TriangleBox triangleBox(const Rasterizer::SetupTriangle& t, int x0, int y0, int x1, int y1) {
-  constexpr int kSubBits = 8;  // the rasterizer's fixed point
+  constexpr int kSubBits = kRasterSubBits;
   TriangleBox b;
   const int32_t minX = std::min({t.x[0], t.x[1], t.x[2]}),
                 maxX = std::max({t.x[0], t.x[1], t.x[2]});

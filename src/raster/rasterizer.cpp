@@ -14,7 +14,7 @@ namespace tandem {
 
 namespace {
 
-constexpr int kSubBits = 8;
+constexpr int kSubBits = kRasterSubBits;
 constexpr float kSubScale = float(1 << kSubBits);
 constexpr int kBinSize = 64;        // pixels per tile side
 constexpr float kGuardBand = 4.0f;  // clip x,y to +-4 w: coordinates stay far from overflow

@@ -16,6 +16,9 @@
 
 namespace tandem {
 
+// Screen coordinates are fixed point with this many sub-pixel bits.
+constexpr int kRasterSubBits = 8;
+
 struct RasterStats {
   size_t trianglesIn = 0, trianglesCulled = 0, trianglesClipped = 0, trianglesBinned = 0;
 };
