@@ -20,6 +20,7 @@ class RasterGBufferPass : public Pass {
 
  private:
   VisibleSurfaces surfaces_;
+  std::vector<float> moved_;  // per object: 1 if it moved since last frame
 };
 
 }  // namespace tandem
