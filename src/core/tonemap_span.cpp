@@ -6,6 +6,8 @@
 #include <hwy/contrib/math/math-inl.h>
 #include <hwy/highway.h>
 
+#include <algorithm>
+
 #include "core/color.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -20,11 +22,20 @@ void TonemapSpanImpl(const float* in, float* out, size_t n, float ev, ToneOperat
   const size_t lanes = hn::Lanes(d);
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const auto scale = hn::Set(d, std::exp2(ev));  // hoisted: one exp2 per span
+  HWY_ALIGN float tail[HWY_MAX_BYTES / sizeof(float)];
   for (size_t i = 0; i < n; i += lanes) {
-    // Plain loads and stores for whole vectors; masked ones only at the span's tail.
+    // Plain loads and stores for whole vectors; the span's tail goes through a vector-sized
+    // copy. (Highway 1.0's masked load and blended store on SSE4 access the whole vector:
+    // an aligned load of an unaligned tail, and a read-modify-write past the span, which
+    // belongs to the next tile and another thread.)
     const bool whole = i + lanes <= n;
-    const auto live = hn::FirstN(d, n - i);
-    auto v = hn::Mul(whole ? hn::LoadU(d, in + i) : hn::MaskedLoad(live, d, in + i), scale);
+    const float* src = in + i;
+    if (!whole) {
+      std::copy(in + i, in + n, tail);
+      std::fill(tail + (n - i), tail + lanes, 0.0f);
+      src = tail;
+    }
+    auto v = hn::Mul(hn::LoadU(d, src), scale);
     v = hn::IfThenElseZero(hn::IsFinite(v), hn::Max(v, zero));  // NaN, inf, negative -> 0
     switch (op) {
       case ToneOperator::Clamp:
@@ -48,10 +59,12 @@ void TonemapSpanImpl(const float* in, float* out, size_t n, float ev, ToneOperat
         hn::Set(d, -0.055f));
     const auto linear = hn::Mul(v, hn::Set(d, 12.92f));
     v = hn::IfThenElse(hn::Le(v, hn::Set(d, 0.0031308f)), linear, hn::Min(curve, one));
-    if (whole)
+    if (whole) {
       hn::StoreU(v, d, out + i);
-    else
-      hn::BlendedStore(v, live, d, out + i);
+    } else {
+      hn::Store(v, d, tail);
+      std::copy(tail, tail + (n - i), out + i);
+    }
   }
 }
 

@@ -257,6 +257,13 @@ TEST(ShadeBatch, EveryInstructionSetAgrees) {
     std::vector<float> out(hdr.size());
     tonemapSpan(hdr.data(), out.data(), hdr.size(), 0.0f, ToneOperator::Aces);
     mapped.push_back(out);
+    // An unaligned span with a partial last vector (a tile's row in the middle of an image):
+    // the same values, and nothing written past its end (the next tile's pixels).
+    std::vector<float> shifted(hdr.size() + 2, -7.0f);
+    tonemapSpan(hdr.data() + 1, shifted.data() + 1, hdr.size() - 2, 0.0f, ToneOperator::Aces);
+    for (size_t i = 1; i + 1 < hdr.size(); ++i)
+      EXPECT_EQ(shifted[i], out[i]) << hwy::TargetName(target) << " value " << i;
+    EXPECT_EQ(shifted[hdr.size() - 1], -7.0f) << hwy::TargetName(target);
   }
   hwy::SetSupportedTargetsForTest(0);  // back to what the machine supports
   for (size_t t = 1; t < targets.size(); ++t) {
