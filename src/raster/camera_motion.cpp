@@ -85,9 +85,8 @@ void WriteCameraMotionImpl(const CameraMotionTile& tile, const View& view, const
       const int id = int(tile.objectId[i]);
       if (id < 0 || id >= objects || moved[id] != 0.0f) continue;
       const float* p = tile.position + 3 * i;
-      Vec2 before, mv{0, 0};
-      if (projectToPixel(prev.viewProjUnjittered, prev, Vec4(p[0], p[1], p[2], 1.0f), before))
-        mv = Vec2{float(x - view.x) + 0.5f, float(y - view.y) + 0.5f} + view.camera.jitter - before;
+      const Vec2 mv = reprojectedMotion(view, Vec3(p[0], p[1], p[2]),
+                                        Vec2{float(x - view.x) + 0.5f, float(y - view.y) + 0.5f});
       tile.motion[2 * i] = mv.x;
       tile.motion[2 * i + 1] = mv.y;
     }

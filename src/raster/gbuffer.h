@@ -78,16 +78,19 @@ inline bool projectToPixel(const Mat4& vp, const Camera& c, Vec4 q, Vec2& px) {
 // The same for a point known to lie on the camera ray of pixel centre `pixel` (view-local pixel
 // coordinates, centres at +0.5): where it is now needs no projection (the unjittered camera
 // sees it at pixel + jitter), only where it was. Inline: the raster resolve calls it per pixel.
-inline Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 p,
-                                Vec2 pixel) {
-  const FrameObject& fo = fs.objects[size_t(object)];
-  if (!fo.moved && !view.cameraMoved) return {0, 0};
-  Vec3 prev = fo.moved ? fo.worldToPrev.transformPoint(p) : p;
+// Motion of the pixel centre `pixel` whose point was at `prev` (world space) last frame.
+inline Vec2 reprojectedMotion(const View& view, Vec3 prev, Vec2 pixel) {
   Vec2 before;
   if (!projectToPixel(view.prevCamera.viewProjUnjittered, view.prevCamera, Vec4(prev, 1.0f),
                       before))
     return {0, 0};
   return pixel + view.camera.jitter - before;
+}
+inline Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 p,
+                                Vec2 pixel) {
+  const FrameObject& fo = fs.objects[size_t(object)];
+  if (!fo.moved && !view.cameraMoved) return {0, 0};
+  return reprojectedMotion(view, fo.moved ? fo.worldToPrev.transformPoint(p) : p, pixel);
 }
 // Motion of the background seen along `dir` (a point at infinity: only camera rotation moves it).
 Vec2 backgroundMotion(const View& view, Vec3 dir);
