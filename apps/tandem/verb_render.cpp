@@ -48,6 +48,10 @@ struct RenderVerb {
     fs::path base = dir / stem;
 
     Renderer renderer(scene, std::move(pipeline), renderSettingsFor(scene, opts));
+    // Only what is written, or read by a pass, is produced.
+    renderer.context().keepAllOutputs = false;
+    renderer.context().wanted = {aovs.begin(), aovs.end()};
+    renderer.context().wanted.insert("hdr");
     FrameTimings last;
     for (int f = 0; f < opts.frames; ++f) last = renderer.renderFrame(f, camera);
     FrameContext& ctx = renderer.context();

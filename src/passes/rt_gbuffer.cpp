@@ -29,7 +29,8 @@ void RTGBufferPass::execute(FrameContext& ctx) {
     const float spread = ctx.pixelSpread(v);  // texture level of detail, as raster
     auto pixel = [&](int x, int y, const Ray& r, const Hit& h) {
       if (!h.valid()) {
-        g.writeBackground(x + v.x, y + v.y, backgroundMotion(v, r.dir));
+        g.writeBackground(x + v.x, y + v.y,
+                          g.wantsMotion() ? backgroundMotion(v, r.dir) : Vec2{0, 0});
         return;
       }
       // Embree's own distance and barycentrics: no second intersection.
@@ -42,8 +43,9 @@ void RTGBufferPass::execute(FrameContext& ctx) {
             caches.local().get(ctx.frame, uint32_t(h.object), uint32_t(h.prim), fresh).setup;
         return resolveSurfaceInline(tri, r.origin, r.dir, tuv, spread);
       }();
-      float depth = v.camera.depthOf(r.origin + r.dir * h.t);
-      g.write(x + v.x, y + v.y, s, depth, motionVector(ctx.frame, v, s.object, s.position));
+      const float depth = g.wantsDepth() ? v.camera.depthOf(r.origin + r.dir * h.t) : 0.0f;
+      g.write(x + v.x, y + v.y, s, depth,
+              g.wantsMotion() ? motionVector(ctx.frame, v, s.object, s.position) : Vec2{0, 0});
     };
     rays +=
         tracePrimaryTile(v.camera, rt, fx0 - v.x, fy0 - v.y, fx1 - v.x, fy1 - v.y,

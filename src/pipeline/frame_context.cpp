@@ -28,6 +28,13 @@ Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, i
   return b;
 }
 
+Buffer* FrameContext::outputIfConsumed(const Pass& pass, const std::string& slot) {
+  const std::string& name = pass.bufferName(slot);
+  if (keepAllOutputs || consumed.count(name) || wanted.count(name)) return &output(pass, slot);
+  buffers.erase(name);
+  return nullptr;
+}
+
 const Buffer& FrameContext::input(const Pass& pass, const std::string& slot) const {
   return input(pass.bufferName(slot));
 }

@@ -4,6 +4,7 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,12 @@ struct FrameContext {
   // Figures passes report for the frame ("spp", "raster/triangles_in", ...); cleared each frame.
   std::map<std::string, double> counters;
   SampleCluster* cluster = nullptr;  // distributed (MPI) reference rendering; null: one process
+  // Outputs nothing reads may be skipped: with keepAllOutputs off, a pass may leave out an
+  // output that no pass reads (this frame or as history), that is not the pipeline's output and
+  // that the caller does not list in `wanted` (AOVs written, the viewer's shown buffer).
+  bool keepAllOutputs = true;
+  std::set<std::string> wanted;
+  std::set<std::string> consumed;  // what the passes read, set by Pipeline::execute
 
   const Camera& camera() const { return views.front().camera; }
   // The angle a pixel of `view` subtends, times textureFootprint: primary hits' texture LOD.
@@ -49,6 +56,9 @@ struct FrameContext {
   // The buffer bound to `pass`'s output slot, created or reshaped to the slot's extent, kind and
   // channels (contents kept when the shape matches). Extent Any: `width` x `height` given here.
   Buffer& output(const Pass& pass, const std::string& slot, int width = 0, int height = 0);
+  // The same when anything reads the output (see keepAllOutputs), else null, and a value left
+  // from an earlier frame is dropped (never shown stale).
+  Buffer* outputIfConsumed(const Pass& pass, const std::string& slot);
   // The buffer bound to an input slot (this frame's, checked by the pipeline's validation).
   const Buffer& input(const Pass& pass, const std::string& slot) const;
   // Last frame's value of a history input slot; null after a reset or before it exists.

@@ -8,9 +8,12 @@
 
 namespace tandem {
 
+// Depth and motion only when something reads them (FrameContext::keepAllOutputs).
 inline GBufferView gbufferTargets(FrameContext& ctx, const Pass& pass) {
-  return GBufferView::create(
-      [&](const BufferSlot& s) -> Buffer& { return ctx.output(pass, s.slot); });
+  return GBufferView::create([&](const BufferSlot& s) -> Buffer* {
+    if (s.slot == "depth" || s.slot == "motion") return ctx.outputIfConsumed(pass, s.slot);
+    return &ctx.output(pass, s.slot);
+  });
 }
 
 inline GBufferReader gbufferSource(const FrameContext& ctx, const Pass& pass) {

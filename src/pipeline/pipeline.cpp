@@ -256,6 +256,9 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     ctx.history.clear();
     resetHistory();
   }
+  ctx.consumed = {output};
+  for (const auto& p : passes)
+    for (const BufferSlot& in : p->inputs()) ctx.consumed.insert(p->bufferName(in.slot));
   for (auto& p : passes) {
     ctx.passRays = 0;
     ctx.passParts.clear();

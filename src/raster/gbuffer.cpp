@@ -1,5 +1,7 @@
 #include "raster/gbuffer.h"
 
+#include "core/error.h"
+
 namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSlots() {
@@ -12,21 +14,22 @@ const std::vector<BufferSlot>& gbufferSlots() {
   return slots;
 }
 
-GBufferView GBufferView::create(const std::function<Buffer&(const BufferSlot&)>& target) {
+GBufferView GBufferView::create(const std::function<Buffer*(const BufferSlot&)>& target) {
   const std::vector<BufferSlot>& s = gbufferSlots();
   float* p[12];
   int width = 0;
   for (size_t i = 0; i < 12; ++i) {
-    Buffer& b = target(s[i]);
-    p[i] = b.data.data();
-    width = b.width;
+    Buffer* b = target(s[i]);
+    TANDEM_ASSERT(b || s[i].slot == "depth" || s[i].slot == "motion");
+    p[i] = b ? b->data.data() : nullptr;
+    if (b) width = b->width;
   }
   return {p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10], p[11], width};
 }
 
 void GBufferView::writeBackground(int x, int y, Vec2 mv) {
   size_t i = size_t(y) * width + x;
-  depth[i] = 0;
+  if (depth) depth[i] = 0;
   auto put3 = [](float* p, Vec3 v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; };
   put3(position + 3 * i, Vec3(0.0f));
   put3(normal + 3 * i, Vec3(0.0f));
@@ -37,8 +40,7 @@ void GBufferView::writeBackground(int x, int y, Vec2 mv) {
   put3(optical + 3 * i, Vec3(0.0f));
   objectId[i] = -1;
   materialId[i] = -1;
-  motion[2 * i] = mv.x;
-  motion[2 * i + 1] = mv.y;
+  if (motion) motion[2 * i] = mv.x, motion[2 * i + 1] = mv.y;
 }
 
 namespace {

@@ -33,13 +33,17 @@ struct GBufferView {
       *objectId, *materialId, *motion;
   int width;
 
-  // `target(slot)` gives the buffer of one of gbufferSlots(), `width` pixels wide.
-  static GBufferView create(const std::function<Buffer&(const BufferSlot&)>& target);
+  // `target(slot)` gives the buffer of one of gbufferSlots(), `width` pixels wide; null for
+  // `depth` or `motion` when nothing reads them (they are then not written: depth and motion
+  // need not be computed, see wantsDepth() and wantsMotion()).
+  static GBufferView create(const std::function<Buffer*(const BufferSlot&)>& target);
+  bool wantsDepth() const { return depth != nullptr; }
+  bool wantsMotion() const { return motion != nullptr; }
   // Inline: the raster resolve writes a sample still in registers.
   void write(int x, int y, const SurfaceSample& s, float d, Vec2 mv) {
     const size_t i = size_t(y) * size_t(width) + size_t(x);
     auto put3 = [](float* p, Vec3 v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; };
-    depth[i] = d;
+    if (depth) depth[i] = d;
     put3(position + 3 * i, s.position);
     put3(normal + 3 * i, s.normal);
     put3(geoNormal + 3 * i, s.geoNormal);
@@ -52,8 +56,7 @@ struct GBufferView {
     put3(optical + 3 * i, {s.reflectivity, s.ior, s.opacity});
     objectId[i] = float(s.object);
     materialId[i] = float(s.material);
-    motion[2 * i] = mv.x;
-    motion[2 * i + 1] = mv.y;
+    if (motion) motion[2 * i] = mv.x, motion[2 * i + 1] = mv.y;
   }
   void writeBackground(int x, int y, Vec2 motion);
 };

@@ -25,15 +25,30 @@ class BatchShader {
     ys_[b_.count++] = y;
     if (b_.count == ShadeBatch::kMax) flush();
   }
+  // A whole batch filled at once (lane() was 0) from the n pixels (x .. x + n - 1, y); shaded
+  // right away.
+  void pushSpan(int x, int y, int n) {
+    b_.count = n;
+    shade();
+    float* o = out_.at(x, y);
+    for (int k = 0; k < n; ++k, o += 3)
+      o[0] = b_.f[ShadeBatch::OR][k], o[1] = b_.f[ShadeBatch::OG][k],
+      o[2] = b_.f[ShadeBatch::OB][k];
+    b_.count = 0;
+  }
   void flush() {
     if (b_.count == 0) return;
-    cullLights(b_, ctx_, lights_);
-    shadeBatch(b_, ctx_);
+    shade();
     for (int k = 0; k < b_.count; ++k) out_.setRgb(xs_[k], ys_[k], b_.result(k));
     b_.count = 0;
   }
 
  private:
+  void shade() {
+    cullLights(b_, ctx_, lights_);
+    shadeBatch(b_, ctx_);
+  }
+
   const ShadingContext& ctx_;
   Buffer& out_;
   ShadeBatch b_;

@@ -1,5 +1,6 @@
 #include "shading/blinn_phong.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -28,6 +29,7 @@ PreparedLight PreparedLight::from(const Light& l) {
   p.range = l.range;
   p.cosOuter = std::cos(radians(l.outerConeDeg));
   p.cosInner = std::cos(radians(l.innerConeDeg));
+  p.outerAngle = std::acos(std::clamp(p.cosOuter, -1.0f, 1.0f));
   p.cosinePower = l.cosinePower;
   p.hemisphere = l.outerConeDeg >= 90.0f && l.innerConeDeg >= 90.0f;
   return p;

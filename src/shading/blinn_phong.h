@@ -29,7 +29,8 @@ struct PreparedLight {
   Vec3 position, direction;
   float attConstant, attLinear, attQuadratic, range;
   float cosOuter, cosInner, cosinePower;
-  bool hemisphere;  // spot with both cones at 90 degrees: a hard cut at the plane
+  float outerAngle;  // acos(cosOuter) in radians, for light culling
+  bool hemisphere;   // spot with both cones at 90 degrees: a hard cut at the plane
   static PreparedLight from(const Light& l);
 };
 

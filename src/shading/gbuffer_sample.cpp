@@ -22,55 +22,46 @@ GBufferReader::GBufferReader(const std::function<const Buffer&(const BufferSlot&
     p[i] = b.data.data();
     width_ = b.width;
   }
-  position_ = p[0];
-  normal_ = p[1];
-  geoNormal_ = p[2];
-  diffuse_ = p[3];
-  specular_ = p[4];
-  emission_ = p[5];
-  ambient_ = p[6];
-  optical_ = p[7];
-  objectId_ = p[8];
-  materialId_ = p[9];
+  g_ = {p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9]};
 }
 
 bool GBufferReader::read(int x, int y, SurfaceSample& s) const {
   size_t i = size_t(y) * width_ + x;
-  if (objectId_[i] < 0) return false;
+  if (g_.objectId[i] < 0) return false;
   auto v3 = [](const float* p) { return Vec3(p[0], p[1], p[2]); };
-  s.position = v3(position_ + 3 * i);
-  s.normal = v3(normal_ + 3 * i);
-  s.geoNormal = v3(geoNormal_ + 3 * i);
-  s.diffuse = v3(diffuse_ + 4 * i);
-  s.diffuseOpacity = diffuse_[4 * i + 3];
-  s.specular = v3(specular_ + 4 * i);
-  s.specularExponent = specular_[4 * i + 3];
-  s.emission = v3(emission_ + 3 * i);
-  s.ambient = v3(ambient_ + 3 * i);
-  s.reflectivity = optical_[3 * i];
-  s.ior = optical_[3 * i + 1];
-  s.opacity = optical_[3 * i + 2];
-  s.object = int(objectId_[i]);
-  s.material = int(materialId_[i]);
+  s.position = v3(g_.position + 3 * i);
+  s.normal = v3(g_.normal + 3 * i);
+  s.geoNormal = v3(g_.geoNormal + 3 * i);
+  s.diffuse = v3(g_.diffuse + 4 * i);
+  s.diffuseOpacity = g_.diffuse[4 * i + 3];
+  s.specular = v3(g_.specular + 4 * i);
+  s.specularExponent = g_.specular[4 * i + 3];
+  s.emission = v3(g_.emission + 3 * i);
+  s.ambient = v3(g_.ambient + 3 * i);
+  s.reflectivity = g_.optical[3 * i];
+  s.ior = g_.optical[3 * i + 1];
+  s.opacity = g_.optical[3 * i + 2];
+  s.object = int(g_.objectId[i]);
+  s.material = int(g_.materialId[i]);
   return true;
 }
 
 bool GBufferReader::read(int x, int y, ShadeBatch& b, int lane) const {
   const size_t i = size_t(y) * width_ + x;
-  if (objectId_[i] < 0) return false;
+  if (g_.objectId[i] < 0) return false;
   using F = ShadeBatch;
   auto put = [&](int field, const float* p) {
     b.f[field][lane] = p[0];
     b.f[field + 1][lane] = p[1];
     b.f[field + 2][lane] = p[2];
   };
-  put(F::PX, position_ + 3 * i);
-  put(F::NX, normal_ + 3 * i);
-  put(F::DR, diffuse_ + 4 * i);
-  put(F::SR, specular_ + 4 * i);
-  b.f[F::EXP][lane] = specular_[4 * i + 3];
-  put(F::ER, emission_ + 3 * i);
-  put(F::AR, ambient_ + 3 * i);
+  put(F::PX, g_.position + 3 * i);
+  put(F::NX, g_.normal + 3 * i);
+  put(F::DR, g_.diffuse + 4 * i);
+  put(F::SR, g_.specular + 4 * i);
+  b.f[F::EXP][lane] = g_.specular[4 * i + 3];
+  put(F::ER, g_.emission + 3 * i);
+  put(F::AR, g_.ambient + 3 * i);
   return true;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/buffer.h"
+#include "core/math.h"
 #include "shading/surface.h"
 
 namespace tandem {
@@ -22,10 +23,19 @@ class GBufferReader {
   // The same pixel straight into lane `lane` of a shading batch (what shading reads; the eye
   // direction is the caller's); false for background.
   bool read(int x, int y, ShadeBatch& b, int lane) const;
+  // Lanes [0, n) of a batch from the n pixels (x .. x + n - 1, y) of one row, with their eye
+  // directions: normalize(eye - position) when `perspective`, else `eye` itself (-forward).
+  // n is a multiple of ShadeBatch::kMax. False, the lanes undefined, when any pixel is
+  // background. The same lanes as read() pixel by pixel, bit for bit (gbuffer_span.cpp).
+  bool readSpan(int x, int y, int n, ShadeBatch& b, bool perspective, Vec3 eye) const;
+
+  struct Planes {
+    const float *position, *normal, *geoNormal, *diffuse, *specular, *emission, *ambient, *optical,
+        *objectId, *materialId;
+  };
 
  private:
-  const float *position_, *normal_, *geoNormal_, *diffuse_, *specular_, *emission_, *ambient_,
-      *optical_, *objectId_, *materialId_;
+  Planes g_;
   int width_;
 };
 

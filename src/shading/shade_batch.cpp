@@ -175,8 +175,7 @@ void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>&
       // Spot: the lanes' bounding sphere must overlap the outer cone (smoothstep is 0 outside).
       if (reaches && l.type == LightType::Spot && !l.hemisphere && dist > radius) {
         const float angle = std::acos(std::clamp(dot(v, l.direction) / dist, -1.0f, 1.0f));
-        const float outer = std::acos(std::clamp(l.cosOuter, -1.0f, 1.0f));
-        reaches = angle <= outer + std::asin(std::min(radius / dist, 1.0f)) + 1e-4f;
+        reaches = angle <= l.outerAngle + std::asin(std::min(radius / dist, 1.0f)) + 1e-4f;
       }
     }
     if (reaches) out.push_back(uint32_t(i));

@@ -135,6 +135,11 @@ void RenderWorker::loop() {
     }
     FinishedFrame f;
     try {
+      // Only the shown buffer and what the passes read are produced.
+      FrameContext& c = renderer->context();
+      c.keepAllOutputs = false;
+      c.wanted.clear();
+      if (!view.shownBuffer.empty()) c.wanted.insert(view.shownBuffer);
       f.timings = renderer->renderFrameAt(frameIndex, view.time, view.camera, view.camera);
       ++frameIndex;
       FrameContext& ctx = renderer->context();

@@ -3,10 +3,12 @@
 // (stereo), cameras through lens points and the rasterizer at shutter times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "core/image_io.h"
 #include "pipeline/aov.h"
@@ -474,4 +476,46 @@ TEST(TimeAndLens, RasterizerAtShutterTimeAndLensPoint) {
   const float fpx = 60.0f / std::tan(radians(30.0f));
   EXPECT_NEAR(centroidX(v1, 0) - centroidX(v0, 0), 0.0, 0.05);
   EXPECT_NEAR(centroidX(v1, 1) - centroidX(v0, 1), 0.4 * fpx * (1.0 / 4.0 - 1.0 / 6.0), 0.5);
+}
+
+// Outputs no pass, history or caller reads are skipped when the caller allows it (bench, render,
+// the viewer), with the same image; what the caller lists in `wanted` is produced and equals the
+// full frame's buffer.
+TEST(Outputs, UnreadOutputsAreSkippedWithTheSameImage) {
+  const Scene s = makeAtriumScene();
+  CameraDesc a = s.camera, b = s.camera;
+  b.position = b.position + Vec3(0.05f, 0.0f, 0.02f);  // a moving camera: motion is non-zero
+  auto run = [&](const std::string& pipeline, bool keepAll, std::set<std::string> wanted) {
+    auto r = std::make_unique<Renderer>(s, Pipeline::load(pipeline),
+                                        RenderSettings{.width = 64, .height = 48});
+    r->context().keepAllOutputs = keepAll;
+    r->context().wanted = std::move(wanted);
+    r->renderFrame(0, a);
+    r->renderFrame(1, b);
+    return r;
+  };
+  for (const char* p : {"deferred", "deferred-rt-gbuffer", "deferred-vbuffer"}) {
+    SCOPED_TRACE(p);
+    auto full = run(p, true, {});
+    auto lean = run(p, false, {});
+    const FrameContext& f = full->context();
+    const FrameContext& l = lean->context();
+    ASSERT_TRUE(f.has("depth"));
+    EXPECT_FALSE(l.has("depth"));  // nothing in these pipelines reads depth or motion
+    EXPECT_FALSE(l.has("motion"));
+    EXPECT_EQ(l.input("hdr").data, f.input("hdr").data);
+    EXPECT_EQ(lean->output().data, full->output().data);
+    auto asked = run(p, false, {"depth"});
+    EXPECT_EQ(asked->context().input("depth").data, f.input("depth").data);
+  }
+  // Motion is read by TAA, so it is produced; here and when asked for, it is the full frame's.
+  auto full = run("deferred", true, {});
+  auto motionAsked = run("deferred", false, {"motion"});
+  const Buffer& m = full->context().input("motion");
+  EXPECT_EQ(motionAsked->context().input("motion").data, m.data);
+  EXPECT_TRUE(std::any_of(m.data.begin(), m.data.end(), [](float v) { return v != 0.0f; }));
+  auto taa = run("deferred-taa", false, {});
+  const Buffer& tm = taa->context().input("motion");  // jittered: other surface points
+  EXPECT_TRUE(std::any_of(tm.data.begin(), tm.data.end(), [](float v) { return v != 0.0f; }));
+  EXPECT_FALSE(taa->context().has("depth"));
 }

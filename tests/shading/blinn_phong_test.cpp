@@ -2,10 +2,14 @@
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
 
+#include <map>
+#include <string>
+
 #include "core/color.h"
 #include "scene/builtin_scenes.h"
 #include "scene/primitives.h"
 #include "shading/blinn_phong.h"
+#include "shading/gbuffer_sample.h"
 #include "shading/shade_batch.h"
 #include "test_util.h"
 
@@ -277,4 +281,57 @@ TEST(ShadeBatch, EveryInstructionSetAgrees) {
   std::printf("targets compared:");
   for (int64_t t : targets) std::printf(" %s", hwy::TargetName(t));
   std::printf("\n");
+}
+
+// Deferred shading loads whole runs of foreground pixels in vectors (GBufferReader::readSpan):
+// every lane, eye direction included, bit-identical to reading the pixels one by one, on every
+// instruction set; a run that touches the background is refused.
+TEST(GBufferReader, SpansMatchPixelByPixelOnEveryInstructionSet) {
+  constexpr int kW = 3 * ShadeBatch::kMax, kH = 2;
+  std::map<std::string, Buffer> bufs;
+  uint32_t state = 12345;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  for (const BufferSlot& slot : gbufferSampleSlots()) {
+    Buffer b(kW, kH, slot.channels);
+    for (float& v : b.data) v = 4.0f * next() - 2.0f;
+    bufs[slot.slot] = b;
+  }
+  Buffer& ids = bufs["object_id"];
+  for (size_t i = 0; i < ids.data.size(); ++i) ids.data[i] = float(i % 3);
+  ids.at(2 * ShadeBatch::kMax + 5, 1)[0] = -1.0f;  // the last run of row 1 sees the sky
+  Buffer& pos = bufs["position"];
+  pos.setRgb(3, 0, Vec3(0.5f, 1.0f, 2.0f));  // exactly at the eye: a zero eye direction
+  const GBufferReader g([&](const BufferSlot& s) -> const Buffer& { return bufs[s.slot]; });
+  const Vec3 eye(0.5f, 1.0f, 2.0f), minusForward = normalize(Vec3(0.2f, -0.1f, -1.0f));
+  const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  ASSERT_FALSE(targets.empty());
+  for (int64_t target : targets) {
+    hwy::SetSupportedTargetsForTest(target);
+    for (bool perspective : {true, false})
+      for (int y = 0; y < kH; ++y)
+        for (int x0 = 0; x0 < kW; x0 += ShadeBatch::kMax) {
+          SCOPED_TRACE(std::string(hwy::TargetName(target)) + " x0 " + std::to_string(x0) + " y " +
+                       std::to_string(y) + (perspective ? " perspective" : " ortho"));
+          ShadeBatch span, lanes;
+          const bool whole = g.readSpan(x0, y, ShadeBatch::kMax, span, perspective,
+                                        perspective ? eye : minusForward);
+          EXPECT_EQ(whole, !(y == 1 && x0 == 2 * ShadeBatch::kMax));
+          if (!whole) continue;
+          for (int k = 0; k < ShadeBatch::kMax; ++k) {
+            ASSERT_TRUE(g.read(x0 + k, y, lanes, k));
+            const Vec3 p{lanes.f[ShadeBatch::PX][k], lanes.f[ShadeBatch::PY][k],
+                         lanes.f[ShadeBatch::PZ][k]};
+            const Vec3 wo = perspective ? normalize(eye - p) : minusForward;
+            lanes.f[ShadeBatch::WX][k] = wo.x, lanes.f[ShadeBatch::WY][k] = wo.y;
+            lanes.f[ShadeBatch::WZ][k] = wo.z;
+          }
+          for (int f = 0; f < ShadeBatch::OR; ++f)
+            for (int k = 0; k < ShadeBatch::kMax; ++k)
+              ASSERT_EQ(span.f[f][k], lanes.f[f][k]) << "field " << f << " lane " << k;
+        }
+  }
+  hwy::SetSupportedTargetsForTest(0);
 }
