@@ -1,9 +1,11 @@
 #include "viewer/render_worker.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "pipeline/aov.h"
 #include "pipeline/renderer.h"
 
@@ -78,9 +80,11 @@ void RenderWorker::setEnabled(size_t pass, bool enabled) {
 
 bool RenderWorker::takeFrame(FinishedFrame& out) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (latest_.serial == 0 || latest_.serial == taken_) return false;
-  out = latest_;
-  taken_ = latest_.serial;
+  if (latest_.serial <= taken_) return false;
+  // Swapped, not copied: the caller's last frame goes back to the worker, which refills it
+  // (no 8 MB copy under the lock, no fresh pages each frame).
+  std::swap(out, latest_);
+  taken_ = out.serial;
   return true;
 }
 
@@ -99,9 +103,33 @@ std::string RenderWorker::error() const {
   return error_;
 }
 
+namespace {
+// Display-encoded RGB (3+ channels: a pipeline's output, or a visualized buffer) -> RGBA8, top row
+// first, rows in parallel. Rounds as std::lround does for values in [0, 255] (floor(x + 0.5), the
+// addition's rounding undone), in a loop the compiler vectorises.
+void toRgba8(const Buffer& rgb, std::vector<uint8_t>& rgba) {
+  rgba.resize(rgb.pixelCount() * 4);
+  const int w = rgb.width, c = rgb.channels;
+  parallelRows(rgb.height, [&](int y) {
+    const float* in = rgb.at(0, y);
+    uint8_t* out = &rgba[size_t(y) * size_t(w) * 4];
+    for (int x = 0; x < w; ++x) {
+      for (int k = 0; k < 3; ++k) {
+        const float v = std::clamp(in[x * c + k], 0.0f, 1.0f) * 255.0f;
+        int r = int(v + 0.5f);
+        if (float(r) - 0.5f > v) --r;
+        out[4 * x + k] = uint8_t(r);
+      }
+      out[4 * x + 3] = 255;
+    }
+  });
+}
+}  // namespace
+
 void RenderWorker::loop() {
   std::unique_ptr<Renderer> renderer;
   int frameIndex = 0;
+  FinishedFrame f;  // refilled every frame (its storage cycles with latest_ and the taker's)
   while (!stop_) {
     ViewState view;
     {
@@ -133,7 +161,6 @@ void RenderWorker::loop() {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       continue;
     }
-    FinishedFrame f;
     try {
       // Only the shown buffer and what the passes read are produced.
       FrameContext& c = renderer->context();
@@ -150,16 +177,13 @@ void RenderWorker::loop() {
                                                                                  : view.shownBuffer;
       f.output = ctx.input(outName);
       // Shown at its own size (a reduced-extent buffer is stretched over the window).
-      const Buffer shown = visualizeBuffer(ctx.input(f.shown), view.varianceScale);
+      const Buffer& shown = ctx.input(f.shown);
+      if (shown.kind == BufferKind::Display && shown.channels >= 3)
+        toRgba8(shown, f.rgba);
+      else
+        toRgba8(visualizeBuffer(shown, view.varianceScale), f.rgba);
       f.width = shown.width;
       f.height = shown.height;
-      f.rgba.resize(shown.pixelCount() * 4);
-      for (size_t i = 0; i < shown.pixelCount(); ++i) {
-        for (int c = 0; c < 3; ++c)
-          f.rgba[i * 4 + size_t(c)] =
-              uint8_t(std::lround(std::clamp(shown.data[i * 3 + size_t(c)], 0.0f, 1.0f) * 255.0f));
-        f.rgba[i * 4 + 3] = 255;
-      }
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = e.what();
@@ -169,7 +193,7 @@ void RenderWorker::loop() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       f.serial = ++finished_;
-      latest_ = std::move(f);
+      std::swap(latest_, f);
     }
     done_.notify_all();
   }

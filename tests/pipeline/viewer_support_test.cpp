@@ -3,6 +3,7 @@
 // reference pass converging over frames.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pipeline/renderer.h"
@@ -197,6 +198,22 @@ TEST(ViewerSupport, RenderWorkerFramesEditsAndSwitches) {
   ref.renderFrame(0, s.camera);
   EXPECT_EQ(f.output.data, ref.output().data);
   EXPECT_FALSE(f.timings.passes.empty());
+  // The window's pixels: the output rounded as std::lround, alpha opaque.
+  for (size_t i = 0; i < f.output.pixelCount(); ++i) {
+    for (size_t k = 0; k < 3; ++k)
+      ASSERT_EQ(int(f.rgba[4 * i + k]),
+                int(std::lround(std::clamp(f.output.data[3 * i + k], 0.0f, 1.0f) * 255.0f)))
+          << "pixel " << i;
+    ASSERT_EQ(f.rgba[4 * i + 3], 255);
+  }
+  // A buffer no pass reads (motion in deferred) is produced once it is shown.
+  v.shownBuffer = "motion";
+  w.setView(v);
+  w.waitForFrames(w.framesFinished() + 3);
+  ASSERT_TRUE(w.takeFrame(f));
+  EXPECT_EQ(f.shown, "motion");
+  v.shownBuffer.clear();
+  w.setView(v);
 
   // tonemap.exposure = +2 stops brightens the image.
   const size_t tonemap = 2;
