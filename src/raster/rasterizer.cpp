@@ -130,6 +130,7 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
   screen_.resize(fs.objects.size());
   clipKeys_.resize(fs.objects.size());
   objectCulled_.assign(fs.objects.size(), 0);
+  runs_.clear();
   for (size_t o = 0; o < fs.objects.size(); ++o) {
     const FrameObject& fo = fs.objects[o];
     const auto& pos = fo.positions;
@@ -146,19 +147,23 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
       continue;
     key = {vp, fs.geometryVersion, atTau ? tau : -1.0f, W, H};
     c.resize(pos.size());
-    auto& sv = screen_[o];
-    sv.resize(pos.size());
-    parallelRange(
-        pos.size(),
-        [&](size_t b, size_t e) {
-          for (size_t i = b; i < e; ++i) {
-            c[i] = vp * Vec4(atTau ? positionAt(fo, i, tau) : pos[i], 1.0f);
-            sv[i].outcode = outcode(c[i]);
-            if (sv[i].outcode == 0) project(c[i], W, H, sv[i]);
-          }
-        },
-        4096);
+    screen_[o].resize(pos.size());
+    for (size_t b = 0; b < pos.size(); b += kVertexRun)
+      runs_.push_back({uint32_t(o), uint32_t(b), uint32_t(std::min(pos.size(), b + kVertexRun))});
   }
+  // Every object's vertices in one parallel loop: most objects are smaller than a worker's share.
+  tbb::parallel_for(size_t(0), runs_.size(), [&](size_t r) {
+    const VertexRun run = runs_[r];
+    const FrameObject& fo = fs.objects[run.object];
+    const bool atTau = tau >= 0.0f && !fo.stepPositions.empty();
+    auto& c = clip_[run.object];
+    auto& sv = screen_[run.object];
+    for (size_t i = run.begin; i < run.end; ++i) {
+      c[i] = vp * Vec4(atTau ? positionAt(fo, i, tau) : fo.positions[i], 1.0f);
+      sv[i].outcode = outcode(c[i]);
+      if (sv[i].outcode == 0) project(c[i], W, H, sv[i]);
+    }
+  });
 
   // Global triangle numbering: prefix sums over objects.
   std::vector<size_t> firstTri(fs.objects.size() + 1, 0);

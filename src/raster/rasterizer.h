@@ -100,6 +100,12 @@ class Rasterizer {
   };
   std::vector<std::vector<ScreenVertex>> screen_;
   std::vector<ClipKey> clipKeys_;
+  // This frame's vertices to transform, in runs of at most kVertexRun of one object.
+  struct VertexRun {
+    uint32_t object, begin, end;
+  };
+  static constexpr size_t kVertexRun = 2048;
+  std::vector<VertexRun> runs_;
   std::vector<std::vector<SetupTriangle>> chunkTris_;     // per chunk
   std::vector<std::vector<std::vector<uint32_t>>> bins_;  // [chunk][tile] -> triangle index
 };
