@@ -31,8 +31,9 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
         // background go pixel by pixel (the partial batch before a whole run is shaded first).
         if (xe - xs == kSpan) {
           shader.flush();
-          if (g.readSpan(xs, y, kSpan, b, perspective, eye)) {
-            shader.pushSpan(xs, y, kSpan);
+          Bounds3 lanes;
+          if (g.readSpan(xs, y, kSpan, b, perspective, eye, lanes)) {
+            shader.pushSpan(xs, y, kSpan, lanes);
             continue;
           }
         }

@@ -25,11 +25,11 @@ class BatchShader {
     ys_[b_.count++] = y;
     if (b_.count == ShadeBatch::kMax) flush();
   }
-  // A whole batch filled at once (lane() was 0) from the n pixels (x .. x + n - 1, y); shaded
-  // right away.
-  void pushSpan(int x, int y, int n) {
+  // A whole batch filled at once (lane() was 0) from the n pixels (x .. x + n - 1, y), whose
+  // positions lie in `lanes`; shaded right away.
+  void pushSpan(int x, int y, int n, const Bounds3& lanes) {
     b_.count = n;
-    shade();
+    shade(&lanes);
     float* o = out_.at(x, y);
     for (int k = 0; k < n; ++k, o += 3)
       o[0] = b_.f[ShadeBatch::OR][k], o[1] = b_.f[ShadeBatch::OG][k],
@@ -44,8 +44,8 @@ class BatchShader {
   }
 
  private:
-  void shade() {
-    cullLights(b_, ctx_, lights_);
+  void shade(const Bounds3* lanes = nullptr) {
+    cullLights(b_, ctx_, lights_, lanes);
     shadeBatch(b_, ctx_);
   }
 

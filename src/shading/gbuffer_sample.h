@@ -26,8 +26,10 @@ class GBufferReader {
   // Lanes [0, n) of a batch from the n pixels (x .. x + n - 1, y) of one row, with their eye
   // directions: normalize(eye - position) when `perspective`, else `eye` itself (-forward).
   // n is a multiple of ShadeBatch::kMax. False, the lanes undefined, when any pixel is
-  // background. The same lanes as read() pixel by pixel, bit for bit (gbuffer_span.cpp).
-  bool readSpan(int x, int y, int n, ShadeBatch& b, bool perspective, Vec3 eye) const;
+  // background. The same lanes as read() pixel by pixel, bit for bit (gbuffer_span.cpp), and
+  // the box around their positions.
+  bool readSpan(int x, int y, int n, ShadeBatch& b, bool perspective, Vec3 eye,
+                Bounds3& bounds) const;
 
   struct Planes {
     const float *position, *normal, *geoNormal, *diffuse, *specular, *emission, *ambient, *optical,

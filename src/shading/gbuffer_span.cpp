@@ -17,7 +17,7 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 bool ReadSpanImpl(const GBufferReader::Planes& g, size_t i0, size_t n, ShadeBatch& b,
-                  bool perspective, Vec3 eye) {
+                  bool perspective, Vec3 eye, Bounds3& bounds) {
   using F = ShadeBatch;
   const hn::ScalableTag<float> d;
   const size_t lanes = hn::Lanes(d);
@@ -27,6 +27,9 @@ bool ReadSpanImpl(const GBufferReader::Planes& g, size_t i0, size_t n, ShadeBatc
   for (size_t i = lanes; i < n; i += lanes)
     background = hn::Or(background, hn::Lt(hn::LoadU(d, g.objectId + i0 + i), zero));
   if (!hn::AllFalse(d, background)) return false;
+  auto lo = hn::Set(d, g.position[3 * i0]), hi = lo;  // per axis: x, y, z
+  auto loY = hn::Set(d, g.position[3 * i0 + 1]), hiY = loY;
+  auto loZ = hn::Set(d, g.position[3 * i0 + 2]), hiZ = loZ;
   for (size_t i = 0; i < n; i += lanes) {
     const size_t p = i0 + i;
     hn::Vec<decltype(d)> a, c, e, w;
@@ -37,6 +40,9 @@ bool ReadSpanImpl(const GBufferReader::Planes& g, size_t i0, size_t n, ShadeBatc
     };
     hn::LoadInterleaved3(d, g.position + 3 * p, a, c, e);
     put3(F::PX);
+    lo = hn::Min(lo, a), hi = hn::Max(hi, a);
+    loY = hn::Min(loY, c), hiY = hn::Max(hiY, c);
+    loZ = hn::Min(loZ, e), hiZ = hn::Max(hiZ, e);
     if (perspective) {  // normalize(eye - p): ((x x + y y) + z z), then a division by the root
       const auto vx = hn::Sub(hn::Set(d, eye.x), a), vy = hn::Sub(hn::Set(d, eye.y), c),
                  vz = hn::Sub(hn::Set(d, eye.z), e);
@@ -62,6 +68,10 @@ bool ReadSpanImpl(const GBufferReader::Planes& g, size_t i0, size_t n, ShadeBatc
     hn::LoadInterleaved3(d, g.ambient + 3 * p, a, c, e);
     put3(F::AR);
   }
+  bounds.lo = {hn::GetLane(hn::MinOfLanes(d, lo)), hn::GetLane(hn::MinOfLanes(d, loY)),
+               hn::GetLane(hn::MinOfLanes(d, loZ))};
+  bounds.hi = {hn::GetLane(hn::MaxOfLanes(d, hi)), hn::GetLane(hn::MaxOfLanes(d, hiY)),
+               hn::GetLane(hn::MaxOfLanes(d, hiZ))};
   return true;
 }
 
@@ -73,9 +83,10 @@ HWY_AFTER_NAMESPACE();
 namespace tandem {
 HWY_EXPORT(ReadSpanImpl);
 
-bool GBufferReader::readSpan(int x, int y, int n, ShadeBatch& b, bool perspective, Vec3 eye) const {
+bool GBufferReader::readSpan(int x, int y, int n, ShadeBatch& b, bool perspective, Vec3 eye,
+                             Bounds3& bounds) const {
   const size_t i = size_t(y) * size_t(width_) + size_t(x);
-  return HWY_DYNAMIC_DISPATCH(ReadSpanImpl)(g_, i, size_t(n), b, perspective, eye);
+  return HWY_DYNAMIC_DISPATCH(ReadSpanImpl)(g_, i, size_t(n), b, perspective, eye, bounds);
 }
 
 }  // namespace tandem

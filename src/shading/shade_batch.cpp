@@ -158,17 +158,22 @@ void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisi
   HWY_DYNAMIC_DISPATCH(ShadeBatchImpl)(b, ctx, lightVisibility, visStride);
 }
 
-void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out) {
+void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out,
+                const Bounds3* lanes) {
   out.clear();
   Bounds3 box;
   using F = ShadeBatch;
-  for (int k = 0; k < b.count; ++k) box.extend(Vec3(b.f[F::PX][k], b.f[F::PY][k], b.f[F::PZ][k]));
+  if (lanes)
+    box = *lanes;
+  else
+    for (int k = 0; k < b.count; ++k) box.extend(Vec3(b.f[F::PX][k], b.f[F::PY][k], b.f[F::PZ][k]));
   const Vec3 centre = (box.lo + box.hi) * 0.5f;
   const float radius = 0.5f * length(box.hi - box.lo);
   for (size_t i = 0; i < ctx.lights.size(); ++i) {
     const PreparedLight& l = ctx.lights[i];
     bool reaches = true;
-    if (l.type != LightType::Directional) {
+    // (Only a range or a spot cone can leave a light out.)
+    if (l.type != LightType::Directional && (l.range > 0 || l.type == LightType::Spot)) {
       const Vec3 v = centre - l.position;
       const float dist = length(v);
       if (l.range > 0 && dist > l.range + radius) reaches = false;

@@ -65,7 +65,9 @@ struct ShadeBatch {
 // Lists in `out` the lights of `ctx` that may light a point within `radius` of `centre`
 // (range and spot cone; directional and hemisphere lights always) and points b.lights at it.
 // Exact: a light left out contributes exactly 0 to every lane.
-void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out);
+// `lanes`: the box around the lanes' positions when the caller has it.
+void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out,
+                const Bounds3* lanes = nullptr);
 
 // Shades lanes [0, b.count). lightVisibility: null (all visible) or an RGB transmittance per
 // light and lane at lightVisibility[(3 * light + channel) * visStride + lane].

@@ -316,8 +316,9 @@ TEST(GBufferReader, SpansMatchPixelByPixelOnEveryInstructionSet) {
           SCOPED_TRACE(std::string(hwy::TargetName(target)) + " x0 " + std::to_string(x0) + " y " +
                        std::to_string(y) + (perspective ? " perspective" : " ortho"));
           ShadeBatch span, lanes;
+          Bounds3 box, expected;
           const bool whole = g.readSpan(x0, y, ShadeBatch::kMax, span, perspective,
-                                        perspective ? eye : minusForward);
+                                        perspective ? eye : minusForward, box);
           EXPECT_EQ(whole, !(y == 1 && x0 == 2 * ShadeBatch::kMax));
           if (!whole) continue;
           for (int k = 0; k < ShadeBatch::kMax; ++k) {
@@ -327,7 +328,14 @@ TEST(GBufferReader, SpansMatchPixelByPixelOnEveryInstructionSet) {
             const Vec3 wo = perspective ? normalize(eye - p) : minusForward;
             lanes.f[ShadeBatch::WX][k] = wo.x, lanes.f[ShadeBatch::WY][k] = wo.y;
             lanes.f[ShadeBatch::WZ][k] = wo.z;
+            expected.extend(p);
           }
+          EXPECT_EQ(box.lo.x, expected.lo.x);
+          EXPECT_EQ(box.lo.y, expected.lo.y);
+          EXPECT_EQ(box.lo.z, expected.lo.z);
+          EXPECT_EQ(box.hi.x, expected.hi.x);
+          EXPECT_EQ(box.hi.y, expected.hi.y);
+          EXPECT_EQ(box.hi.z, expected.hi.z);
           for (int f = 0; f < ShadeBatch::OR; ++f)
             for (int k = 0; k < ShadeBatch::kMax; ++k)
               ASSERT_EQ(span.f[f][k], lanes.f[f][k]) << "field " << f << " lane " << k;
