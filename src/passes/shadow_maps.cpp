@@ -47,7 +47,8 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
   for (std::vector<Face>& faces : faces_)
     for (Face& face : faces) {
       std::copy(face.staticDepth.begin(), face.staticDepth.end(), face.map.depth.begin());
-      raster_.render(fs, face.camera, face.map, Rasterizer::Subset{&moving, /*keep=*/true});
+      raster_.render(fs, face.camera, face.map,
+                     Rasterizer::Subset{&moving, /*keep=*/true, /*bothFaces=*/true});
     }
 }
 
@@ -103,7 +104,8 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
       face.texelPerDistance = face.camera.desc.projection == Projection::Perspective
                                   ? 2.0f * face.camera.tanHalfFov / float(size)
                                   : face.camera.desc.orthoHeight / float(size);
-      raster_.render(fs, face.camera, face.map, Rasterizer::Subset{&still, /*keep=*/false});
+      raster_.render(fs, face.camera, face.map,
+                     Rasterizer::Subset{&still, /*keep=*/false, /*bothFaces=*/true});
       const Camera& c = face.camera;
       ShadowFace& lf = face.lookup;  // its depth pointer is taken at lookup time
       lf.width = face.map.width;

@@ -235,7 +235,7 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
         if (area == 0) continue;
         // Counter-clockwise in the world is clockwise on a y-down screen: area < 0 is front.
         if (area > 0) {
-          if (!mat.doubleSided) {
+          if (!mat.doubleSided && !subset.bothFaces) {
             ++localCulled;
             continue;
           }

@@ -35,6 +35,9 @@ class Rasterizer {
   struct Subset {
     const std::vector<uint8_t>* objects = nullptr;  // non-zero entries are drawn; null: all
     bool keep = false;  // draw over `out`'s contents (same size) instead of clearing it
+    // Draw back faces of single-sided materials too (shadow maps: a wall seen from behind by
+    // the light still blocks it, as it blocks a shadow ray).
+    bool bothFaces = false;
   };
   void render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out, const Subset& subset,
               RasterStats* stats = nullptr, float tau = -1.0f);

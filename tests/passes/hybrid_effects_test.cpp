@@ -286,6 +286,22 @@ TEST(ShadowMaps, OccluderShadowsThePointBelowIt) {
   // Drawn once; a second update with nothing changed reuses them.
   maps.update(fs, 512);
   EXPECT_EQ(maps.redraws(), 1);
+
+  // A single-sided roof facing the ground (its back towards every light) shadows the ground
+  // as it blocks a shadow ray: the maps draw both faces.
+  Scene one = s;
+  Material single;
+  single.doubleSided = false;
+  one.objects[1].material = one.addMaterial(single);
+  one.objects[1].local.rotationDeg = {180, 0, 0};
+  FrameScene fsOne;
+  fsOne.update(one, 0, 0);
+  ShadowMaps facingDown;
+  facingDown.update(fsOne, 512);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(facingDown.visibility(i, {0.2f, 0, -0.3f}, up), 0.0f) << "light " << i;
+    EXPECT_EQ(facingDown.visibility(i, {3.0f, 0, 2.0f}, up), 1.0f) << "light " << i;
+  }
 }
 
 // The SIMD batch lookup is the scalar one, 16 points at a time, for every kind of map: random
