@@ -35,7 +35,7 @@ std::vector<ParamDesc> ScreenSpaceFallbackPass::params() const {
            "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
            {"off", "shadow_map"}},
           {"shadow_map_size", ParamType::Int, 1024, 64, 8192, "shadow map resolution", {}},
-          {"probe_size", ParamType::Int, 64, 8, 1024, "reflection probe face resolution", {}},
+          {"probe_size", ParamType::Int, 128, 8, 1024, "reflection probe face resolution", {}},
           {"max_probes",
            ParamType::Int,
            32,
