@@ -2,8 +2,7 @@
 // covered pixel once into the G-buffer (seed 002 §3.1, Listings 1-3). Inputs: none (scene).
 // Outputs: the G-buffer targets (raster/gbuffer.h). Parameters: none.
 #pragma once
-#include <vector>
-
+#include "passes/gbuffer_writer.h"
 #include "passes/visible_surfaces.h"
 #include "pipeline/pass.h"
 
@@ -20,7 +19,7 @@ class RasterGBufferPass : public Pass {
 
  private:
   VisibleSurfaces surfaces_;
-  std::vector<float> moved_;  // per object: 1 if it moved since last frame
+  GBufferWriter writer_;
 };
 
 }  // namespace tandem

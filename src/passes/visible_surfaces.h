@@ -25,9 +25,11 @@ class VisibleSurfaces {
   // Resolves the tile [x0,x1) x [y0,y1) (frame pixels) of view v row by row: surface(x, y, s,
   // depth, pixel) for covered pixels (pixel: the view-local pixel centre) and background(x, y,
   // dir) for the others (dir: the unnormalised camera ray).
+  // Kept out of line: inlined into a caller's tile loop it measured 5 % slower.
   template <class Surface, class Background>
-  void resolveTile(const FrameContext& ctx, const View& v, int x0, int y0, int x1, int y1,
-                   TriangleCache& cache, Surface&& surface, Background&& background) const;
+  [[gnu::noinline]] void resolveTile(const FrameContext& ctx, const View& v, int x0, int y0,
+                                     int x1, int y1, TriangleCache& cache, Surface&& surface,
+                                     Background&& background) const;
 
  private:
   Rasterizer rasterizer_;  // binning scratch reused across frames

@@ -28,10 +28,14 @@ Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, i
   return b;
 }
 
-Buffer* FrameContext::outputIfConsumed(const Pass& pass, const std::string& slot) {
+bool FrameContext::isConsumed(const Pass& pass, const std::string& slot) const {
   const std::string& name = pass.bufferName(slot);
-  if (keepAllOutputs || consumed.count(name) || wanted.count(name)) return &output(pass, slot);
-  buffers.erase(name);
+  return keepAllOutputs || consumed.count(name) || wanted.count(name);
+}
+
+Buffer* FrameContext::outputIfConsumed(const Pass& pass, const std::string& slot) {
+  if (isConsumed(pass, slot)) return &output(pass, slot);
+  buffers.erase(pass.bufferName(slot));
   return nullptr;
 }
 

@@ -59,6 +59,8 @@ struct FrameContext {
   // The same when anything reads the output (see keepAllOutputs), else null, and a value left
   // from an earlier frame is dropped (never shown stale).
   Buffer* outputIfConsumed(const Pass& pass, const std::string& slot);
+  // Whether anything reads `pass`'s output slot (always true with keepAllOutputs).
+  bool isConsumed(const Pass& pass, const std::string& slot) const;
   // The buffer bound to an input slot (this frame's, checked by the pipeline's validation).
   const Buffer& input(const Pass& pass, const std::string& slot) const;
   // Last frame's value of a history input slot; null after a reset or before it exists.

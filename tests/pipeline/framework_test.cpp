@@ -494,7 +494,7 @@ TEST(Outputs, UnreadOutputsAreSkippedWithTheSameImage) {
     r->renderFrame(1, b);
     return r;
   };
-  for (const char* p : {"deferred", "deferred-rt-gbuffer", "deferred-vbuffer"}) {
+  for (const char* p : {"deferred", "deferred-rt-gbuffer", "deferred-gbuffer"}) {
     SCOPED_TRACE(p);
     auto full = run(p, true, {});
     auto lean = run(p, false, {});
@@ -508,6 +508,16 @@ TEST(Outputs, UnreadOutputsAreSkippedWithTheSameImage) {
     auto asked = run(p, false, {"depth"});
     EXPECT_EQ(asked->context().input("depth").data, f.input("depth").data);
   }
+  // `deferred` shades from the visibility buffer: its G-buffer is written only when asked for,
+  // and then equals the full frame's.
+  auto lean = run("deferred", false, {});
+  auto normalAsked = run("deferred", false, {"normal"});
+  auto fullDeferred = run("deferred", true, {});
+  EXPECT_FALSE(lean->context().has("normal"));
+  EXPECT_FALSE(lean->context().has("position"));
+  EXPECT_EQ(normalAsked->context().input("normal").data,
+            fullDeferred->context().input("normal").data);
+  EXPECT_EQ(normalAsked->output().data, lean->output().data);
   // Motion is read by TAA, so it is produced; here and when asked for, it is the full frame's.
   auto full = run("deferred", true, {});
   auto motionAsked = run("deferred", false, {"motion"});

@@ -42,7 +42,7 @@ struct GoldenCase {
 
 // Pipelines that draw another's picture by design are held to that pipeline's golden.
 std::string goldenPipeline(const std::string& p) {
-  return p == "deferred-vbuffer" ? "deferred" : p;
+  return p == "deferred-gbuffer" ? "deferred" : p;
 }
 
 std::string sceneLabel(const std::string& scene) {
