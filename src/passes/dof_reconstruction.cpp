@@ -1,6 +1,7 @@
 #include "passes/dof_reconstruction.h"
 
 #include <cmath>
+#include <vector>
 
 #include "core/image_filters.h"
 #include "core/parallel.h"
@@ -35,6 +36,20 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
     mips.push_back(downsampleBox(mips.back()));
   const float vw = float(param("variance_weight")), lodScale = float(param("lod_scale"));
   const float scale = float(ctx.width) / float(w);  // CoC is in frame pixels
+  // The taps' directions: the centre, then rings of 8 and 16 (the second turned by half a step),
+  // the same for every pixel.
+  struct Tap {
+    int ring;
+    float cos, sin;
+  };
+  std::vector<Tap> taps;
+  for (int ring = 0; ring <= 2; ++ring) {
+    const int n = ring == 0 ? 1 : 8 * ring;
+    for (int k = 0; k < n; ++k) {
+      const float a = 2.0f * kPi * (float(k) + 0.5f * float(ring & 1)) / float(n);
+      taps.push_back({ring, std::cos(a), std::sin(a)});
+    }
+  }
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const float* c0 = filtered.at(x, y);
@@ -51,20 +66,17 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
       const Buffer& mip = mips[size_t(level)];
       const float ms = float(mip.width) / float(w);
       float acc[N] = {};
-      for (int ring = 0; ring <= 2; ++ring) {
-        const int n = ring == 0 ? 1 : 8 * ring;
-        const float r = radius * float(ring) / 2.0f;
-        for (int k = 0; k < n; ++k) {
-          const float a = 2.0f * kPi * (float(k) + 0.5f * float(ring & 1)) / float(n);
-          const float sx = float(x) + 0.5f + r * std::cos(a),
-                      sy = float(y) + 0.5f + r * std::sin(a);
-          float s[N];
-          sampleBilinearN<N>(mip, sx * ms, sy * ms, s);
-          if (s[kCov] <= 1e-4f) continue;
-          // Reject a tap whose own blur does not reach the centre.
-          if (ring > 0 && 0.5f * (s[3] / s[kCov]) / scale < r) continue;
-          for (int c = 0; c < N; ++c) acc[c] += s[c];
-        }
+      for (const Tap& t : taps) {
+        const float r = radius * float(t.ring) / 2.0f;
+        const float sx = float(x) + 0.5f + r * t.cos, sy = float(y) + 0.5f + r * t.sin;
+        float s[N];
+        sampleBilinearN<N>(mip, sx * ms, sy * ms, s);
+        if (s[kCov] <= 1e-4f) continue;
+        // Reject a tap whose own blur does not reach the centre: its CoC radius (the
+        // coverage-weighted mean, 0.5 s[3] / s[kCov] frame pixels) below r at this resolution.
+        // Multiplied out: a division here stalled every tap's branch.
+        if (t.ring > 0 && 0.5f * s[3] < r * scale * s[kCov]) continue;
+        for (int c = 0; c < N; ++c) acc[c] += s[c];
       }
       if (acc[kCov] <= 1e-4f) continue;
       const float inv = 1.0f / acc[kCov];

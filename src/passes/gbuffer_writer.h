@@ -23,9 +23,8 @@ class GBufferWriter {
   // Resolves the tile [x0,x1) x [y0,y1) of view v into g; then also surface(x, y, s, depth) and
   // background(x, y, dir) as VisibleSurfaces::resolveTile calls them.
   template <class Surface, class Background>
-  void tile(const VisibleSurfaces& surfaces, const FrameContext& ctx, GBufferView& g,
-            const View& v, int x0, int y0, int x1, int y1, Surface&& surface,
-            Background&& background) const {
+  void tile(const VisibleSurfaces& surfaces, const FrameContext& ctx, GBufferView& g, const View& v,
+            int x0, int y0, int x1, int y1, Surface&& surface, Background&& background) const {
     const FrameScene& fs = ctx.frame;
     VisibleSurfaces::TriangleCache cache;
     const bool motion = g.wantsMotion(), reproject = motion && v.cameraMoved;

@@ -22,8 +22,7 @@ void VBufferShadingPass::execute(FrameContext& ctx) {
   // the viewer's shown buffer); a frame that needs only the image skips its stores.
   bool gbuffer = false;
   for (const BufferSlot& s : gbufferSlots())
-    if (s.slot != "depth" && s.slot != "object_id" && ctx.isConsumed(*this, s.slot))
-      gbuffer = true;
+    if (s.slot != "depth" && s.slot != "object_id" && ctx.isConsumed(*this, s.slot)) gbuffer = true;
   std::optional<GBufferView> g;
   Buffer *depth = nullptr, *ids = nullptr;
   if (gbuffer) {

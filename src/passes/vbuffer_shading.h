@@ -17,7 +17,8 @@ class VBufferShadingPass : public Pass {
  public:
   std::string type() const override { return "vbuffer_shading"; }
   std::string description() const override {
-    return "Blinn-Phong lighting straight from the visibility buffer (G-buffer written only when read)";
+    return "Blinn-Phong lighting straight from the visibility buffer (G-buffer written only when "
+           "read)";
   }
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;

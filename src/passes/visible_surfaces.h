@@ -27,8 +27,8 @@ class VisibleSurfaces {
   // dir) for the others (dir: the unnormalised camera ray).
   // Kept out of line: inlined into a caller's tile loop it measured 5 % slower.
   template <class Surface, class Background>
-  [[gnu::noinline]] void resolveTile(const FrameContext& ctx, const View& v, int x0, int y0,
-                                     int x1, int y1, TriangleCache& cache, Surface&& surface,
+  [[gnu::noinline]] void resolveTile(const FrameContext& ctx, const View& v, int x0, int y0, int x1,
+                                     int y1, TriangleCache& cache, Surface&& surface,
                                      Background&& background) const;
 
  private:
