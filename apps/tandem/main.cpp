@@ -5,12 +5,14 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "verbs.h"
 
 int main(int argc, char** argv) {
   // A file-size limit (ulimit -f) should fail the write, which FileCommit reports and cleans
   // up, rather than kill the process with a half-written temporary left behind.
   std::signal(SIGXFSZ, SIG_IGN);
+  tandem::keepFreedMemoryForReuse();
   CLI::App app{"Tandem: a hybrid rasterization + ray tracing renderer"};
   app.require_subcommand(1);
   std::map<std::string, tandem::VerbRunner> verbs = {

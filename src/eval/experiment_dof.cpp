@@ -364,8 +364,10 @@ int runDofExperiment(const DofExperimentOptions& o) {
         worst = std::min(worst, v);
         ++n;
       }
+      // A path too short for one compared frame says so instead of a score.
       temporalRows.push_back({o.shotLabels[s], adaptive ? "on" : "off (paper)",
-                              fmt(n ? sum / n : 0, 4), fmt(worst, 4), std::to_string(n)});
+                              n ? fmt(sum / n, 4) : "—", n ? fmt(worst, 4) : "—",
+                              std::to_string(n)});
     }
   }
   if (!temporalRows.empty()) {
