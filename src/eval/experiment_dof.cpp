@@ -228,6 +228,8 @@ int runDofExperiment(const DofExperimentOptions& o) {
   PlotSeries fH{"hybrid-dof", {}, {}}, fR{"rt-dof", {}, {}}, fP{"postfx-dof", {}, {}};
   PlotSeries tH{"hybrid-dof frame", {}, {}}, tR{"rt-dof frame", {}, {}},
       tT{"hybrid-dof ray trace", {}, {}};
+  // Beyond the paper: the mask and the lens rays at full resolution (`ray_mask.resolution`).
+  PlotSeries sF{"hybrid-dof, full-res rays", {}, {}}, tF{"hybrid-dof full-res frame", {}, {}};
   std::vector<std::vector<std::string>> sweepRows;
   Buffer hybrid10, rt10;
   double hybridSsim10 = -1, hybridMs10 = 0;
@@ -235,19 +237,25 @@ int runDofExperiment(const DofExperimentOptions& o) {
     int m;
     double ssim, ms;
   };
-  std::vector<SweepPoint> rtPoints, hybridPoints;
+  std::vector<SweepPoint> rtPoints, hybridPoints, fullPoints;
   for (int m : o.sweepBudgets) {
     std::printf("experiment hybrid-dof: Figure 7, m = %d\n", m);
     std::fflush(stdout);
     const StaticRun h = renderStatic(fig, "hybrid-dof", setM(m), sw, sh, o.warmup, o.frames);
     const StaticRun r = renderStatic(fig, "rt-dof", setM(m), sw, sh, o.warmup, o.frames);
-    const double hs = ssim(h.image, ref), rs = ssim(r.image, ref);
+    std::vector<std::string> fullSettings = setM(m);
+    fullSettings.push_back("ray_mask.resolution=full");
+    const StaticRun f = renderStatic(fig, "hybrid-dof", fullSettings, sw, sh, o.warmup, o.frames);
+    const double hs = ssim(h.image, ref), rs = ssim(r.image, ref), fss = ssim(f.image, ref);
     const double hf = flip(ref, h.image), rf = flip(ref, r.image);
     sweepRows.push_back({std::to_string(m), fmt(hs, 4), fmt(hf, 4), fmt(rmse(h.image, ref), 4),
                          fmt(h.frameMs, 1), fmt(h.ms.count("rt_dof") ? h.ms.at("rt_dof") : 0, 1),
                          fmt(rs, 4), fmt(rf, 4), fmt(rmse(r.image, ref), 4), fmt(r.frameMs, 1),
-                         fmt(postfxSsim, 4), fmt(postfxFlip, 4), fmt(postfxRmse, 4)});
+                         fmt(postfxSsim, 4), fmt(postfxFlip, 4), fmt(postfxRmse, 4), fmt(fss, 4),
+                         fmt(f.frameMs, 1)});
     const double x = m;
+    sF.x.push_back(x), sF.y.push_back(fss), tF.x.push_back(x), tF.y.push_back(f.frameMs);
+    fullPoints.push_back({m, fss, f.frameMs});
     sH.x.push_back(x), sH.y.push_back(hs), sR.x.push_back(x), sR.y.push_back(rs);
     sP.x.push_back(x), sP.y.push_back(postfxSsim);
     fH.x.push_back(x), fH.y.push_back(hf), fR.x.push_back(x), fR.y.push_back(rf);
@@ -267,16 +275,18 @@ int runDofExperiment(const DofExperimentOptions& o) {
                   std::to_string(sw) + "x" + std::to_string(sh) +
                   "), against distributed ray tracing of the same shading (" +
                   std::to_string(o.referenceSpp) + " spp)\n\n");
-  report.table("figure7_quality_vs_m",
-               {"m", "hybrid SSIM", "hybrid FLIP", "hybrid RMSE", "hybrid frame ms",
-                "hybrid ray trace ms", "rt-dof SSIM", "rt-dof FLIP", "rt-dof RMSE",
-                "rt-dof frame ms", "postfx SSIM", "postfx FLIP", "postfx RMSE"},
-               sweepRows);
+  report.table(
+      "figure7_quality_vs_m",
+      {"m", "hybrid SSIM", "hybrid FLIP", "hybrid RMSE", "hybrid frame ms", "hybrid ray trace ms",
+       "rt-dof SSIM", "rt-dof FLIP", "rt-dof RMSE", "rt-dof frame ms", "postfx SSIM", "postfx FLIP",
+       "postfx RMSE", "full-res hybrid SSIM", "full-res hybrid frame ms"},
+      sweepRows);
   report.plot("figure7_ssim", "SSIM against the same-shading reference", "ray budget m", "SSIM",
-              {sH, sR, sP}, true);
+              {sH, sR, sP, sF}, true);
   report.plot("figure7_flip", "FLIP against the same-shading reference", "ray budget m", "FLIP",
               {fH, fR, fP}, true);
-  report.plot("figure7_ms", "Frame and ray-trace time", "ray budget m", "ms", {tH, tR, tT}, true);
+  report.plot("figure7_ms", "Frame and ray-trace time", "ray budget m", "ms", {tH, tR, tT, tF},
+              true);
   // Speed at equal quality: the cheapest rt-dof at least as good as hybrid-dof at m = 10.
   // The cheapest rt-dof point of the sweep at least as good as `ssim` (null if none is).
   auto cheapestRtAtLeast = [&](double ssimAtLeast) -> const SweepPoint* {
@@ -298,20 +308,22 @@ int runDofExperiment(const DofExperimentOptions& o) {
   const SweepPoint* rtBest = nullptr;  // the sweep's best rt-dof, for "beyond the sweep"
   for (const SweepPoint& p : rtPoints)
     if (!rtBest || p.ssim > rtBest->ssim) rtBest = &p;
-  for (const SweepPoint& hp : hybridPoints) {
+  auto equalPoint = [&](const std::string& resolution, const SweepPoint& hp) {
     const SweepPoint* rp = cheapestRtAtLeast(hp.ssim);
     equalRows.push_back(
-        {std::to_string(hp.m), fmt(hp.ssim, 4), fmt(hp.ms, 1),
+        {resolution, std::to_string(hp.m), fmt(hp.ssim, 4), fmt(hp.ms, 1),
          rp ? std::to_string(rp->m) : "none (best: m = " + std::to_string(rtBest->m) + ")",
          rp ? fmt(rp->ms, 1) : "> " + fmt(rtBest->ms, 1),
          rp ? fmt(rp->ms / hp.ms, 2) + "x" : "> " + fmt(rtBest->ms / hp.ms, 2) + "x"});
-  }
+  };
+  for (const SweepPoint& hp : hybridPoints) equalPoint("half (paper)", hp);
+  for (const SweepPoint& hp : fullPoints) equalPoint("full", hp);
   speed += "\n";
   report.markdown(speed);
   speed.clear();
   report.table("figure7_equal_quality",
-               {"hybrid m", "hybrid SSIM", "hybrid ms", "cheapest rt-dof m with at least that SSIM",
-                "its ms", "rt-dof / hybrid"},
+               {"hybrid rays", "hybrid m", "hybrid SSIM", "hybrid ms",
+                "cheapest rt-dof m with at least that SSIM", "its ms", "rt-dof / hybrid"},
                equalRows);
   speed += "\n- against the path-traced reference (" + std::to_string(o.pathReferenceSpp) +
            " spp; includes global illumination, which none of the three models): SSIM hybrid " +
