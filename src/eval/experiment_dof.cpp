@@ -287,8 +287,8 @@ int runDofExperiment(const DofExperimentOptions& o) {
               {fH, fR, fP}, true);
   report.plot("figure7_ms", "Frame and ray-trace time", "ray budget m", "ms", {tH, tR, tT, tF},
               true);
-  // Speed at equal quality: the cheapest rt-dof at least as good as hybrid-dof at m = 10.
-  // The cheapest rt-dof point of the sweep at least as good as `ssim` (null if none is).
+  // Speed at equal quality: the cheapest rt-dof point of the sweep at least as good as `ssim`
+  // (null if none is), first for hybrid-dof at m = 10.
   auto cheapestRtAtLeast = [&](double ssimAtLeast) -> const SweepPoint* {
     const SweepPoint* best = nullptr;
     for (const SweepPoint& p : rtPoints)
