@@ -27,12 +27,45 @@ std::vector<ParamDesc> DofCompositePass::params() const {
        1,
        "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) or "
        "sharp_background: the raster colour and the traced near field by hit ratio",
-       {"eq7", "sharp_background"}}};
+       {"eq7", "sharp_background"}},
+      {"fine_coc",
+       ParamType::Float,
+       12,
+       0,
+       64,
+       "far field with no foreground over it: below this CoC (px) the sharp image gathered "
+       "at full resolution instead of the upsampled rays / gather (0 = off)",
+       {}}};
 }
 
 namespace {
 // A hit ratio or foreground share below this is no silhouette (the noise floor of a few rays).
 constexpr float kSilhouette = 0.02f;
+
+// The sharp image gathered over a disc of `radius` pixels around (x, y) at full resolution. Each
+// neighbour is weighted by how much of it the disc covers and by whether its own blur reaches the
+// centre (scatter as gather, as the reconstruction's rejection), so an in-focus edge next to a
+// blurred floor does not bleed into it.
+Vec3 fineGather(const Buffer& sharp, const Buffer& coc, int x, int y, float radius) {
+  const int r = int(std::ceil(radius + 0.5f));
+  Vec3 sum(0.0f);
+  float wsum = 0;
+  for (int dy = -r; dy <= r; ++dy) {
+    const int yy = y + dy;
+    if (yy < 0 || yy >= sharp.height) continue;
+    for (int dx = -r; dx <= r; ++dx) {
+      const int xx = x + dx;
+      if (xx < 0 || xx >= sharp.width) continue;
+      const float d = std::sqrt(float(dx * dx + dy * dy));
+      float wt = dof::saturate(radius + 0.5f - d);
+      if (wt <= 0) continue;
+      if (dx != 0 || dy != 0) wt *= dof::saturate(0.5f * std::abs(coc.at(xx, yy)[0]) + 0.5f - d);
+      sum += sharp.rgb(xx, yy) * wt;
+      wsum += wt;
+    }
+  }
+  return sum * (1.0f / wsum);  // the centre always counts
+}
 }  // namespace
 
 void DofCompositePass::execute(FrameContext& ctx) {
@@ -46,6 +79,7 @@ void DofCompositePass::execute(FrameContext& ctx) {
   const bool rtMode = param("mode") == 1, useBokeh = param("bokeh") != 0;
   const float farBlend = float(param("far_blend"));
   const bool sharpBackground = param("silhouette") == 1;
+  const float fineCoc = float(param("fine_coc"));
   const int W = sharp.width, H = sharp.height;
   const float sx = rt ? float(rt->width) / float(W) : 1.0f,
               sy = rt ? float(rt->height) / float(H) : 1.0f;
@@ -85,6 +119,16 @@ void DofCompositePass::execute(FrameContext& ctx) {
         else  // far field, eq. 7
           traced = lerp(rtc, pp, dof::smoothstep(0.0f, farBlend, hit));
         col = lerp(pp, traced, coverage);
+        // Near focus the half-resolution rays and gather, upsampled, blur texture that a small
+        // CoC leaves sharp. Where no nearer surface spreads over the pixel (the gather drew
+        // nothing from foreground taps and, in the far field, no lens ray hit the near field),
+        // a full-resolution gather of the sharp image is the same blur (beyond the paper).
+        const float a = std::abs(c);
+        const bool noForeground = bokehIn && bokehIn->at(x, y)[1] <= kSilhouette &&
+                                  (c < 0 || coverage <= 0 || hit <= kSilhouette);
+        if (a < fineCoc && noForeground)
+          col = lerp(col, fineGather(sharp, coc, x, y, 0.5f * a),
+                     1.0f - dof::smoothstep(0.5f * fineCoc, fineCoc, a));
       }
       out.setRgb(x, y, col);
     }
