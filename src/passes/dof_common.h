@@ -18,6 +18,9 @@ struct RtChannels {
   static constexpr int kRgb = 0, kCoc = 3, kHit = 4, kCoverage = 5, kNear = 6, kCount = 9;
 };
 
+// A hit ratio or foreground share below this is no silhouette (the noise floor of a few rays).
+constexpr float kSilhouette = 0.02f;
+
 inline float saturate(float x) {
   return std::clamp(x, 0.0f, 1.0f);
 }

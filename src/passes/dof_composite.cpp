@@ -39,8 +39,7 @@ std::vector<ParamDesc> DofCompositePass::params() const {
 }
 
 namespace {
-// A hit ratio or foreground share below this is no silhouette (the noise floor of a few rays).
-constexpr float kSilhouette = 0.02f;
+using dof::kSilhouette;
 
 // The sharp image gathered over a disc of `radius` pixels around (x, y) at full resolution. Each
 // neighbour is weighted by how much of it the disc covers and by whether its own blur reaches the

@@ -12,11 +12,14 @@ namespace tandem {
 std::vector<BufferSlot> RayMaskPass::inputs() const {
   BufferSlot variance{"dof_variance", 1, BufferKind::Variance, Extent::any()};
   variance.history = true;
+  BufferSlot bokeh{"bokeh", 2, BufferKind::Mask};
+  bokeh.optional = true;
   return {{"position", 3, BufferKind::Position},
           {"normal", 3, BufferKind::Normal},
           {"depth", 1, BufferKind::Depth},
           {"coc", 1, BufferKind::Signed},
-          variance};
+          variance,
+          bokeh};
 }
 
 std::vector<ParamDesc> RayMaskPass::params() const {
@@ -43,6 +46,14 @@ std::vector<ParamDesc> RayMaskPass::params() const {
            1,
            "adaptive: eq. 2-4; all: m rays in every pixel (rt-dof)",
            {"adaptive", "all"}},
+          {"fine_coc",
+           ParamType::Float,
+           12,
+           0,
+           64,
+           "no rays where dof_composite gathers the sharp image instead (|CoC| below half of "
+           "this, no foreground over the pixel: keep equal to dof_composite.fine_coc; 0 = off)",
+           {}},
           {"resolution",
            ParamType::Enum,
            0,
@@ -92,16 +103,27 @@ void RayMaskPass::execute(FrameContext& ctx) {
   Buffer gradients[4];
   for (int c = 0; c < 4; ++c) gradients[c] = sobel5x5(low, c);
 
-  // Near-field pixels (at the mask's resolution) and, for the dilation, their CoC radius.
+  // Near-field pixels (at the mask's resolution) and, for the dilation, their CoC radius; and
+  // the pixels whose every frame pixel the composite takes wholly from its full-resolution gather
+  // of the sharp image (|CoC| below half of fine_coc, no foreground share in the post-process
+  // gather): rays there would not be seen (beyond the paper).
+  const Buffer* bokeh = ctx.optionalInput(*this, "bokeh");
+  const float fineCoc = bokeh ? 0.5f * float(param("fine_coc")) : 0.0f;
   Buffer nearRadius(w, h, 1);
+  std::vector<unsigned char> gathered(size_t(w) * size_t(h), 0);
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       float c = 0.0f;
+      bool fine = fineCoc > 0;
       for (int j = 0; j < scale; ++j)
-        for (int i = 0; i < scale; ++i)
-          c = std::min(c,
-                       coc.at(std::min(x * scale + i, W - 1), std::min(y * scale + j, H - 1))[0]);
+        for (int i = 0; i < scale; ++i) {
+          const int px = std::min(x * scale + i, W - 1), py = std::min(y * scale + j, H - 1);
+          const float cp = coc.at(px, py)[0];
+          c = std::min(c, cp);
+          fine = fine && std::abs(cp) < fineCoc && bokeh->at(px, py)[1] <= dof::kSilhouette;
+        }
       nearRadius.at(x, y)[0] = c < -dof::kZoneOfFocusCoc ? -0.5f * c / float(scale) : 0.0f;
+      gathered[size_t(y) * size_t(w) + size_t(x)] = fine;
     }
   });
   // Dilation: a summed-area table of near-field pixels answers "any within radius r?" per pixel;
@@ -161,7 +183,7 @@ void RayMaskPass::execute(FrameContext& ctx) {
         }
       }
       if (near && m > 0) rays = std::max(rays, 1.0f);
-      mask.at(x, y)[0] = rays;
+      mask.at(x, y)[0] = gathered[size_t(y) * size_t(w) + size_t(x)] ? 0.0f : rays;
     }
   });
   double total = 0, masked = 0;

@@ -8,9 +8,13 @@
 // also gives one ray to every pixel within the neighbourhood's largest near-field CoC radius of a
 // near-field pixel (§5.3's fix for the tiling of Fig. 8b: a blurred foreground spreads that far
 // over the background; off: at the paper's variance weight the mask is already full there, measured
-// no gain). `mode = all` gives every pixel m rays (the rt-dof baseline). Inputs: position, normal,
-// depth, coc; history: dof_variance. Output: ray_mask (rays per pixel, at half the frame's
-// resolution or the frame's: `resolution`).
+// no gain). Also beyond the paper, `fine_coc`: no rays where dof_composite takes the pixel wholly
+// from its full-resolution gather of the sharp image (every frame pixel of the mask pixel with
+// |CoC| < fine_coc / 2 and no foreground share in the post-process gather, optional input bokeh),
+// the near-field minimum included: rays there would not be seen. `mode = all` gives every pixel m
+// rays (the rt-dof baseline). Inputs: position, normal, depth, coc; optional: bokeh; history:
+// dof_variance. Output: ray_mask (rays per pixel, at half the frame's resolution or the frame's:
+// `resolution`).
 #pragma once
 #include "pipeline/pass.h"
 

@@ -185,6 +185,31 @@ TEST(HybridDof, RayMaskIsZeroOnFlatFocusAndCoversNearField) {
   EXPECT_GT(edgeMax, 1);  // the edge gets more than the near field's one ray (eq. 2-4)
 }
 
+// Beyond the paper: no rays where the composite gathers the sharp image at full resolution
+// instead (|CoC| < fine_coc / 2 and no foreground share in the post-process gather). A slightly
+// defocused near square then gets none; once the gather reports a foreground over it, the
+// paper's minimum of one ray per near-field pixel is back. The two passes' thresholds agree.
+TEST(HybridDof, RayMaskLeavesWhatTheCompositeGathersToIt) {
+  EXPECT_EQ(RayMaskPass().param("fine_coc"), DofCompositePass().param("fine_coc"));
+  const int w = 96, h = 96;
+  FrameContext ctx = context(w, h, lensDesc(0.15f, 4.0f));
+  syntheticGBuffer(ctx, 2.5f, 40, 56);  // CoC -3 px
+  const float c = ctx.input("coc").at(48, 48)[0];
+  RayMaskPass pass;
+  ASSERT_LT(c, -dof::kZoneOfFocusCoc);
+  ASSERT_GT(c, -0.5f * float(pass.param("fine_coc")));
+  Buffer bokeh(w, h, 2, 0.0f, BufferKind::Mask);
+  ctx.buffers["bokeh"] = bokeh;
+  pass.execute(ctx);
+  EXPECT_EQ(channelSum(ctx.input("ray_mask"), 0), 0.0);
+  for (int y = 40; y < 56; ++y)
+    for (int x = 40; x < 56; ++x) bokeh.at(x, y)[1] = 0.5f;
+  ctx.buffers["bokeh"] = bokeh;
+  pass.execute(ctx);
+  for (int y = 20; y < 28; ++y)
+    for (int x = 20; x < 28; ++x) EXPECT_GE(ctx.input("ray_mask").at(x, y)[0], 1.0f) << x << y;
+}
+
 namespace {
 
 // Runs the accumulation pass on one frame's ray-traced inputs, carrying its history like the
