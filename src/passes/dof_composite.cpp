@@ -1,5 +1,6 @@
 #include "passes/dof_composite.h"
 
+#include <array>
 #include <cmath>
 
 #include "core/image_filters.h"
@@ -45,25 +46,44 @@ using dof::kSilhouette;
 // neighbour is weighted by how much of it the disc covers and by whether its own blur reaches the
 // centre (scatter as gather, as the reconstruction's rejection), so an in-focus edge next to a
 // blurred floor does not bleed into it.
+// The distance of every pixel offset up to kMaxReach from the centre, row by row.
+constexpr int kMaxReach = 33;  // ceil(64 / 2 + 0.5): fine_coc's largest radius
+constexpr int kSpan = 2 * kMaxReach + 1;
+const std::array<float, kSpan * kSpan>& offsetDistances() {
+  static const auto table = [] {
+    std::array<float, kSpan * kSpan> t{};
+    for (int dy = -kMaxReach; dy <= kMaxReach; ++dy)
+      for (int dx = -kMaxReach; dx <= kMaxReach; ++dx)
+        t[size_t((dy + kMaxReach) * kSpan + dx + kMaxReach)] = std::sqrt(float(dx * dx + dy * dy));
+    return t;
+  }();
+  return table;
+}
+
 Vec3 fineGather(const Buffer& sharp, const Buffer& coc, int x, int y, float radius) {
-  const int r = int(std::ceil(radius + 0.5f));
-  Vec3 sum(0.0f);
-  float wsum = 0;
-  for (int dy = -r; dy <= r; ++dy) {
-    const int yy = y + dy;
-    if (yy < 0 || yy >= sharp.height) continue;
-    for (int dx = -r; dx <= r; ++dx) {
-      const int xx = x + dx;
-      if (xx < 0 || xx >= sharp.width) continue;
-      const float d = std::sqrt(float(dx * dx + dy * dy));
-      float wt = dof::saturate(radius + 0.5f - d);
-      if (wt <= 0) continue;
-      if (dx != 0 || dy != 0) wt *= dof::saturate(0.5f * std::abs(coc.at(xx, yy)[0]) + 0.5f - d);
-      sum += sharp.rgb(xx, yy) * wt;
+  const float reach = radius + 0.5f;
+  const int r = std::min(int(std::ceil(reach)), kMaxReach);
+  const float* dist = offsetDistances().data();
+  float sum[3] = {0, 0, 0}, wsum = 0;
+  for (int dy = std::max(-r, -y); dy <= std::min(r, sharp.height - 1 - y); ++dy) {
+    // Only the disc's span of this row (the centre's weight is 1: |CoC| >= 0 reaches it).
+    const int half = int(std::sqrt(std::max(reach * reach - float(dy * dy), 0.0f)));
+    const int x0 = std::max(x - half, 0), x1 = std::min(x + half, sharp.width - 1);
+    const float* drow = dist + (dy + kMaxReach) * kSpan + kMaxReach - x;
+    const float* crow = coc.at(0, y + dy);
+    const float* srow = sharp.at(0, y + dy);
+    for (int xx = x0; xx <= x1; ++xx) {
+      const float d = drow[xx];
+      const float wt =
+          dof::saturate(reach - d) * dof::saturate(0.5f * std::abs(crow[xx]) + 0.5f - d);
+      sum[0] += srow[3 * xx] * wt;
+      sum[1] += srow[3 * xx + 1] * wt;
+      sum[2] += srow[3 * xx + 2] * wt;
       wsum += wt;
     }
   }
-  return sum * (1.0f / wsum);  // the centre always counts
+  const float inv = 1.0f / wsum;
+  return Vec3(sum[0] * inv, sum[1] * inv, sum[2] * inv);
 }
 }  // namespace
 
