@@ -11,7 +11,12 @@
 // intensity (bright bokeh converge poorly when traced); in the far field the ray-traced colour
 // lerped towards the post-process colour by smoothstep(0, 0.3, h) of the hit ratio (eq. 7).
 // Where no ray has reached a pixel yet (outside the mask, no history), the post-process colour.
-// The ray-traced image is upsampled bilinearly from its resolution.
+// The ray-traced image is upsampled bilinearly from its resolution. Beyond the paper
+// (`fine_coc`, measured better): out of focus but with |CoC| below fine_coc px, where nothing
+// nearer spreads over the pixel (no foreground share in the gather; in the far field also no
+// near-field ray hit), the sharp image gathered over the CoC disc at full resolution, blended in
+// fully below fine_coc / 2: the half-resolution rays and gather, upsampled, blur what a small CoC
+// leaves almost sharp. ray_mask sends no rays where this gather takes the pixel wholly.
 // `mode = rt` (the rt-dof baseline): the ray-traced colour wherever it exists, the sharp raster
 // elsewhere. Without an rt_recon input (postfx-dof): the post-process colour out of focus.
 // Inputs: hdr (sharp colour), coc; optional: postfx and bokeh (without them the sharp colour
