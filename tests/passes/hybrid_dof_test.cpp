@@ -365,6 +365,19 @@ TEST(HybridDof, ReprojectionOfATranslatedCameraMapsHistoryExactly) {
     }
 }
 
+namespace {
+
+void setCompositeInputs(FrameContext& ctx, const Buffer& sharp, const Buffer& coc,
+                        const Buffer& postfx, const Buffer& bokeh, const Buffer& rt) {
+  ctx.buffers["hdr"] = sharp;
+  ctx.buffers["coc"] = coc;
+  ctx.buffers["postfx"] = postfx;
+  ctx.buffers["bokeh"] = bokeh;
+  ctx.buffers["rt_recon"] = rt;
+}
+
+}  // namespace
+
 // The composite keeps the sharp raster colour wherever |CoC| < √2 and no blurred foreground
 // reaches over the pixel, and never elsewhere.
 TEST(HybridDof, CompositeKeepsRasterInTheZoneOfFocus) {
@@ -380,11 +393,7 @@ TEST(HybridDof, CompositeKeepsRasterInTheZoneOfFocus) {
       r[0] = 0.9f, r[1] = 0.8f, r[2] = 0.1f, r[3] = 2.0f, r[4] = 0.0f, r[5] = 1.0f;
       r[6] = 0.3f, r[7] = 0.3f, r[8] = 0.3f;
     }
-  ctx.buffers["hdr"] = sharp;
-  ctx.buffers["coc"] = coc;
-  ctx.buffers["postfx"] = postfx;
-  ctx.buffers["bokeh"] = bokeh;
-  ctx.buffers["rt_recon"] = rt;
+  setCompositeInputs(ctx, sharp, coc, postfx, bokeh, rt);
   DofCompositePass pass;
   pass.setParam("fine_coc", 0);  // eq. 7 alone (the full-resolution gather is tested below)
   pass.execute(ctx);
@@ -420,11 +429,7 @@ TEST(HybridDof, CompositeGathersSmallCocAtFullResolution) {
     coc.at(4, y)[0] = 0.0f;
   }
   sharp.setRgb(24, 16, Vec3(1.0f));
-  ctx.buffers["hdr"] = sharp;
-  ctx.buffers["coc"] = coc;
-  ctx.buffers["postfx"] = postfx;
-  ctx.buffers["bokeh"] = bokeh;
-  ctx.buffers["rt_recon"] = rt;
+  setCompositeInputs(ctx, sharp, coc, postfx, bokeh, rt);
   DofCompositePass pass;
   pass.execute(ctx);
   const Buffer& out = ctx.input("dof");
