@@ -34,18 +34,14 @@ std::vector<ParamDesc> DofCompositePass::params() const {
        12,
        0,
        64,
-       "far field with no foreground over it: below this CoC (px) the sharp image gathered "
-       "at full resolution instead of the upsampled rays / gather (0 = off)",
+       "out of focus with no foreground over the pixel: below this |CoC| (px) the sharp "
+       "image gathered at full resolution instead of the upsampled rays / gather (0 = off)",
        {}}};
 }
 
 namespace {
 using dof::kSilhouette;
 
-// The sharp image gathered over a disc of `radius` pixels around (x, y) at full resolution. Each
-// neighbour is weighted by how much of it the disc covers and by whether its own blur reaches the
-// centre (scatter as gather, as the reconstruction's rejection), so an in-focus edge next to a
-// blurred floor does not bleed into it.
 // The distance of every pixel offset up to kMaxReach from the centre, row by row.
 constexpr int kMaxReach = 33;  // ceil(64 / 2 + 0.5): fine_coc's largest radius
 constexpr int kSpan = 2 * kMaxReach + 1;
@@ -60,6 +56,10 @@ const std::array<float, kSpan * kSpan>& offsetDistances() {
   return table;
 }
 
+// The sharp image gathered over a disc of `radius` pixels around (x, y) at full resolution. Each
+// neighbour is weighted by how much of it the disc covers and by whether its own blur reaches the
+// centre (scatter as gather, as the reconstruction's rejection), so an in-focus edge next to a
+// blurred floor does not bleed into it.
 Vec3 fineGather(const Buffer& sharp, const Buffer& coc, int x, int y, float radius) {
   const float reach = radius + 0.5f;
   const int r = std::min(int(std::ceil(reach)), kMaxReach);
