@@ -24,7 +24,8 @@ std::string referenceKey(const ReferenceJob& job) {
   h.pod(s.spp).pod(s.timeLimitS).pod(s.path.maxDepth).pod(s.path.rouletteDepth).pod(s.seed);
   if (s.integrator == Integrator::Whitted)  // keeps the keys of path-traced references
     h.pod(int(s.integrator)).pod(s.whitted.maxDepth).pod(s.whitted.importanceCutoff);
-  if (s.integrator == Integrator::DiffuseGI) h.pod(int(s.integrator));
+  // 2: lights picked by the visibility-probed grid (the same expectation, less noise).
+  if (s.integrator == Integrator::DiffuseGI) h.pod(int(s.integrator)).pod(int(2));
   if (job.stereo.enabled)  // keeps the keys of mono references as they were
     h.pod(job.stereo.ipd).pod(job.stereo.converged).pod(job.stereo.convergence);
   return h.hex();

@@ -21,6 +21,8 @@ void AtrousImage::resize(int w, int h) {
   positionScale.assign(n, 1.0f);
   sampled.assign(n, 0.0f);
   known.assign(n, 0.0f);
+  var.assign(n, 0.0f);
+  colorScale.assign(n, 0.0f);
 }
 
 float sampledMeanLuminance(const AtrousImage& img) {
@@ -51,19 +53,20 @@ inline float expNeg(float e) {
 }
 
 struct TapPlanes {
-  const float *c0, *c1, *c2, *n0, *n1, *n2, *x0, *x1, *x2, *b;
+  const float *c0, *c1, *c2, *n0, *n1, *n2, *x0, *x1, *x2, *b, *v;
 };
 
 // Eq. 4.1 x 4.2: the weight of neighbour j for centre i (the kernel's, the edge-stopping terms
-// and the mask); the colour term only where the centre has an estimate to compare with.
+// and the mask); `colorScale` is the centre's 1 / (colour σ)², 0 where it has no estimate to
+// compare with.
 __attribute__((always_inline)) inline float tapWeight(
     const float* c0, const float* c1, const float* c2, const float* n0, const float* n1,
     const float* n2, const float* x0, const float* x1, const float* x2, const float* b, int i,
-    ptrdiff_t j, float kernel, float invColor, float invNormal, float scale, float known) {
+    ptrdiff_t j, float kernel, float colorScale, float invNormal, float scale) {
   const float dr = c0[j] - c0[i], dg = c1[j] - c1[i], db = c2[j] - c2[i];
   const float dnx = n0[j] - n0[i], dny = n1[j] - n1[i], dnz = n2[j] - n2[i];
   const float dxx = x0[j] - x0[i], dxy = x1[j] - x1[i], dxz = x2[j] - x2[i];
-  const float e = (dr * dr + dg * dg + db * db) * invColor * known +
+  const float e = (dr * dr + dg * dg + db * db) * colorScale +
                   (dnx * dnx + dny * dny + dnz * dnz) * invNormal +
                   (dxx * dxx + dxy * dxy + dxz * dxz) * scale;
   return kernel * b[j] * expNeg(e);
@@ -72,21 +75,22 @@ __attribute__((always_inline)) inline float tapWeight(
 // Accumulates one tap row segment: centres u = [0, count) of the span (pointers at the span's
 // first centre), neighbours at offset `offset` from each centre.
 __attribute__((target_clones("avx2", "default"))) void accumulateTap(
-    const TapPlanes& p, ptrdiff_t offset, int count, float kernel, float invColor, float invNormal,
-    const float* __restrict scale, const float* __restrict known, float* __restrict sr,
-    float* __restrict sg, float* __restrict sb, float* __restrict sw) {
+    const TapPlanes& p, ptrdiff_t offset, int count, float kernel, float invNormal,
+    const float* __restrict scale, const float* __restrict colorScale, float* __restrict sr,
+    float* __restrict sg, float* __restrict sb, float* __restrict sw, float* __restrict sv) {
   const float* __restrict c0 = p.c0, * __restrict c1 = p.c1, * __restrict c2 = p.c2;
   const float* __restrict n0 = p.n0, * __restrict n1 = p.n1, * __restrict n2 = p.n2;
   const float* __restrict x0 = p.x0, * __restrict x1 = p.x1, * __restrict x2 = p.x2;
-  const float* __restrict b = p.b;
+  const float* __restrict b = p.b, * __restrict v = p.v;
   for (int i = 0; i < count; ++i) {
     const ptrdiff_t j = i + offset;
-    const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel, invColor,
-                              invNormal, scale[i], known[i]);
+    const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel, colorScale[i],
+                              invNormal, scale[i]);
     sr[i] += w * c0[j];
     sg[i] += w * c1[j];
     sb[i] += w * c2[j];
     sw[i] += w;
+    sv[i] += w * w * v[j];
   }
 }
 
@@ -94,27 +98,29 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTap(
 // a time with their sums in registers (the same sums in the same order as accumulateTap).
 __attribute__((target_clones("avx2", "default"))) void accumulateTaps(
     const TapPlanes& p, const ptrdiff_t* offsets, const float* kernels, int taps, int count,
-    float invColor, float invNormal, const float* __restrict scale, const float* __restrict known,
-    float* __restrict sr, float* __restrict sg, float* __restrict sb, float* __restrict sw) {
+    float invNormal, const float* __restrict scale, const float* __restrict colorScale,
+    float* __restrict sr, float* __restrict sg, float* __restrict sb, float* __restrict sw,
+    float* __restrict sv) {
   const float* __restrict c0 = p.c0, * __restrict c1 = p.c1, * __restrict c2 = p.c2;
   const float* __restrict n0 = p.n0, * __restrict n1 = p.n1, * __restrict n2 = p.n2;
   const float* __restrict x0 = p.x0, * __restrict x1 = p.x1, * __restrict x2 = p.x2;
-  const float* __restrict b = p.b;
+  const float* __restrict b = p.b, * __restrict v = p.v;
   int i0 = 0;
   for (; i0 + 8 <= count; i0 += 8) {
-    float ar[8] = {}, ag[8] = {}, ab[8] = {}, aw[8] = {};
+    float ar[8] = {}, ag[8] = {}, ab[8] = {}, aw[8] = {}, av[8] = {};
     for (int t = 0; t < taps; ++t) {
       const ptrdiff_t o = offsets[t];
       const float kernel = kernels[t];
       for (int l = 0; l < 8; ++l) {
         const int i = i0 + l;
         const ptrdiff_t j = i + o;
-        const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel, invColor,
-                                  invNormal, scale[i], known[i]);
+        const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel,
+                                  colorScale[i], invNormal, scale[i]);
         ar[l] += w * c0[j];
         ag[l] += w * c1[j];
         ab[l] += w * c2[j];
         aw[l] += w;
+        av[l] += w * w * v[j];
       }
     }
     for (int l = 0; l < 8; ++l) {
@@ -122,14 +128,15 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTaps(
       sg[i0 + l] += ag[l];
       sb[i0 + l] += ab[l];
       sw[i0 + l] += aw[l];
+      sv[i0 + l] += av[l];
     }
   }
   if (i0 < count) {
-    const TapPlanes rest{p.c0 + i0, p.c1 + i0, p.c2 + i0, p.n0 + i0, p.n1 + i0,
-                         p.n2 + i0, p.x0 + i0, p.x1 + i0, p.x2 + i0, p.b + i0};
+    const TapPlanes rest{p.c0 + i0, p.c1 + i0, p.c2 + i0, p.n0 + i0, p.n1 + i0, p.n2 + i0,
+                         p.x0 + i0, p.x1 + i0, p.x2 + i0, p.b + i0,  p.v + i0};
     for (int t = 0; t < taps; ++t)
-      accumulateTap(rest, offsets[t], count - i0, kernels[t], invColor, invNormal, scale + i0,
-                    known + i0, sr + i0, sg + i0, sb + i0, sw + i0);
+      accumulateTap(rest, offsets[t], count - i0, kernels[t], invNormal, scale + i0,
+                    colorScale + i0, sr + i0, sg + i0, sb + i0, sw + i0, sv + i0);
   }
 }
 
@@ -160,22 +167,39 @@ std::vector<AtrousSpan> cacheOrderedPieces(const AtrousRegion& region) {
 
 void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int iteration,
                  float meanLuminance, const AtrousWeights& w) {
-  // Each piece's results go to its own slice of `out` (4 floats per pixel: r, g, b, weight) and
-  // are written back after every piece is done, so every tap reads the values before this level.
+  // Each piece's results go to its own slice of `out` (5 floats per pixel: r, g, b, weight and
+  // the variance sum) and are written back after every piece is done, so every tap reads the
+  // values before this level.
   const std::vector<AtrousSpan> pieces = cacheOrderedPieces(region);
   std::vector<size_t> first(pieces.size() + 1, 0);
   for (size_t s = 0; s < pieces.size(); ++s)
     first[s + 1] = first[s] + size_t(pieces[s].x1 - pieces[s].x0);
-  std::vector<float> out(first.back() * 4, 0.0f);
+  std::vector<float> out(first.back() * 5, 0.0f);
   const float sc = w.sigmaColor * meanLuminance;
   const float invColor = 1.0f / std::max(sc * sc * std::ldexp(1.0f, -iteration), 1e-20f);
   const float invNormal = 1.0f / std::max(w.sigmaNormal * w.sigmaNormal, 1e-20f);
+  // The centres' colour σ: Dammertz's (relative to the mean, halved each level) or, guided by
+  // variance, σ_v standard deviations of the difference of two estimates (2 var per luminance,
+  // x3 for the RGB distance), floored so a pixel whose samples agreed keeps a little tolerance.
+  const float floorVar = 1e-6f * meanLuminance * meanLuminance;
+  const float sv2 = 6.0f * w.sigmaVariance * w.sigmaVariance;
+  tbb::parallel_for(size_t(0), pieces.size(), [&](size_t s) {
+    const AtrousSpan& sp = pieces[s];
+    const size_t u0 = img.index(sp.x0, sp.y);
+    for (int i = 0; i < sp.x1 - sp.x0; ++i) {
+      const size_t u = u0 + size_t(i);
+      img.colorScale[u] = img.known[u] <= 0.0f ? 0.0f
+                          : w.varianceGuided   ? 1.0f / (sv2 * std::max(img.var[u], floorVar))
+                                               : invColor;
+    }
+  });
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 16), [&](const auto& range) {
     for (size_t s = range.begin(); s != range.end(); ++s) {
       const AtrousSpan& sp = pieces[s];
       const int count = sp.x1 - sp.x0;
-      float* acc = &out[first[s] * 4];
-      float *sr = acc, *sg = acc + count, *sb = acc + 2 * count, *sw = acc + 3 * count;
+      float* acc = &out[first[s] * 5];
+      float *sr = acc, *sg = acc + count, *sb = acc + 2 * count, *sw = acc + 3 * count,
+            *sv = acc + 4 * count;
       const size_t u0 = img.index(sp.x0, sp.y);
       if (sp.x0 - 2 * step >= sp.vx0 && sp.x1 + 2 * step <= sp.vx1) {
         // Every tap of every centre is inside the view in x: all rows' taps at once.
@@ -190,11 +214,11 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
             kernels[taps++] = kSpline[ty] * kSpline[tx];
           }
         }
-        const TapPlanes p{&img.c[0][u0], &img.c[1][u0],   &img.c[2][u0], &img.n[0][u0],
-                          &img.n[1][u0], &img.n[2][u0],   &img.x[0][u0], &img.x[1][u0],
-                          &img.x[2][u0], &img.sampled[u0]};
-        accumulateTaps(p, offsets, kernels, taps, count, invColor, invNormal,
-                       &img.positionScale[u0], &img.known[u0], sr, sg, sb, sw);
+        const TapPlanes p{&img.c[0][u0], &img.c[1][u0], &img.c[2][u0],  &img.n[0][u0],
+                          &img.n[1][u0], &img.n[2][u0], &img.x[0][u0],  &img.x[1][u0],
+                          &img.x[2][u0], &img.sampled[u0], &img.var[u0]};
+        accumulateTaps(p, offsets, kernels, taps, count, invNormal, &img.positionScale[u0],
+                       &img.colorScale[u0], sr, sg, sb, sw, sv);
         continue;
       }
       for (int ty = 0; ty < 5; ++ty) {
@@ -206,13 +230,13 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
           const int xa = std::max(sp.x0, sp.vx0 - dx), xb = std::min(sp.x1, sp.vx1 - dx);
           if (xb <= xa) continue;
           const size_t u = u0 + size_t(xa - sp.x0);
-          const TapPlanes p{&img.c[0][u], &img.c[1][u],   &img.c[2][u], &img.n[0][u],
-                            &img.n[1][u], &img.n[2][u],   &img.x[0][u], &img.x[1][u],
-                            &img.x[2][u], &img.sampled[u]};
+          const TapPlanes p{&img.c[0][u], &img.c[1][u], &img.c[2][u],  &img.n[0][u],
+                            &img.n[1][u], &img.n[2][u], &img.x[0][u],  &img.x[1][u],
+                            &img.x[2][u], &img.sampled[u], &img.var[u]};
           const int o = xa - sp.x0;
           accumulateTap(p, ptrdiff_t(dy) * img.width + dx, xb - xa, kSpline[ty] * kSpline[tx],
-                        invColor, invNormal, &img.positionScale[u], &img.known[u], sr + o, sg + o,
-                        sb + o, sw + o);
+                        invNormal, &img.positionScale[u], &img.colorScale[u], sr + o, sg + o,
+                        sb + o, sw + o, sv + o);
         }
       }
     }
@@ -220,17 +244,31 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
   tbb::parallel_for(size_t(0), pieces.size(), [&](size_t s) {
     const AtrousSpan& sp = pieces[s];
     const int count = sp.x1 - sp.x0;
-    const float* acc = &out[first[s] * 4];
+    const float* acc = &out[first[s] * 5];
     const size_t u0 = img.index(sp.x0, sp.y);
     for (int i = 0; i < count; ++i) {
-      const float wsum = acc[3 * count + i];
+      const size_t u = u0 + size_t(i);
+      float wsum = acc[3 * count + i];
+      float sr = acc[i], sg = acc[count + i], sb = acc[2 * count + i], sv = acc[4 * count + i];
+      if (w.varianceGuided && img.sampled[u] <= 0 && img.known[u] > 0) {
+        // An unsampled pixel's own estimate (from sampled pixels only) is its centre tap:
+        // otherwise taps its colour weight all but rejected would, normalised, take it over.
+        const float k = kSpline[2] * kSpline[2];
+        sr += k * img.c[0][u];
+        sg += k * img.c[1][u];
+        sb += k * img.c[2][u];
+        sv += k * k * img.var[u];
+        wsum += k;
+      }
       // No usable tap (or weights so small their reciprocal would overflow): keep the value.
       if (!(wsum > 1e-30f)) continue;
       const float inv = 1.0f / wsum;
-      img.c[0][u0 + i] = acc[i] * inv;
-      img.c[1][u0 + i] = acc[count + i] * inv;
-      img.c[2][u0 + i] = acc[2 * count + i] * inv;
-      img.known[u0 + i] = 1.0f;
+      img.c[0][u] = sr * inv;
+      img.c[1][u] = sg * inv;
+      img.c[2][u] = sb * inv;
+      // The weighted mean's variance (the taps' noise taken as independent).
+      img.var[u] = sv * inv * inv;
+      img.known[u] = 1.0f;
     }
   });
 }

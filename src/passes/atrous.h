@@ -22,6 +22,11 @@ struct AtrousWeights {
   float sigmaColor = 16.0f;     // relative to the sampled pixels' mean luminance
   float sigmaNormal = 0.3f;     // unit-normal difference
   float sigmaPosition = 0.05f;  // relative to the centre's distance from the eye
+  // Beyond Dammertz: the colour term scaled by the centre's own noise instead (SVGF-like,
+  // Schied et al. 2017): exp(-|c_j - c_u|² / (6 σ_v² var_u)), var_u the variance of the centre's
+  // estimate, carried through the levels as the weighted mean's (Σ w² var_j / (Σ w)²).
+  bool varianceGuided = false;
+  float sigmaVariance = 4.0f;
 };
 
 // The frame in planes: colour (filtered in place), guides and per-pixel flags.
@@ -31,6 +36,8 @@ struct AtrousImage {
   std::vector<float> positionScale;  // 1 / (σ_x z_u)² per pixel (filled by prepare())
   std::vector<float> sampled;        // b: 1 where the pixel was sampled, 0 where not
   std::vector<float> known;          // 1 where the pixel holds an estimate (sampled or filtered)
+  std::vector<float> var;            // variance of the pixel's estimate's luminance (known ones)
+  std::vector<float> colorScale;     // per level: the centre's 1 / (colour σ)², 0 if not known
   void resize(int w, int h);
   size_t index(int px, int py) const { return size_t(py) * size_t(width) + size_t(px); }
 };

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "core/profiler.h"
 #include "pipeline/frame_context.h"
 #include "rt/diffuse_gi.h"
 #include "scene/scene.h"
@@ -22,6 +23,16 @@ std::vector<BufferSlot> FoveatedPTPass::inputs() const {
           {"fov_coords", 3, BufferKind::List, Extent::any()}};
 }
 
+std::vector<ParamDesc> FoveatedPTPass::params() const {
+  return {{"light_selection",
+           ParamType::Enum,
+           1,
+           0,
+           1,
+           "uniform: any light alike (the thesis); grid: by estimated irradiance where the path is",
+           {"uniform", "grid"}}};
+}
+
 void FoveatedPTPass::execute(FrameContext& ctx) {
   const Buffer& position = ctx.input(*this, "position");
   const Buffer& normal = ctx.input(*this, "normal");
@@ -31,10 +42,26 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
   const Buffer& depth = ctx.input(*this, "depth");
   const Buffer& coords = ctx.input(*this, "fov_coords");
   Buffer& out = ctx.output(*this, "pt_noisy");
+  Buffer& variance = ctx.output(*this, "pt_variance");
   out.fill(0.0f);
+  variance.fill(0.0f);
   const RayTracer& rt = ctx.rayTracer();
   const ShadingContext shading = ShadingContext::from(*ctx.scene);
-  const DiffuseGI gi(rt, *ctx.scene, shading);
+  const LightGrid* grid = nullptr;
+  if (param("light_selection") == 1) {
+    const uint64_t key = lightSetKey(shading.lights, DiffuseGI::lightsSampled(*ctx.scene));
+    if (!grid_ || key != gridKey_ || gridScene_ != ctx.scene) {
+      const auto t0 = Clock::now();
+      grid_ = std::make_unique<LightGrid>(DiffuseGI::buildGrid(*ctx.scene, shading, &rt));
+      gridKey_ = key;
+      gridScene_ = ctx.scene;
+      ctx.counters["foveated_pt/light_grid_built"] = 1;
+      ctx.counters["foveated_pt/light_grid_probe_rays"] = double(grid_->probeRays());
+      ctx.passParts.push_back({"light_grid", msSince(t0), 0});
+    }
+    grid = grid_.get();
+  }
+  const DiffuseGI gi(rt, *ctx.scene, shading, grid);
   const uint64_t seed = hashCombine(uint32_t(ctx.seed), uint32_t(ctx.serial + 1));
   const size_t listed = size_t(coords.width) * (coords.height > 0 ? 1 : 0);
   const size_t eyes = ctx.views.size();
@@ -49,6 +76,7 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
       if (ex >= v.width() || ey >= v.height()) continue;
       const int x = ex + v.x, y = ey + v.y;
       Vec3 sum(0.0f);
+      double lum2 = 0;  // the samples' squared luminances
       if (depth.at(x, y)[0] <= 0.0f) {
         Vec3 o, d;
         v.camera.generateRay(ex + 0.5f, ey + 0.5f, o, d);
@@ -67,11 +95,19 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
         for (int i = 0; i < spp; ++i) {
           SobolSampler rng(seed, pixel, uint32_t(i));
           Vec3 L = gi.radiance(s, wo, rng, 0.0f, localRays);
-          if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) sum += L;
+          if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
+            sum += L;
+            lum2 += double(luminance(L)) * double(luminance(L));
+          }
         }
       }
       localSamples += uint64_t(spp);
-      out.setRgb(x, y, sum / float(std::max(spp, 1)));
+      const float n = float(std::max(spp, 1));
+      out.setRgb(x, y, sum / n);
+      // The variance of the mean's luminance from the samples' spread; unknown (-1) from one.
+      const double mean = double(luminance(sum)) / n;
+      variance.at(x, y)[0] =
+          spp >= 2 ? float(std::max(lum2 - n * mean * mean, 0.0) / ((n - 1.0) * n)) : -1.0f;
     }
     rays += localRays;
     samples += localSamples;

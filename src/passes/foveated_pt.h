@@ -5,9 +5,16 @@
 // Lambertian BRDF. Pixels not listed stay empty (0) for the denoiser to fill; the sky is seen in
 // the pixel's camera direction. Samples are Owen-scrambled Sobol, seeded per frame, so each frame
 // draws fresh noise. Inputs: the G-buffer (position, normal, geo_normal, diffuse, emission,
-// depth), fov_coords. Output: pt_noisy (the mean of the pixel's samples).
+// depth), fov_coords. Outputs: pt_noisy (the mean of the pixel's samples) and pt_variance (the
+// variance of that mean's luminance, from the samples' spread; -1 for a single sample).
+// `light_selection`: uniform (the thesis) or grid (beyond it: rt/light_grid.h, each light by its
+// estimated irradiance where the path is; the grid is built once and kept while the lights stay).
 #pragma once
+#include <cstdint>
+#include <memory>
+
 #include "pipeline/pass.h"
+#include "rt/light_grid.h"
 
 namespace tandem {
 
@@ -18,8 +25,16 @@ class FoveatedPTPass : public Pass {
     return "Path tracing over the coordinate buffer: NEE + one diffuse bounce (seed 004 §4.3)";
   }
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override { return {{"pt_noisy", 3, BufferKind::Color}}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"pt_noisy", 3, BufferKind::Color}, {"pt_variance", 1, BufferKind::Variance}};
+  }
+  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ private:
+  std::unique_ptr<LightGrid> grid_;
+  uint64_t gridKey_ = 0;
+  const void* gridScene_ = nullptr;
 };
 
 }  // namespace tandem

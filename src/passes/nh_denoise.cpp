@@ -56,11 +56,93 @@ RegionNoise measureNoise(const AtrousImage& img, const AtrousRegion& region) {
 
 }  // namespace
 
+// SVGF's variance prefilter: each sampled pixel's variance becomes the mean over the sampled
+// pixels of its 3 x 3 neighbourhood (in its view) that measured one, so a pixel whose few
+// samples happened to agree still admits its neighbours; a pixel with no measured neighbour
+// takes the mean of all.
+static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) {
+  double total = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < img.var.size(); ++i)
+    if (img.sampled[i] > 0 && img.var[i] >= 0) {
+      total += img.var[i];
+      ++count;
+    }
+  const float fallback = count ? float(total / double(count)) : 0.0f;
+  std::vector<float> out(img.var.size(), 0.0f);
+  for (const View& v : views)
+    tbb::parallel_for(v.y, v.y + v.height(), [&](int y) {
+      for (int x = v.x; x < v.x + v.width(); ++x) {
+        const size_t i = img.index(x, y);
+        if (img.sampled[i] <= 0) continue;
+        double sum = 0;
+        int n = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
+            const size_t j = img.index(nx, ny);
+            if (img.sampled[j] > 0 && img.var[j] >= 0) {
+              sum += img.var[j];
+              ++n;
+            }
+          }
+        out[i] = n ? float(sum / n) : fallback;
+      }
+    });
+  img.var.swap(out);
+}
+
+// Before the levels (variance-guided weights only): an unsampled pixel takes, from the sampled
+// pixels of the same surface (normals within ~25°) in its 3 x 3, else 5 x 5, neighbourhood, the
+// one of median luminance (the side of an edge most of them are on), with its variance, as the
+// estimate its colour weight compares taps with. It is still never read as a tap (eq. 4.2);
+// without it, its first, widest level would mix both sides of an illumination edge blindly and
+// the next levels would keep the mixture.
+static void prefillHoles(AtrousImage& img, const std::vector<View>& views) {
+  std::vector<int64_t> source(img.var.size(), -1);
+  for (const View& v : views)
+    tbb::parallel_for(v.y, v.y + v.height(), [&](int y) {
+      std::vector<std::pair<float, size_t>> near;
+      for (int x = v.x; x < v.x + v.width(); ++x) {
+        const size_t i = img.index(x, y);
+        if (img.sampled[i] > 0) continue;
+        for (int r = 1; r <= 2 && near.empty(); ++r)
+          for (int dy = -r; dy <= r; ++dy)
+            for (int dx = -r; dx <= r; ++dx) {
+              const int nx = x + dx, ny = y + dy;
+              if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height())
+                continue;
+              const size_t j = img.index(nx, ny);
+              const float cosN = img.n[0][i] * img.n[0][j] + img.n[1][i] * img.n[1][j] +
+                                 img.n[2][i] * img.n[2][j];
+              if (img.sampled[j] <= 0 || cosN < 0.9f) continue;
+              near.push_back(
+                  {0.2126f * img.c[0][j] + 0.7152f * img.c[1][j] + 0.0722f * img.c[2][j], j});
+            }
+        if (near.empty()) continue;
+        std::nth_element(near.begin(), near.begin() + ptrdiff_t(near.size() / 2), near.end());
+        source[i] = int64_t(near[near.size() / 2].second);
+        near.clear();
+      }
+    });
+  for (size_t i = 0; i < source.size(); ++i)
+    if (source[i] >= 0) {
+      const size_t j = size_t(source[i]);
+      for (int k = 0; k < 3; ++k) img.c[k][i] = img.c[k][j];
+      img.var[i] = img.var[j];
+      img.known[i] = 1.0f;
+    }
+}
+
 std::vector<BufferSlot> NHDenoisePass::inputs() const {
+  BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
+  variance.optional = true;
   return {{"pt_noisy", 3, BufferKind::Color},    {"normal", 3, BufferKind::Normal},
           {"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth},
           {"diffuse", 4, BufferKind::Material},  {"emission", 3, BufferKind::Color},
-          {"fov_mask", 1, BufferKind::Mask},     {"fov_layer", 1, BufferKind::Id}};
+          {"fov_mask", 1, BufferKind::Mask},     {"fov_layer", 1, BufferKind::Id},
+          variance};
 }
 
 std::vector<ParamDesc> NHDenoisePass::params() const {
@@ -98,6 +180,21 @@ std::vector<ParamDesc> NHDenoisePass::params() const {
        "position edge-stopping σ, relative to eye distance",
        {}},
       {"demodulate", T::Bool, 1, 0, 1, "filter illumination (divided by the diffuse albedo)", {}},
+      {"color_weight",
+       T::Enum,
+       1,
+       0,
+       1,
+       "mean: σ_c x mean luminance, halved per level (Dammertz); variance: σ_v x each pixel's "
+       "own noise, from pt_variance (beyond the thesis)",
+       {"mean", "variance"}},
+      {"sigma_variance",
+       T::Float,
+       4.0,
+       0.01,
+       100,
+       "variance: colour edge-stopping σ in standard deviations of the pixel's estimate",
+       {}},
       {"levels_from",
        T::Enum,
        0,
@@ -128,8 +225,11 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   Buffer& out = ctx.output(*this, "denoised");
   const int W = ctx.width, H = ctx.height;
   const bool demodulate = param("demodulate") != 0;
+  const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
   const AtrousWeights weights{float(param("sigma_color")), float(param("sigma_normal")),
-                              float(param("sigma_position"))};
+                              float(param("sigma_position")),
+                              param("color_weight") == 1 && variance != nullptr,
+                              float(param("sigma_variance"))};
   // The albedo the illumination is divided by (sky and black surfaces: 1, left as colour).
   auto albedoAt = [&](int x, int y, int k) {
     const float a = diffuse.at(x, y)[k];
@@ -155,6 +255,10 @@ void NHDenoisePass::execute(FrameContext& ctx) {
           img.x[k][i] = position.at(x, y)[k];
         }
         img.sampled[i] = img.known[i] = sampled ? 1.0f : 0.0f;
+        // The estimate's variance in the filtered quantity's units (-1: not measured).
+        const float a = luminance(Vec3(albedoAt(x, y, 0), albedoAt(x, y, 1), albedoAt(x, y, 2)));
+        const float v = variance ? variance->at(x, y)[0] : -1.0f;
+        img.var[i] = sampled && v >= 0.0f ? v / (a * a) : -1.0f;
         const float z = depth.at(x, y)[0] > 0
                             ? length(Vec3(img.x[0][i], img.x[1][i], img.x[2][i]) - eye)
                             : 1.0f;
@@ -162,6 +266,10 @@ void NHDenoisePass::execute(FrameContext& ctx) {
         img.positionScale[i] = 1.0f / (s * s);
       }
     });
+  }
+  if (weights.varianceGuided) {
+    prefilterVariance(img, ctx.views);
+    prefillHoles(img, ctx.views);
   }
   // Regions as row spans of the layer map, per view (taps never cross into the other eye).
   const int mode = int(param("regions"));

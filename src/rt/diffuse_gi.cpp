@@ -11,10 +11,32 @@
 
 namespace tandem {
 
-DiffuseGI::DiffuseGI(const RayTracer& rt, const Scene& scene, const ShadingContext& shading)
-    : rt_(rt), scene_(scene), shading_(shading) {
+DiffuseGI::DiffuseGI(const RayTracer& rt, const Scene& scene, const ShadingContext& shading,
+                     const LightGrid* grid)
+    : rt_(rt), scene_(scene), shading_(shading), grid_(grid), lights_(lightsSampled(scene)) {}
+
+std::vector<int> DiffuseGI::lightsSampled(const Scene& scene) {
+  std::vector<int> lights;
   for (size_t i = 0; i < scene.lights.size(); ++i)
-    if (!scene.lights[i].fromEmissiveMesh) lights_.push_back(int(i));
+    if (!scene.lights[i].fromEmissiveMesh) lights.push_back(int(i));
+  return lights;
+}
+
+LightGrid DiffuseGI::buildGrid(const Scene& scene, const ShadingContext& shading,
+                               const RayTracer* rt) {
+  LightGrid::Visibility visible;
+  if (rt)
+    visible = [&](Vec3 p, int i) {
+      if (!scene.lights[size_t(i)].castsShadows) return true;
+      const LightSample ls = sampleLight(shading.lights[size_t(i)], p);
+      Ray r;
+      r.origin = p;
+      r.dir = ls.wi;
+      r.tfar = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
+                                       : ls.distance * (1.0f - 1e-4f);
+      return !rt->occluded(r);
+    };
+  return LightGrid(shading.lights, lightsSampled(scene), scene.bounds(), visible);
 }
 
 Vec3 DiffuseGI::albedo(const SurfaceSample& s) {
@@ -28,8 +50,18 @@ Vec3 DiffuseGI::emitted(const SurfaceSample& s, Vec3 wo) {
 Vec3 DiffuseGI::oneLight(const SurfaceSample& s, Vec3 n, float u, float time,
                          uint64_t& rays) const {
   if (lights_.empty()) return Vec3(0.0f);
-  const int count = int(lights_.size());
-  const int i = lights_[size_t(std::min(int(u * float(count)), count - 1))];
+  int i;
+  float pdf;
+  if (grid_) {
+    const LightGrid::Pick pick = grid_->pick(s.position, u);
+    if (pick.light < 0 || !(pick.pdf > 0.0f)) return Vec3(0.0f);
+    i = pick.light;
+    pdf = pick.pdf;
+  } else {
+    const int count = int(lights_.size());
+    i = lights_[size_t(std::min(int(u * float(count)), count - 1))];
+    pdf = 1.0f / float(count);
+  }
   const LightSample ls = sampleLight(shading_.lights[size_t(i)], s.position);
   const float cosI = dot(n, ls.wi);
   if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) return Vec3(0.0f);
@@ -37,7 +69,7 @@ Vec3 DiffuseGI::oneLight(const SurfaceSample& s, Vec3 n, float u, float time,
     ++rays;
     if (rt_.occluded(shadowRayTowards(s, ls, time))) return Vec3(0.0f);
   }
-  return ls.radiance * (cosI * float(count) / kPi);
+  return ls.radiance * (cosI / (pdf * kPi));
 }
 
 Vec3 DiffuseGI::reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,

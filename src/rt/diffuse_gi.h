@@ -1,6 +1,7 @@
 // The foveated path tracer's light transport (seed 004 §4.3, Wyman et al. 2018's diffuse global
-// illumination): at the primary surface one shadow ray to a light chosen uniformly at random
-// (next-event estimation), one cosine-weighted indirect ray, and at the indirect hit its emission
+// illumination): at the primary surface one shadow ray to a light chosen at random (next-event
+// estimation; uniformly as in the thesis, or by a LightGrid's estimate of each light's irradiance
+// there), one cosine-weighted indirect ray, and at the indirect hit its emission
 // plus one more random-light shadow ray; an indirect miss sees the sky. The BRDF is Lambert's
 // (diffuse albedo / π) everywhere: specular lobes, mirrors and glass are not part of this
 // transport. Lights standing in for emissive meshes are skipped (their mesh's emission is seen
@@ -9,6 +10,7 @@
 #pragma once
 #include <vector>
 
+#include "rt/light_grid.h"
 #include "rt/ray_tracer.h"
 #include "rt/sampler.h"
 #include "shading/blinn_phong.h"
@@ -17,7 +19,15 @@ namespace tandem {
 
 class DiffuseGI {
  public:
-  DiffuseGI(const RayTracer& rt, const Scene& scene, const ShadingContext& shading);
+  // `grid`, when given, picks the lights (built over lightsSampled(scene)); otherwise uniform.
+  DiffuseGI(const RayTracer& rt, const Scene& scene, const ShadingContext& shading,
+            const LightGrid* grid = nullptr);
+
+  // The lights the estimator samples: the scene's, less the stand-ins for emissive meshes.
+  static std::vector<int> lightsSampled(const Scene& scene);
+  // A selection grid over the scene's bounds for these lights; with `rt`, its visibility probed.
+  static LightGrid buildGrid(const Scene& scene, const ShadingContext& shading,
+                             const RayTracer* rt = nullptr);
 
   // One path's estimate of the light the primary surface `s` reflects towards wo (unit, surface
   // -> viewer), divided by its diffuse albedo: the outgoing radiance is s.emission (front side)
@@ -34,13 +44,14 @@ class DiffuseGI {
   static Vec3 emitted(const SurfaceSample& s, Vec3 wo);
 
  private:
-  // Irradiance / π at s from one light chosen uniformly (its visibility tested), over the
+  // Irradiance / π at s from one light chosen at random (its visibility tested), over the
   // light's selection probability.
   Vec3 oneLight(const SurfaceSample& s, Vec3 n, float u, float time, uint64_t& rays) const;
 
   const RayTracer& rt_;
   const Scene& scene_;
   const ShadingContext& shading_;
+  const LightGrid* grid_;
   std::vector<int> lights_;  // lights the estimator samples (not emissive-mesh stand-ins)
 };
 

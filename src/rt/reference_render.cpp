@@ -92,7 +92,10 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
   const Whitted whitted(rt, scene, shading, settings.whitted);
   const bool drt = settings.integrator == Integrator::Whitted;
   const bool diffuseGI = settings.integrator == Integrator::DiffuseGI;
-  const DiffuseGI gi(rt, scene, shading);
+  // The reference picks lights by the grid: the same expectation as uniform selection, less noise.
+  const LightGrid grid = diffuseGI ? DiffuseGI::buildGrid(scene, shading, &rt)
+                                   : LightGrid(shading.lights, {}, Bounds3{});
+  const DiffuseGI gi(rt, scene, shading, &grid);
   // The foveated path tracer's estimate at the surface its G-buffer holds: pixel centre, no lens,
   // the primary hit's texture level of detail as rt_gbuffer filters it.
   auto diffuseGIRadiance = [&](const Camera& cam, float px, float py, SobolSampler& rng) {
