@@ -79,8 +79,24 @@ const std::vector<Config>& configs() {
       {"foveated-nh3ld",
        "NH3LD, levels from variance",
        "nh3ld-variance",
-       {"nh_denoise.levels_from=variance"}}};
+       {"nh_denoise.levels_from=variance"}},
+      // The thesis' own estimator and filter: lights picked uniformly, Dammertz's colour weight.
+      {"foveated-base",
+       "Base, thesis' light choice and colour weight",
+       "base-thesis",
+       {"foveated_pt.light_selection=uniform", "nh_denoise.color_weight=mean"}},
+      {"foveated-nh3ld",
+       "NH3LD, thesis' light choice and colour weight",
+       "nh3ld-thesis",
+       {"foveated_pt.light_selection=uniform", "nh_denoise.color_weight=mean"}}};
   return c;
+}
+
+// The configurations' labels joined by `sep`.
+std::string configLabels(const char* sep) {
+  std::string out;
+  for (const Config& c : configs()) out += (out.empty() ? "" : sep) + std::string(c.label);
+  return out;
 }
 constexpr int kTemporal = 3;  // the configuration measured after several frames
 
@@ -294,13 +310,12 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
     }
     writePng((fs::path(o.out) / ("figure17_" + label + ".png")).string(), strip);
     report.image("figure17_" + label + ".png",
-                 o.sceneLabels[s] + ": reference, Base, NH2LD, NH3LD (same crop, left eye)");
+                 o.sceneLabels[s] + ": reference, " + configLabels(", ") +
+                     " (same crop, left eye)");
     writePng((fs::path(o.out) / ("figure18_" + label + ".png")).string(), maps);
     report.image(
         "figure18_" + label + ".png",
-        o.sceneLabels[s] +
-            ": FLIP against the reference, Base | NH2LD | NH3LD | NH3LD + temporal | NH3LD, levels "
-            "from variance");
+        o.sceneLabels[s] + ": FLIP against the reference, " + configLabels(" | "));
   }
   report.markdown("### Table 5 shape: quality against the same path tracer converged (" +
                   std::to_string(o.referenceSpp) + " spp, no foveation, no denoising), " +

@@ -23,6 +23,8 @@ void AtrousImage::resize(int w, int h) {
   known.assign(n, 0.0f);
   var.assign(n, 0.0f);
   colorScale.assign(n, 0.0f);
+  for (int k = 0; k < 3; ++k) g[k].assign(n, 0.0f);
+  gvar.assign(n, 0.0f);
 }
 
 float sampledMeanLuminance(const AtrousImage& img) {
@@ -52,18 +54,20 @@ inline float expNeg(float e) {
   return p * std::bit_cast<float>((xi + 127) << 23);
 }
 
+// The planes a tap reads: colour (summed), the colour guide (compared; the colour itself unless
+// a separate guide is kept), normal, position, mask and variance.
 struct TapPlanes {
-  const float *c0, *c1, *c2, *n0, *n1, *n2, *x0, *x1, *x2, *b, *v;
+  const float *c0, *c1, *c2, *g0, *g1, *g2, *n0, *n1, *n2, *x0, *x1, *x2, *b, *v;
 };
 
 // Eq. 4.1 x 4.2: the weight of neighbour j for centre i (the kernel's, the edge-stopping terms
 // and the mask); `colorScale` is the centre's 1 / (colour σ)², 0 where it has no estimate to
 // compare with.
 __attribute__((always_inline)) inline float tapWeight(
-    const float* c0, const float* c1, const float* c2, const float* n0, const float* n1,
+    const float* g0, const float* g1, const float* g2, const float* n0, const float* n1,
     const float* n2, const float* x0, const float* x1, const float* x2, const float* b, int i,
     ptrdiff_t j, float kernel, float colorScale, float invNormal, float scale) {
-  const float dr = c0[j] - c0[i], dg = c1[j] - c1[i], db = c2[j] - c2[i];
+  const float dr = g0[j] - g0[i], dg = g1[j] - g1[i], db = g2[j] - g2[i];
   const float dnx = n0[j] - n0[i], dny = n1[j] - n1[i], dnz = n2[j] - n2[i];
   const float dxx = x0[j] - x0[i], dxy = x1[j] - x1[i], dxz = x2[j] - x2[i];
   const float e = (dr * dr + dg * dg + db * db) * colorScale +
@@ -79,12 +83,13 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTap(
     const float* __restrict scale, const float* __restrict colorScale, float* __restrict sr,
     float* __restrict sg, float* __restrict sb, float* __restrict sw, float* __restrict sv) {
   const float* __restrict c0 = p.c0, * __restrict c1 = p.c1, * __restrict c2 = p.c2;
+  const float* __restrict g0 = p.g0, * __restrict g1 = p.g1, * __restrict g2 = p.g2;
   const float* __restrict n0 = p.n0, * __restrict n1 = p.n1, * __restrict n2 = p.n2;
   const float* __restrict x0 = p.x0, * __restrict x1 = p.x1, * __restrict x2 = p.x2;
   const float* __restrict b = p.b, * __restrict v = p.v;
   for (int i = 0; i < count; ++i) {
     const ptrdiff_t j = i + offset;
-    const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel, colorScale[i],
+    const float w = tapWeight(g0, g1, g2, n0, n1, n2, x0, x1, x2, b, i, j, kernel, colorScale[i],
                               invNormal, scale[i]);
     sr[i] += w * c0[j];
     sg[i] += w * c1[j];
@@ -102,6 +107,7 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTaps(
     float* __restrict sr, float* __restrict sg, float* __restrict sb, float* __restrict sw,
     float* __restrict sv) {
   const float* __restrict c0 = p.c0, * __restrict c1 = p.c1, * __restrict c2 = p.c2;
+  const float* __restrict g0 = p.g0, * __restrict g1 = p.g1, * __restrict g2 = p.g2;
   const float* __restrict n0 = p.n0, * __restrict n1 = p.n1, * __restrict n2 = p.n2;
   const float* __restrict x0 = p.x0, * __restrict x1 = p.x1, * __restrict x2 = p.x2;
   const float* __restrict b = p.b, * __restrict v = p.v;
@@ -114,7 +120,7 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTaps(
       for (int l = 0; l < 8; ++l) {
         const int i = i0 + l;
         const ptrdiff_t j = i + o;
-        const float w = tapWeight(c0, c1, c2, n0, n1, n2, x0, x1, x2, b, i, j, kernel,
+        const float w = tapWeight(g0, g1, g2, n0, n1, n2, x0, x1, x2, b, i, j, kernel,
                                   colorScale[i], invNormal, scale[i]);
         ar[l] += w * c0[j];
         ag[l] += w * c1[j];
@@ -132,8 +138,9 @@ __attribute__((target_clones("avx2", "default"))) void accumulateTaps(
     }
   }
   if (i0 < count) {
-    const TapPlanes rest{p.c0 + i0, p.c1 + i0, p.c2 + i0, p.n0 + i0, p.n1 + i0, p.n2 + i0,
-                         p.x0 + i0, p.x1 + i0, p.x2 + i0, p.b + i0,  p.v + i0};
+    const TapPlanes rest{p.c0 + i0, p.c1 + i0, p.c2 + i0, p.g0 + i0, p.g1 + i0,
+                         p.g2 + i0, p.n0 + i0, p.n1 + i0, p.n2 + i0, p.x0 + i0,
+                         p.x1 + i0, p.x2 + i0, p.b + i0,  p.v + i0};
     for (int t = 0; t < taps; ++t)
       accumulateTap(rest, offsets[t], count - i0, kernels[t], invNormal, scale + i0,
                     colorScale + i0, sr + i0, sg + i0, sb + i0, sw + i0, sv + i0);
@@ -182,6 +189,7 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
   // variance, σ_v standard deviations of the difference of two estimates (2 var per luminance,
   // x3 for the RGB distance), floored so a pixel whose samples agreed keeps a little tolerance.
   const float floorVar = 1e-6f * meanLuminance * meanLuminance;
+  const std::vector<float>* guide = w.varianceGuided ? img.g : img.c;
   const float sv2 = 6.0f * w.sigmaVariance * w.sigmaVariance;
   tbb::parallel_for(size_t(0), pieces.size(), [&](size_t s) {
     const AtrousSpan& sp = pieces[s];
@@ -189,7 +197,7 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
     for (int i = 0; i < sp.x1 - sp.x0; ++i) {
       const size_t u = u0 + size_t(i);
       img.colorScale[u] = img.known[u] <= 0.0f ? 0.0f
-                          : w.varianceGuided   ? 1.0f / (sv2 * std::max(img.var[u], floorVar))
+                          : w.varianceGuided   ? 1.0f / (sv2 * std::max(img.gvar[u], floorVar))
                                                : invColor;
     }
   });
@@ -214,9 +222,10 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
             kernels[taps++] = kSpline[ty] * kSpline[tx];
           }
         }
-        const TapPlanes p{&img.c[0][u0], &img.c[1][u0], &img.c[2][u0],  &img.n[0][u0],
-                          &img.n[1][u0], &img.n[2][u0], &img.x[0][u0],  &img.x[1][u0],
-                          &img.x[2][u0], &img.sampled[u0], &img.var[u0]};
+        const TapPlanes p{&img.c[0][u0],  &img.c[1][u0], &img.c[2][u0], &guide[0][u0],
+                          &guide[1][u0],  &guide[2][u0], &img.n[0][u0], &img.n[1][u0],
+                          &img.n[2][u0],  &img.x[0][u0], &img.x[1][u0], &img.x[2][u0],
+                          &img.sampled[u0], &img.var[u0]};
         accumulateTaps(p, offsets, kernels, taps, count, invNormal, &img.positionScale[u0],
                        &img.colorScale[u0], sr, sg, sb, sw, sv);
         continue;
@@ -230,9 +239,10 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
           const int xa = std::max(sp.x0, sp.vx0 - dx), xb = std::min(sp.x1, sp.vx1 - dx);
           if (xb <= xa) continue;
           const size_t u = u0 + size_t(xa - sp.x0);
-          const TapPlanes p{&img.c[0][u], &img.c[1][u], &img.c[2][u],  &img.n[0][u],
-                            &img.n[1][u], &img.n[2][u], &img.x[0][u],  &img.x[1][u],
-                            &img.x[2][u], &img.sampled[u], &img.var[u]};
+          const TapPlanes p{&img.c[0][u],  &img.c[1][u], &img.c[2][u], &guide[0][u],
+                            &guide[1][u],  &guide[2][u], &img.n[0][u], &img.n[1][u],
+                            &img.n[2][u],  &img.x[0][u], &img.x[1][u], &img.x[2][u],
+                            &img.sampled[u], &img.var[u]};
           const int o = xa - sp.x0;
           accumulateTap(p, ptrdiff_t(dy) * img.width + dx, xb - xa, kSpline[ty] * kSpline[tx],
                         invNormal, &img.positionScale[u], &img.colorScale[u], sr + o, sg + o,
@@ -269,6 +279,10 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
       // The weighted mean's variance (the taps' noise taken as independent).
       img.var[u] = sv * inv * inv;
       img.known[u] = 1.0f;
+      if (w.varianceGuided) {  // from now on the pixel's filtered estimate is its guide
+        for (int k = 0; k < 3; ++k) img.g[k][u] = img.c[k][u];
+        img.gvar[u] = img.var[u];
+      }
     }
   });
 }

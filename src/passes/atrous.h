@@ -38,6 +38,10 @@ struct AtrousImage {
   std::vector<float> known;          // 1 where the pixel holds an estimate (sampled or filtered)
   std::vector<float> var;            // variance of the pixel's estimate's luminance (known ones)
   std::vector<float> colorScale;     // per level: the centre's 1 / (colour σ)², 0 if not known
+  // Variance-guided weights only: the colour the weights compare (before a pixel's first level
+  // the mean of its 3 x 3 same-surface sampled neighbours, then its filtered estimate) and that
+  // guide's variance.
+  std::vector<float> g[3], gvar;
   void resize(int w, int h);
   size_t index(int px, int py) const { return size_t(py) * size_t(width) + size_t(px); }
 };

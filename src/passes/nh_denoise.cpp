@@ -135,6 +135,41 @@ static void prefillHoles(AtrousImage& img, const std::vector<View>& views) {
     }
 }
 
+// The guide the first level's colour weights compare: a sampled pixel's mean over the sampled
+// pixels of its surface (normals within ~25°) in its 3 x 3 neighbourhood, with that mean's
+// variance; a prefilled hole's estimate. The widest step comes first (Algorithm 1), so without
+// it the weights would compare single pixels of a few samples, too noisy to tell an
+// illumination edge from noise.
+static void initGuide(AtrousImage& img, const std::vector<View>& views) {
+  for (const View& v : views)
+    tbb::parallel_for(v.y, v.y + v.height(), [&](int y) {
+      for (int x = v.x; x < v.x + v.width(); ++x) {
+        const size_t i = img.index(x, y);
+        if (img.sampled[i] <= 0) {
+          for (int k = 0; k < 3; ++k) img.g[k][i] = img.c[k][i];
+          img.gvar[i] = std::max(img.var[i], 0.0f);
+          continue;
+        }
+        double sum[3] = {0, 0, 0}, sumVar = 0;
+        int n = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
+            const size_t j = img.index(nx, ny);
+            const float cosN = img.n[0][i] * img.n[0][j] + img.n[1][i] * img.n[1][j] +
+                               img.n[2][i] * img.n[2][j];
+            if (img.sampled[j] <= 0 || cosN < 0.9f) continue;
+            for (int k = 0; k < 3; ++k) sum[k] += img.c[k][j];
+            sumVar += img.var[j];
+            ++n;
+          }
+        for (int k = 0; k < 3; ++k) img.g[k][i] = float(sum[k] / n);  // n >= 1: the pixel itself
+        img.gvar[i] = float(sumVar / (double(n) * n));
+      }
+    });
+}
+
 std::vector<BufferSlot> NHDenoisePass::inputs() const {
   BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
   variance.optional = true;
@@ -270,6 +305,7 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   if (weights.varianceGuided) {
     prefilterVariance(img, ctx.views);
     prefillHoles(img, ctx.views);
+    initGuide(img, ctx.views);
   }
   // Regions as row spans of the layer map, per view (taps never cross into the other eye).
   const int mode = int(param("regions"));

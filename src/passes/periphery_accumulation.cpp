@@ -11,12 +11,15 @@ namespace tandem {
 std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
   BufferSlot history{"pt_history", 7, BufferKind::List};
   history.history = true;
+  BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
+  variance.optional = true;
   return {{"pt_noisy", 3, BufferKind::Color},
           {"fov_mask", 1, BufferKind::Mask},
           {"fov_layer", 1, BufferKind::Id},
           {"motion", 2, BufferKind::Motion},
           {"position", 3, BufferKind::Position},
           {"depth", 1, BufferKind::Depth},
+          variance,
           history};
 }
 
@@ -54,6 +57,8 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
   const Buffer& depth = ctx.input(*this, "depth");
   const Buffer* prev = ctx.previous(*this, "pt_history");
   Buffer& accum = ctx.output(*this, "pt_accum");
+  Buffer& accumVariance = ctx.output(*this, "pt_accum_variance");
+  const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
   Buffer& history = ctx.output(*this, "pt_history");
   const int fromLayer = int(param("from_layer"));
   const float alphaMin = float(param("alpha_min"));
@@ -67,6 +72,7 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
         if (mask.at(x, y)[0] <= 0.0f) {
           std::fill(h, h + 7, 0.0f);
           out[0] = out[1] = out[2] = 0.0f;
+          accumVariance.at(x, y)[0] = -1.0f;
           continue;
         }
         const Vec3 c = noisy.rgb(x, y), p = position.rgb(x, y);
@@ -88,6 +94,9 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
           }
         }
         out[0] = result.x, out[1] = result.y, out[2] = result.z;
+        // The mean of n frames: this frame's variance over n (the young history's equal weights).
+        const float v = variance ? variance->at(x, y)[0] : -1.0f;
+        accumVariance.at(x, y)[0] = v >= 0.0f ? v / n : -1.0f;
         h[0] = result.x, h[1] = result.y, h[2] = result.z, h[3] = n;
         h[4] = p.x, h[5] = p.y, h[6] = p.z;
       }

@@ -5,8 +5,10 @@
 // eye distance): an exponential moving average whose young history averages its frames equally
 // (weight max(1 / (n + 1), alpha_min)). The fovea keeps this frame's samples alone (no lag where
 // the viewer looks). Unlisted pixels stay empty for the denoiser.
-// Inputs: pt_noisy, fov_mask, fov_layer, motion, position, depth; history: pt_history.
-// Outputs: pt_accum (the estimate the denoiser reads), pt_history (rgb, count, world position).
+// Inputs: pt_noisy, fov_mask, fov_layer, motion, position, depth, optional pt_variance; history:
+// pt_history. Outputs: pt_accum (the estimate the denoiser reads), pt_accum_variance (this frame's
+// variance over the frames averaged, for the denoiser's variance-guided weights; -1 where
+// unknown), pt_history (rgb, count, world position).
 #pragma once
 #include "pipeline/pass.h"
 
@@ -20,7 +22,9 @@ class PeripheryAccumulationPass : public Pass {
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override {
-    return {{"pt_accum", 3, BufferKind::Color}, {"pt_history", 7, BufferKind::List}};
+    return {{"pt_accum", 3, BufferKind::Color},
+            {"pt_accum_variance", 1, BufferKind::Variance},
+            {"pt_history", 7, BufferKind::List}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
