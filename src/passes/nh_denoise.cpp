@@ -56,10 +56,25 @@ RegionNoise measureNoise(const AtrousImage& img, const AtrousRegion& region) {
 
 }  // namespace
 
-// SVGF's variance prefilter: each sampled pixel's variance becomes the mean over the sampled
-// pixels of its 3 x 3 neighbourhood (in its view) that measured one, so a pixel whose few
-// samples happened to agree still admits its neighbours; a pixel with no measured neighbour
-// takes the mean of all.
+// Whether pixels i and j show the same surface for the variance and guide estimates: normals
+// within ~25°, or both without a normal (the sky, which the G-buffer leaves at 0).
+static bool sameSurface(const AtrousImage& img, size_t i, size_t j) {
+  const float cosN =
+      img.n[0][i] * img.n[0][j] + img.n[1][i] * img.n[1][j] + img.n[2][i] * img.n[2][j];
+  const auto none = [&](size_t k) {
+    return img.n[0][k] * img.n[0][k] + img.n[1][k] * img.n[1][k] + img.n[2][k] * img.n[2][k] <
+           0.25f;
+  };
+  return i == j || cosN >= 0.9f || (none(i) && none(j));
+}
+
+// SVGF's variance prefilter, and its spatial estimate where samples are few: each sampled
+// pixel's variance becomes the larger of the mean over the sampled pixels of its 3 x 3
+// neighbourhood (in its view) that measured one, and the variance of the luminances of the
+// sampled pixels of its surface (normals within ~25°) in its 5 x 5 neighbourhood (at least 4 of
+// them). Two samples that happened to agree (often both 0 where light is rare) measure no
+// variance at all; without the spatial estimate such a pixel would reject every neighbour and
+// stay a dark speckle. A pixel with neither takes the mean of all.
 static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) {
   double total = 0;
   size_t count = 0;
@@ -69,25 +84,35 @@ static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) 
       ++count;
     }
   const float fallback = count ? float(total / double(count)) : 0.0f;
+  auto lum = [&](size_t i) {
+    return 0.2126 * img.c[0][i] + 0.7152 * img.c[1][i] + 0.0722 * img.c[2][i];
+  };
   std::vector<float> out(img.var.size(), 0.0f);
   for (const View& v : views)
     tbb::parallel_for(v.y, v.y + v.height(), [&](int y) {
       for (int x = v.x; x < v.x + v.width(); ++x) {
         const size_t i = img.index(x, y);
         if (img.sampled[i] <= 0) continue;
-        double sum = 0;
-        int n = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
+        double sum = 0, s1 = 0, s2 = 0;
+        int n = 0, m = 0;
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
             const int nx = x + dx, ny = y + dy;
             if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
             const size_t j = img.index(nx, ny);
-            if (img.sampled[j] > 0 && img.var[j] >= 0) {
+            if (img.sampled[j] <= 0) continue;
+            if (std::abs(dx) <= 1 && std::abs(dy) <= 1 && img.var[j] >= 0) {
               sum += img.var[j];
               ++n;
             }
+            if (!sameSurface(img, i, j)) continue;
+            const double l = lum(j);
+            s1 += l;
+            s2 += l * l;
+            ++m;
           }
-        out[i] = n ? float(sum / n) : fallback;
+        const double spatial = m >= 4 ? std::max(s2 / m - (s1 / m) * (s1 / m), 0.0) : 0.0;
+        out[i] = float(std::max(n ? sum / n : double(fallback), spatial));
       }
     });
   img.var.swap(out);
@@ -114,9 +139,7 @@ static void prefillHoles(AtrousImage& img, const std::vector<View>& views) {
               if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height())
                 continue;
               const size_t j = img.index(nx, ny);
-              const float cosN = img.n[0][i] * img.n[0][j] + img.n[1][i] * img.n[1][j] +
-                                 img.n[2][i] * img.n[2][j];
-              if (img.sampled[j] <= 0 || cosN < 0.9f) continue;
+              if (img.sampled[j] <= 0 || !sameSurface(img, i, j)) continue;
               near.push_back(
                   {0.2126f * img.c[0][j] + 0.7152f * img.c[1][j] + 0.0722f * img.c[2][j], j});
             }
@@ -157,9 +180,7 @@ static void initGuide(AtrousImage& img, const std::vector<View>& views) {
             const int nx = x + dx, ny = y + dy;
             if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
             const size_t j = img.index(nx, ny);
-            const float cosN = img.n[0][i] * img.n[0][j] + img.n[1][i] * img.n[1][j] +
-                               img.n[2][i] * img.n[2][j];
-            if (img.sampled[j] <= 0 || cosN < 0.9f) continue;
+            if (img.sampled[j] <= 0 || !sameSurface(img, i, j)) continue;
             for (int k = 0; k < 3; ++k) sum[k] += img.c[k][j];
             sumVar += img.var[j];
             ++n;
@@ -217,7 +238,7 @@ std::vector<ParamDesc> NHDenoisePass::params() const {
       {"demodulate", T::Bool, 1, 0, 1, "filter illumination (divided by the diffuse albedo)", {}},
       {"color_weight",
        T::Enum,
-       1,
+       0,
        0,
        1,
        "mean: σ_c x mean luminance, halved per level (Dammertz); variance: σ_v x each pixel's "
