@@ -181,7 +181,11 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
   std::vector<size_t> first(pieces.size() + 1, 0);
   for (size_t s = 0; s < pieces.size(); ++s)
     first[s + 1] = first[s] + size_t(pieces[s].x1 - pieces[s].x0);
-  std::vector<float> out(first.back() * 5, 0.0f);
+  // Kept in the image between levels and frames: a fresh vector of this size (140 MB at quest2)
+  // would be mapped and page-faulted in, zero-filled, every level.
+  std::vector<float>& out = img.scratch;
+  out.resize(first.back() * 5);
+  std::fill(out.begin(), out.end(), 0.0f);
   const float sc = w.sigmaColor * meanLuminance;
   const float invColor = 1.0f / std::max(sc * sc * std::ldexp(1.0f, -iteration), 1e-20f);
   const float invNormal = 1.0f / std::max(w.sigmaNormal * w.sigmaNormal, 1e-20f);

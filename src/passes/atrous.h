@@ -42,6 +42,7 @@ struct AtrousImage {
   // the mean of its 3 x 3 same-surface sampled neighbours, then its filtered estimate) and that
   // guide's variance.
   std::vector<float> g[3], gvar;
+  std::vector<float> scratch;  // one level's sums (atrousLevel), kept to avoid reallocation
   void resize(int w, int h);
   size_t index(int px, int py) const { return size_t(py) * size_t(width) + size_t(px); }
 };
