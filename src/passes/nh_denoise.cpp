@@ -69,12 +69,13 @@ static bool sameSurface(const AtrousImage& img, size_t i, size_t j) {
 }
 
 // SVGF's variance prefilter, and its spatial estimate where samples are few: each sampled
-// pixel's variance becomes the larger of the mean over the sampled pixels of its 3 x 3
-// neighbourhood (in its view) that measured one, and the variance of the luminances of the
-// sampled pixels of its surface (normals within ~25°) in its 5 x 5 neighbourhood (at least 4 of
-// them). Two samples that happened to agree (often both 0 where light is rare) measure no
-// variance at all; without the spatial estimate such a pixel would reject every neighbour and
-// stay a dark speckle. A pixel with neither takes the mean of all.
+// pixel's variance becomes the mean over the sampled pixels of its 3 x 3 neighbourhood (in its
+// view) that measured one or, where that is 0, the variance of the luminances of the sampled
+// pixels of its surface (normals within ~25°) in its 5 x 5 neighbourhood (at least 4 of them).
+// Two samples that agree (often both 0 where light is rare) measure no variance at all; a
+// pixel whose neighbours measured none either would reject every neighbour and stay a dark
+// speckle. The spatial estimate is only the fallback: across an edge it measures the edge.
+// A pixel with neither takes the mean of all.
 static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) {
   double total = 0;
   size_t count = 0;
@@ -112,7 +113,8 @@ static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) 
             ++m;
           }
         const double spatial = m >= 4 ? std::max(s2 / m - (s1 / m) * (s1 / m), 0.0) : 0.0;
-        out[i] = float(std::max(n ? sum / n : double(fallback), spatial));
+        const double measured = n ? sum / n : double(fallback);
+        out[i] = float(measured > 0.0 ? measured : spatial);
       }
     });
   img.var.swap(out);
