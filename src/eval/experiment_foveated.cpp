@@ -333,13 +333,11 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
       paste(maps, flipColorMap(map), qw * 2 * c);
     }
     writePng((fs::path(o.out) / ("figure17_" + label + ".png")).string(), strip);
-    report.image("figure17_" + label + ".png",
-                 o.sceneLabels[s] + ": reference, " + configLabels(", ") +
-                     " (same crop, left eye)");
+    report.image("figure17_" + label + ".png", o.sceneLabels[s] + ": reference, " +
+                                                   configLabels(", ") + " (same crop, left eye)");
     writePng((fs::path(o.out) / ("figure18_" + label + ".png")).string(), maps);
-    report.image(
-        "figure18_" + label + ".png",
-        o.sceneLabels[s] + ": FLIP against the reference, " + configLabels(" | "));
+    report.image("figure18_" + label + ".png",
+                 o.sceneLabels[s] + ": FLIP against the reference, " + configLabels(" | "));
   }
   report.markdown("### Table 5 shape: quality against the same path tracer converged (" +
                   std::to_string(o.referenceSpp) + " spp, no foveation, no denoising), " +

@@ -226,9 +226,9 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
             kernels[taps++] = kSpline[ty] * kSpline[tx];
           }
         }
-        const TapPlanes p{&img.c[0][u0],  &img.c[1][u0], &img.c[2][u0], &guide[0][u0],
-                          &guide[1][u0],  &guide[2][u0], &img.n[0][u0], &img.n[1][u0],
-                          &img.n[2][u0],  &img.x[0][u0], &img.x[1][u0], &img.x[2][u0],
+        const TapPlanes p{&img.c[0][u0],    &img.c[1][u0], &img.c[2][u0], &guide[0][u0],
+                          &guide[1][u0],    &guide[2][u0], &img.n[0][u0], &img.n[1][u0],
+                          &img.n[2][u0],    &img.x[0][u0], &img.x[1][u0], &img.x[2][u0],
                           &img.sampled[u0], &img.var[u0]};
         accumulateTaps(p, offsets, kernels, taps, count, invNormal, &img.positionScale[u0],
                        &img.colorScale[u0], sr, sg, sb, sw, sv);
@@ -243,10 +243,9 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
           const int xa = std::max(sp.x0, sp.vx0 - dx), xb = std::min(sp.x1, sp.vx1 - dx);
           if (xb <= xa) continue;
           const size_t u = u0 + size_t(xa - sp.x0);
-          const TapPlanes p{&img.c[0][u],  &img.c[1][u], &img.c[2][u], &guide[0][u],
-                            &guide[1][u],  &guide[2][u], &img.n[0][u], &img.n[1][u],
-                            &img.n[2][u],  &img.x[0][u], &img.x[1][u], &img.x[2][u],
-                            &img.sampled[u], &img.var[u]};
+          const TapPlanes p{&img.c[0][u], &img.c[1][u], &img.c[2][u],    &guide[0][u], &guide[1][u],
+                            &guide[2][u], &img.n[0][u], &img.n[1][u],    &img.n[2][u], &img.x[0][u],
+                            &img.x[1][u], &img.x[2][u], &img.sampled[u], &img.var[u]};
           const int o = xa - sp.x0;
           accumulateTap(p, ptrdiff_t(dy) * img.width + dx, xb - xa, kSpline[ty] * kSpline[tx],
                         invNormal, &img.positionScale[u], &img.colorScale[u], sr + o, sg + o,

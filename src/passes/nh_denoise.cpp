@@ -138,8 +138,7 @@ static void prefillHoles(AtrousImage& img, const std::vector<View>& views) {
           for (int dy = -r; dy <= r; ++dy)
             for (int dx = -r; dx <= r; ++dx) {
               const int nx = x + dx, ny = y + dy;
-              if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height())
-                continue;
+              if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
               const size_t j = img.index(nx, ny);
               if (img.sampled[j] <= 0 || !sameSurface(img, i, j)) continue;
               near.push_back(
@@ -196,10 +195,14 @@ static void initGuide(AtrousImage& img, const std::vector<View>& views) {
 std::vector<BufferSlot> NHDenoisePass::inputs() const {
   BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
   variance.optional = true;
-  return {{"pt_noisy", 3, BufferKind::Color},    {"normal", 3, BufferKind::Normal},
-          {"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth},
-          {"diffuse", 4, BufferKind::Material},  {"emission", 3, BufferKind::Color},
-          {"fov_mask", 1, BufferKind::Mask},     {"fov_layer", 1, BufferKind::Id},
+  return {{"pt_noisy", 3, BufferKind::Color},
+          {"normal", 3, BufferKind::Normal},
+          {"position", 3, BufferKind::Position},
+          {"depth", 1, BufferKind::Depth},
+          {"diffuse", 4, BufferKind::Material},
+          {"emission", 3, BufferKind::Color},
+          {"fov_mask", 1, BufferKind::Mask},
+          {"fov_layer", 1, BufferKind::Id},
           variance};
 }
 
@@ -284,10 +287,9 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   const int W = ctx.width, H = ctx.height;
   const bool demodulate = param("demodulate") != 0;
   const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
-  const AtrousWeights weights{float(param("sigma_color")), float(param("sigma_normal")),
-                              float(param("sigma_position")),
-                              param("color_weight") == 1 && variance != nullptr,
-                              float(param("sigma_variance"))};
+  const AtrousWeights weights{
+      float(param("sigma_color")), float(param("sigma_normal")), float(param("sigma_position")),
+      param("color_weight") == 1 && variance != nullptr, float(param("sigma_variance"))};
   // The albedo the illumination is divided by (sky and black surfaces: 1, left as colour).
   auto albedoAt = [&](int x, int y, int k) {
     const float a = diffuse.at(x, y)[k];

@@ -23,15 +23,16 @@ float cellEstimate(const PreparedLight& l, Vec3 lo, Vec3 hi) {
   const Vec3 c = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
   const Vec3 toCentre = l.position - c;
   const float d = std::max(std::sqrt(dot(toCentre, toCentre)), std::sqrt(dot(half, half)));
-  const float att = 1.0f / std::max(l.attConstant + l.attLinear * d + l.attQuadratic * d * d, 1e-8f);
+  const float att =
+      1.0f / std::max(l.attConstant + l.attLinear * d + l.attQuadratic * d * d, 1e-8f);
   return strength * att;
 }
 
 }  // namespace
 
 LightGrid::LightGrid(const std::vector<PreparedLight>& lights, std::vector<int> candidates,
-                     Bounds3 bounds, const Visibility& visible, int cellsPerAxis,
-                     size_t maxEntries, int probes, size_t maxProbes)
+                     Bounds3 bounds, const Visibility& visible, int cellsPerAxis, size_t maxEntries,
+                     int probes, size_t maxProbes)
     : candidates_(std::move(candidates)) {
   const size_t n = candidates_.size();
   if (n <= 1) return;  // nothing to choose
@@ -143,9 +144,8 @@ uint64_t lightSetKey(const std::vector<PreparedLight>& lights, const std::vector
   };
   for (int i : candidates) {
     const PreparedLight& l = lights[size_t(i)];
-    const float f[9] = {l.power.x,       l.power.y,     l.power.z,        l.position.x,
-                        l.position.y,    l.position.z,  l.attConstant,    l.attLinear,
-                        l.attQuadratic};
+    const float f[9] = {l.power.x,    l.power.y,     l.power.z,   l.position.x,  l.position.y,
+                        l.position.z, l.attConstant, l.attLinear, l.attQuadratic};
     mix(&i, sizeof i);
     mix(&l.type, sizeof l.type);
     mix(f, sizeof f);

@@ -36,8 +36,8 @@ class LightGrid {
             size_t maxProbes = size_t(1) << 23);
 
   struct Pick {
-    int light = -1;     // index into the lights, -1 when there are no candidates
-    float pdf = 0.0f;   // probability of having picked it
+    int light = -1;    // index into the lights, -1 when there are no candidates
+    float pdf = 0.0f;  // probability of having picked it
   };
   // Picks a light for a point at `p` with the uniform number u in [0, 1).
   Pick pick(Vec3 p, float u) const;

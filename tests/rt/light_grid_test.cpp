@@ -82,7 +82,7 @@ TEST(LightGrid, KeepsEveryLightThatCanReachAndPrefersNearOnes) {
   const Scene s = lampRow();
   const ShadingContext shading = ShadingContext::from(s);
   const LightGrid grid = DiffuseGI::buildGrid(s, shading);
-  const Vec3 p(-9.0f, 0.0f, 0.3f);  // beside lamp 0
+  const Vec3 p(-9.0f, 0.0f, 0.3f);           // beside lamp 0
   EXPECT_EQ(grid.probability(p, 15), 0.0f);  // 18 m away, range 4
   for (int i = 0; i <= 2; ++i) EXPECT_GT(grid.probability(p, i), 0.0f) << i;
   EXPECT_GT(grid.probability(p, 16), 0.0f);  // the sun
