@@ -23,8 +23,8 @@ void AtrousImage::resize(int w, int h) {
   known.assign(n, 0.0f);
   var.assign(n, 0.0f);
   colorScale.assign(n, 0.0f);
-  for (int k = 0; k < 3; ++k) g[k].assign(n, 0.0f);
-  gvar.assign(n, 0.0f);
+  for (int k = 0; k < 3; ++k) g[k].clear();  // allocated by the variance-guided weight only
+  gvar.clear();
 }
 
 float sampledMeanLuminance(const AtrousImage& img) {

@@ -330,6 +330,10 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   if (weights.varianceGuided) {
     prefilterVariance(img, ctx.views);
     prefillHoles(img, ctx.views);
+    if (img.gvar.size() != img.var.size()) {  // the guide planes, only when this weight is used
+      for (int k = 0; k < 3; ++k) img.g[k].assign(img.var.size(), 0.0f);
+      img.gvar.assign(img.var.size(), 0.0f);
+    }
     initGuide(img, ctx.views);
   }
   // Regions as row spans of the layer map, per view (taps never cross into the other eye).
