@@ -13,6 +13,10 @@ namespace tandem {
 
 namespace {
 
+double luminanceAt(const AtrousImage& img, size_t j) {
+  return 0.2126 * img.c[0][j] + 0.7152 * img.c[1][j] + 0.0722 * img.c[2][j];
+}
+
 struct RegionNoise {
   double variance = 0;  // of a listed pixel's luminance about its listed 3x3 neighbours' mean
   double density = 0;   // listed share of the region's pixels
@@ -23,9 +27,7 @@ struct RegionNoise {
 // within 25°) is noise, not signal.
 RegionNoise measureNoise(const AtrousImage& img, const AtrousRegion& region) {
   double sum = 0, listed = 0, total = 0, used = 0;
-  auto lum = [&](size_t i) {
-    return 0.2126 * img.c[0][i] + 0.7152 * img.c[1][i] + 0.0722 * img.c[2][i];
-  };
+  const auto lum = [&](size_t i) { return luminanceAt(img, i); };
   for (const AtrousSpan& sp : region.spans)
     for (int x = sp.x0; x < sp.x1; ++x) {
       ++total;
@@ -68,6 +70,19 @@ static bool sameSurface(const AtrousImage& img, size_t i, size_t j) {
   return i == j || cosN >= 0.9f || (none(i) && none(j));
 }
 
+// Calls fn(j, dx, dy) for each sampled pixel j of view v within r pixels of (x, y) (the square),
+// in row order.
+template <class Fn>
+void forSampledNeighbours(const AtrousImage& img, const View& v, int x, int y, int r, Fn&& fn) {
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) {
+      const int nx = x + dx, ny = y + dy;
+      if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
+      const size_t j = img.index(nx, ny);
+      if (img.sampled[j] > 0) fn(j, dx, dy);
+    }
+}
+
 // SVGF's variance prefilter, and its spatial estimate where samples are few: each sampled
 // pixel's variance becomes the mean over the sampled pixels of its 3 x 3 neighbourhood (in its
 // view) that measured one or, where that is 0, the variance of the luminances of the sampled
@@ -85,9 +100,6 @@ static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) 
       ++count;
     }
   const float fallback = count ? float(total / double(count)) : 0.0f;
-  auto lum = [&](size_t i) {
-    return 0.2126 * img.c[0][i] + 0.7152 * img.c[1][i] + 0.0722 * img.c[2][i];
-  };
   std::vector<float> out(img.var.size(), 0.0f);
   for (const View& v : views)
     tbb::parallel_for(v.y, v.y + v.height(), [&](int y) {
@@ -96,22 +108,17 @@ static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) 
         if (img.sampled[i] <= 0) continue;
         double sum = 0, s1 = 0, s2 = 0;
         int n = 0, m = 0;
-        for (int dy = -2; dy <= 2; ++dy)
-          for (int dx = -2; dx <= 2; ++dx) {
-            const int nx = x + dx, ny = y + dy;
-            if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
-            const size_t j = img.index(nx, ny);
-            if (img.sampled[j] <= 0) continue;
-            if (std::abs(dx) <= 1 && std::abs(dy) <= 1 && img.var[j] >= 0) {
-              sum += img.var[j];
-              ++n;
-            }
-            if (!sameSurface(img, i, j)) continue;
-            const double l = lum(j);
-            s1 += l;
-            s2 += l * l;
-            ++m;
+        forSampledNeighbours(img, v, x, y, 2, [&](size_t j, int dx, int dy) {
+          if (std::abs(dx) <= 1 && std::abs(dy) <= 1 && img.var[j] >= 0) {
+            sum += img.var[j];
+            ++n;
           }
+          if (!sameSurface(img, i, j)) return;
+          const double l = luminanceAt(img, j);
+          s1 += l;
+          s2 += l * l;
+          ++m;
+        });
         const double spatial = m >= 4 ? std::max(s2 / m - (s1 / m) * (s1 / m), 0.0) : 0.0;
         const double measured = n ? sum / n : double(fallback);
         out[i] = float(measured > 0.0 ? measured : spatial);
@@ -135,15 +142,9 @@ static void prefillHoles(AtrousImage& img, const std::vector<View>& views) {
         const size_t i = img.index(x, y);
         if (img.sampled[i] > 0) continue;
         for (int r = 1; r <= 2 && near.empty(); ++r)
-          for (int dy = -r; dy <= r; ++dy)
-            for (int dx = -r; dx <= r; ++dx) {
-              const int nx = x + dx, ny = y + dy;
-              if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
-              const size_t j = img.index(nx, ny);
-              if (img.sampled[j] <= 0 || !sameSurface(img, i, j)) continue;
-              near.push_back(
-                  {0.2126f * img.c[0][j] + 0.7152f * img.c[1][j] + 0.0722f * img.c[2][j], j});
-            }
+          forSampledNeighbours(img, v, x, y, r, [&](size_t j, int, int) {
+            if (sameSurface(img, i, j)) near.push_back({float(luminanceAt(img, j)), j});
+          });
         if (near.empty()) continue;
         std::nth_element(near.begin(), near.begin() + ptrdiff_t(near.size() / 2), near.end());
         source[i] = int64_t(near[near.size() / 2].second);
@@ -176,16 +177,12 @@ static void initGuide(AtrousImage& img, const std::vector<View>& views) {
         }
         double sum[3] = {0, 0, 0}, sumVar = 0;
         int n = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int nx = x + dx, ny = y + dy;
-            if (nx < v.x || nx >= v.x + v.width() || ny < v.y || ny >= v.y + v.height()) continue;
-            const size_t j = img.index(nx, ny);
-            if (img.sampled[j] <= 0 || !sameSurface(img, i, j)) continue;
-            for (int k = 0; k < 3; ++k) sum[k] += img.c[k][j];
-            sumVar += img.var[j];
-            ++n;
-          }
+        forSampledNeighbours(img, v, x, y, 1, [&](size_t j, int, int) {
+          if (!sameSurface(img, i, j)) return;
+          for (int k = 0; k < 3; ++k) sum[k] += img.c[k][j];
+          sumVar += img.var[j];
+          ++n;
+        });
         for (int k = 0; k < 3; ++k) img.g[k][i] = float(sum[k] / n);  // n >= 1: the pixel itself
         img.gvar[i] = float(sumVar / (double(n) * n));
       }
