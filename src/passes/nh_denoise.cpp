@@ -7,6 +7,7 @@
 
 #include "core/profiler.h"
 #include "passes/atrous.h"
+#include "passes/demodulation.h"
 #include "pipeline/frame_context.h"
 
 namespace tandem {
@@ -287,14 +288,7 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   const AtrousWeights weights{
       float(param("sigma_color")), float(param("sigma_normal")), float(param("sigma_position")),
       param("color_weight") == 1 && variance != nullptr, float(param("sigma_variance"))};
-  // The albedo the illumination is divided by (sky and black surfaces: 1, left as colour).
-  auto albedoAt = [&](int x, int y, int k) {
-    const float a = diffuse.at(x, y)[k];
-    return demodulate && depth.at(x, y)[0] > 0 && a > 0.01f ? std::min(a, 1.0f) : 1.0f;
-  };
-  auto emissionAt = [&](int x, int y, int k) {
-    return demodulate && depth.at(x, y)[0] > 0 ? emission.at(x, y)[k] : 0.0f;
-  };
+  const Demodulation dm{diffuse, emission, depth, demodulate};
   const auto t0 = Clock::now();
   AtrousImage& img = image_;
   if (img.width != W || img.height != H) img.resize(W, H);
@@ -307,13 +301,13 @@ void NHDenoisePass::execute(FrameContext& ctx) {
         const bool sampled = mask.at(x, y)[0] > 0.0f;
         for (int k = 0; k < 3; ++k) {
           // An unsampled pixel's colour is never read: it starts empty, whatever it holds.
-          img.c[k][i] = sampled ? (noisy.at(x, y)[k] - emissionAt(x, y, k)) / albedoAt(x, y, k) : 0;
+          img.c[k][i] = sampled ? dm.illumination(noisy.at(x, y)[k], x, y, k) : 0;
           img.n[k][i] = normal.at(x, y)[k];
           img.x[k][i] = position.at(x, y)[k];
         }
         img.sampled[i] = img.known[i] = sampled ? 1.0f : 0.0f;
         // The estimate's variance in the filtered quantity's units (-1: not measured).
-        const float a = luminance(Vec3(albedoAt(x, y, 0), albedoAt(x, y, 1), albedoAt(x, y, 2)));
+        const float a = luminance(Vec3(dm.albedo(x, y, 0), dm.albedo(x, y, 1), dm.albedo(x, y, 2)));
         const float v = variance ? variance->at(x, y)[0] : -1.0f;
         img.var[i] = sampled && v >= 0.0f ? v / (a * a) : -1.0f;
         const float z = depth.at(x, y)[0] > 0
@@ -379,8 +373,7 @@ void NHDenoisePass::execute(FrameContext& ctx) {
       const int y = row + v.y;
       for (int x = v.x; x < v.x + v.width(); ++x) {
         const size_t i = img.index(x, y);
-        for (int k = 0; k < 3; ++k)
-          out.at(x, y)[k] = img.c[k][i] * albedoAt(x, y, k) + emissionAt(x, y, k);
+        for (int k = 0; k < 3; ++k) out.at(x, y)[k] = dm.colour(img.c[k][i], x, y, k);
       }
     });
   ctx.counters["nh_denoise/levels_run"] = double(steps_.size());

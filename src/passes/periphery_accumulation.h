@@ -1,14 +1,20 @@
 // periphery_accumulation (beyond seed 004): temporal accumulation of the path-traced samples
 // outside the fovea. Each listed pixel of a layer >= from_layer blends this frame's estimate into
-// its history, reprojected by the motion vectors (nearest pixel of the same eye) and kept only
-// where last frame saw the same surface there (world positions within position_tolerance of the
-// eye distance): an exponential moving average whose young history averages its frames equally
-// (weight max(1 / (n + 1), alpha_min)). The fovea keeps this frame's samples alone (no lag where
-// the viewer looks). Unlisted pixels stay empty for the denoiser.
-// Inputs: pt_noisy, fov_mask, fov_layer, motion, position, depth, optional pt_variance; history:
-// pt_history. Outputs: pt_accum (the estimate the denoiser reads), pt_accum_variance (this frame's
-// variance over the frames averaged, for the denoiser's variance-guided weights; -1 where
-// unknown), pt_history (rgb, count, world position).
+// its history: an exponential moving average whose young history averages its frames equally
+// (weight max(1 / (n + 1), alpha_min)). The history is reprojected by the motion vectors,
+// bilinear over those of the four history pixels of the same eye that saw the same surface
+// (world positions within position_tolerance of the eye distance, normals within
+// normal_tolerance), none if they cover under a quarter of the footprint. It holds illumination
+// (colour over the diffuse albedo, `demodulate`), so texture is always this frame's. With
+// `fill_unlisted`, a pixel the foveation did not list this frame takes its reprojected history
+// alone, and pt_accum_mask marks it sampled for the denoiser; on a still camera nothing changes
+// (an unlisted pixel never had history). The fovea keeps this frame's samples alone (no lag where
+// the viewer looks).
+// Inputs: pt_noisy, fov_mask, fov_layer, motion, position, normal, depth, diffuse, emission,
+// optional pt_variance; history: pt_history. Outputs: pt_accum (the estimate the denoiser reads),
+// pt_accum_variance (this frame's variance over the frames averaged, for the denoiser's
+// variance-guided weights; -1 where unknown), pt_accum_mask (pixels with an estimate),
+// pt_history (illumination rgb, frames, world position, normal).
 #pragma once
 #include "pipeline/pass.h"
 
@@ -24,7 +30,8 @@ class PeripheryAccumulationPass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"pt_accum", 3, BufferKind::Color},
             {"pt_accum_variance", 1, BufferKind::Variance},
-            {"pt_history", 7, BufferKind::List}};
+            {"pt_accum_mask", 1, BufferKind::Mask},
+            {"pt_history", 10, BufferKind::List}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
