@@ -169,6 +169,13 @@ double meanOverLayer(const Buffer& map, const FoveationMap& fm, int layer) {
   return n ? sum / double(n) : 0.0;
 }
 
+// Copies `src` (3 channels) into `dst` with its left edge at column ox.
+void paste(Buffer& dst, const Buffer& src, int ox) {
+  for (int y = 0; y < src.height; ++y)
+    for (int x = 0; x < src.width; ++x)
+      for (int k = 0; k < 3; ++k) dst.at(ox + x, y)[k] = src.at(x, y)[k];
+}
+
 // Per-pixel squared error averaged over channels (for RMSE per layer).
 Buffer squaredError(const Buffer& a, const Buffer& b) {
   Buffer e(a.width, a.height, 1);
@@ -320,11 +327,6 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
     const int cx = o.crop[2] ? crop[0] : qw / 4, cy = o.crop[3] ? crop[1] : qh / 3;
     const int box[4] = {cx, cy, crop[2], crop[3]};
     Buffer strip(box[2] * (kConfigCount + 1), box[3], 3), maps(qw * 2 * kConfigCount, qh, 3);
-    auto paste = [](Buffer& dst, const Buffer& src, int ox) {
-      for (int y = 0; y < src.height; ++y)
-        for (int x = 0; x < src.width; ++x)
-          for (int k = 0; k < 3; ++k) dst.at(ox + x, y)[k] = src.at(x, y)[k];
-    };
     paste(strip, cropOf(ref, box), 0);
     for (int c = 0; c < kConfigCount; ++c) {
       paste(strip, cropOf(images[size_t(c)], box), box[2] * (c + 1));
@@ -351,6 +353,8 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
   // Moving camera: the accumulating configuration is fair only if it also holds up while the
   // camera moves; the first temporalFrames frames of each path at 30 fps, the last one measured.
   std::vector<std::vector<std::string>> moving;
+  std::vector<std::pair<std::string, std::string>> movingImages;  // file, caption
+  std::string movingSummary;
   const int pw = o.pathWidth, ph = o.pathHeight;
   const FoveationMap pm = computeFoveation(pw, ph, scaledLayers(ph));
   for (size_t s = 0; s < scenes.size() && o.pathReferenceSpp > 0; ++s) {
@@ -360,6 +364,11 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
     const int last = o.temporalFrames - 1;
     const CameraDesc lastCam = pathCameraAt(scenes[s], base, float(last) / 30.0f);
     const Buffer ref = convergedDualImage(scenes[s], lastCam, pw, ph, o.pathReferenceSpp, o.cache);
+    // The left eyes side by side: the reference, then each configuration measured.
+    const int leftEye[4] = {0, 0, pw, ph};
+    std::vector<Buffer> eyes = {cropOf(ref, leftEye)};
+    std::string caption = "reference";
+    double baseSsim = 0, baseFovea = 0;
     for (int c = 0; c < kConfigCount; ++c) {
       // Base, NH3LD and the accumulating configurations (the others change the filter or the
       // light choice, not what a moving camera does to history).
@@ -370,10 +379,23 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
         rd.renderFrame(f, pathCameraAt(scenes[s], base, float(f) / 30.0f));
       Buffer ssimMap;
       const ImageMetrics m = compareImages(rd.output(), ref, &ssimMap);
-      moving.push_back({o.sceneLabels[s], cf.label, fmt(m.ssim, 4),
-                        fmt(meanOverLayer(ssimMap, pm, 0), 4),
+      const double fovea = meanOverLayer(ssimMap, pm, 0);
+      if (c == 0) baseSsim = m.ssim, baseFovea = fovea;
+      if (c != 0)
+        movingSummary += "- " + o.sceneLabels[s] + ", moving: " + cf.label +
+                         " SSIM − Base = " + fmt(m.ssim - baseSsim, 4) + " (fovea " +
+                         fmt(fovea - baseFovea, 4) + ")\n";
+      moving.push_back({o.sceneLabels[s], cf.label, fmt(m.ssim, 4), fmt(fovea, 4),
                         fmt(meanOverLayer(ssimMap, pm, 2), 4), fmt(100.0 * m.rmse, 3)});
+      eyes.push_back(cropOf(rd.output(), leftEye));
+      caption += std::string(", ") + cf.label;
     }
+    Buffer strip(pw * int(eyes.size()), ph, 3);
+    for (size_t i = 0; i < eyes.size(); ++i) paste(strip, eyes[i], int(i) * pw);
+    const std::string file = "moving_" + sceneLabel(o.scenes[s]) + ".png";
+    writePng((fs::path(o.out) / file).string(), strip);
+    movingImages.push_back({file, o.sceneLabels[s] + ", frame " + std::to_string(o.temporalFrames) +
+                                      " of the path (left eye): " + caption});
   }
   if (!moving.empty()) {
     report.markdown("### Moving camera: frame " + std::to_string(o.temporalFrames) +
@@ -382,6 +404,8 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
                     std::to_string(o.pathReferenceSpp) + " spp)\n\n");
     report.table("moving_camera_quality",
                  {"scene", "renderer", "SSIM", "fovea SSIM", "periphery SSIM", "RMSE (%)"}, moving);
+    report.markdown(movingSummary + "\n");
+    for (const auto& [file, caption] : movingImages) report.image(file, caption);
   }
   report.markdown("The NH3LD + temporal rows (beyond the thesis) are measured after " +
                   std::to_string(o.temporalFrames) +

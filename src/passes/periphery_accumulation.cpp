@@ -1,6 +1,7 @@
 #include "passes/periphery_accumulation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "passes/demodulation.h"
@@ -94,8 +95,11 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
   const bool fill = param("fill_unlisted") != 0;
   const Demodulation dm{ctx.input(*this, "diffuse"), ctx.input(*this, "emission"), depth,
                         param("demodulate") != 0};
+  // The mean history length (frames) over the accumulated layers' pixels with an estimate.
+  std::atomic<double> historyFrames = 0, historyPixels = 0;
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     const Vec3 eye = v.camera.desc.position;
+    double tileFrames = 0, tilePixels = 0;
     // Where pixel (x, y) was last frame, read bilinearly from those of the four history pixels
     // around it that saw the same surface (position and normal): rgb and frames averaged; false
     // when they cover under a quarter of the footprint. Nearest-pixel reads would round a slow
@@ -165,17 +169,14 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
         h[0] = result.x, h[1] = result.y, h[2] = result.z, h[3] = n;
         h[4] = p.x, h[5] = p.y, h[6] = p.z;
         h[7] = nrm.x, h[8] = nrm.y, h[9] = nrm.z;
+        if (int(layer.at(x, y)[0]) >= fromLayer) tileFrames += n, tilePixels += 1;
       }
+    historyFrames += tileFrames;
+    historyPixels += tilePixels;
   });
-  // The mean history length (frames) over the accumulated layers' listed pixels.
-  double frames = 0, count = 0;
-  for (int y = 0; y < ctx.height; ++y)
-    for (int x = 0; x < ctx.width; ++x)
-      if (history.at(x, y)[3] > 0 && int(layer.at(x, y)[0]) >= fromLayer) {
-        frames += history.at(x, y)[3];
-        ++count;
-      }
-  ctx.counters["periphery_accumulation/mean_frames"] = count > 0 ? frames / count : 0.0;
+  const double count = historyPixels.load();
+  ctx.counters["periphery_accumulation/mean_frames"] =
+      count > 0 ? historyFrames.load() / count : 0.0;
 }
 
 }  // namespace tandem

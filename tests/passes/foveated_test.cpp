@@ -14,6 +14,7 @@
 #include "passes/foveation.h"
 #include "passes/foveation_map.h"
 #include "passes/nh_denoise.h"
+#include "passes/periphery_accumulation.h"
 #include "pipeline/frame_context.h"
 #include "scene/builtin_scenes.h"
 #include "test_util.h"
@@ -598,6 +599,44 @@ TEST(Foveated, PeripheryAccumulationFollowsAPanningCamera) {
   EXPECT_GT(ctx.counters.at("periphery_accumulation/mean_frames"), 6.0);
   EXPECT_LT(errAccum, 0.3 * errFrame);
   EXPECT_LT(errFilled / filled, 0.3 * errFrame / n);
+}
+
+// The normal keeps a crease apart: last frame's history holds a lit face (illumination 1,
+// normal +z) left of the middle and a dark one (0, normal +x) right of it at the same positions;
+// this frame sees the lit face everywhere, half a pixel further on. With the normal test no
+// pixel reads the dark face; without it (tolerance 180 degrees) the columns by the crease do.
+TEST(Foveated, PeripheryAccumulationKeepsACreaseApart) {
+  const int w = 32, h = 8;
+  auto run = [&](double normalTolerance) {
+    FrameContext ctx = frame(w, h);
+    const std::vector<Vec3> lit(size_t(w * h), Vec3(0, 0, 1));
+    wallInputs(ctx, std::vector<float>(size_t(w * h), 1.0f),
+               std::vector<Vec3>(size_t(w * h), Vec3(1.0f)), lit);
+    ctx.buffers["motion"] = Buffer(w, h, 2, 0.0f, BufferKind::Motion);
+    ctx.buffers["motion"].fill(0.5f);  // (x, y) was at (x - 0.5, y - 0.5)
+    Buffer hist(w, h, 10, 0.0f, BufferKind::List);
+    const Buffer& pos = ctx.buffers["position"];
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const bool dark = x >= w / 2;
+        float* ph = hist.at(x, y);
+        ph[0] = ph[1] = ph[2] = dark ? 0.0f : 1.0f;
+        ph[3] = 4;  // frames
+        for (int k = 0; k < 3; ++k) ph[4 + k] = pos.at(x, y)[k];
+        ph[7] = dark ? 1.0f : 0.0f, ph[9] = dark ? 0.0f : 1.0f;
+      }
+    ctx.history["pt_history"] = hist;
+    ctx.historyReset = false;
+    PeripheryAccumulationPass pass;
+    pass.setParam("normal_tolerance", normalTolerance);
+    pass.execute(ctx);
+    float darkest = 1.0f;
+    for (int y = 1; y < h; ++y)
+      for (int x = 1; x < w; ++x) darkest = std::min(darkest, ctx.input("pt_accum").at(x, y)[0]);
+    return darkest;
+  };
+  EXPECT_NEAR(run(25), 1.0f, 1e-5f);
+  EXPECT_LT(run(180), 0.5f);
 }
 
 // Levels from measured variance: a region with twice the noise variance at half the sampling
