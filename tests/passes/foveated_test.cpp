@@ -110,6 +110,17 @@ CameraDesc topCamera() {
   return c;
 }
 
+// The exact radiance of flatLitPlane's floor (albedo 0.6, lit from above; nothing to bounce
+// off: the direct light is all of it) at p.
+float exactFloorRadiance(const ShadingContext& shading, Vec3 p) {
+  float e = 0;
+  for (const PreparedLight& l : shading.lights) {
+    const LightSample ls = sampleLight(l, p);
+    e += 0.6f / kPi * ls.radiance.x * std::max(ls.wi.y, 0.0f);
+  }
+  return e;
+}
+
 }  // namespace
 
 // Table 2 of the thesis: the layer areas (and its "samples" = area x spp) for the FHD and
@@ -387,12 +398,7 @@ TEST(Foveated, BaseOnAFlatLitPlaneConvergesToTheExactRadiance) {
     int n = 0, nNoisy = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const Vec3 p(pos.at(x, y)[0], pos.at(x, y)[1], pos.at(x, y)[2]);
-        float exact = 0;
-        for (const PreparedLight& l : shading.lights) {
-          const LightSample ls = sampleLight(l, p);
-          exact += 0.6f / kPi * ls.radiance.x * std::max(ls.wi.y, 0.0f);
-        }
+        const float exact = exactFloorRadiance(shading, pos.rgb(x, y));
         err += std::pow(out.at(x, y)[0] - exact, 2);
         sum += exact;
         ++n;
@@ -516,12 +522,7 @@ TEST(Foveated, PeripheryAccumulationAveragesOutsideTheFovea) {
         ASSERT_NEAR(accum.at(x, y)[0], noisy.at(x, y)[0], 1e-5f * noisy.at(x, y)[0]);
         continue;
       }
-      const Vec3 p = pos.rgb(x, y);
-      float exact = 0;
-      for (const PreparedLight& l : shading.lights) {
-        const LightSample ls = sampleLight(l, p);
-        exact += 0.6f / kPi * ls.radiance.x * std::max(ls.wi.y, 0.0f);
-      }
+      const float exact = exactFloorRadiance(shading, pos.rgb(x, y));
       errAccum += std::pow(accum.at(x, y)[0] - exact, 2);
       errFrame += std::pow(noisy.at(x, y)[0] - exact, 2);
       ++n;
@@ -568,20 +569,12 @@ TEST(Foveated, PeripheryAccumulationFollowsAPanningCamera) {
   const Buffer& mask = ctx.input("fov_mask");
   const Buffer& accumMask = ctx.input("pt_accum_mask");
   const Buffer& pos = ctx.input("position");
-  auto exactAt = [&](int x, int y) {
-    float e = 0;
-    for (const PreparedLight& l : shading.lights) {
-      const LightSample ls = sampleLight(l, pos.rgb(x, y));
-      e += 0.6f / kPi * ls.radiance.x * std::max(ls.wi.y, 0.0f);
-    }
-    return e;
-  };
   double errAccum = 0, errFrame = 0, errFilled = 0;
   int n = 0, filled = 0;
   for (int y = 2; y < h - 2; ++y)
     for (int x = 2; x < w - 2; ++x) {
       if (layer.at(x, y)[0] == 0) continue;
-      const float exact = exactAt(x, y);
+      const float exact = exactFloorRadiance(shading, pos.rgb(x, y));
       if (mask.at(x, y)[0] == 0) {
         if (accumMask.at(x, y)[0] > 0) {
           errFilled += std::pow(accum.at(x, y)[0] - exact, 2);
