@@ -31,6 +31,9 @@ struct InterleavedExperimentOptions {
   int timingWidth = 960, timingHeight = 540, timingFrames = 3, timingWarmup = 1;
   int timingPairs = 16, timingSpp = 4;
   int strobePairs = 4;
+  // Hybrid motion blur: frames of a moving sequence (1/30 s apart from time 0); errors on the
+  // last one against a reference at its time, time per frame the median after the first.
+  int sequenceFrames = 10;
   int crop[4] = {0, 0, 0, 0};  // strobing crop at the quality size (0: centre third)
 };
 

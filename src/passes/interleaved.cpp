@@ -91,6 +91,23 @@ std::vector<ParamDesc> InterleavedPass::params() const {
        1,
        "sample: every sample shaded; pixel: once per pixel and surface seen (MSAA-style)",
        {"sample", "pixel"},
+       true},
+      {"texture_footprint",
+       ParamType::Float,
+       1,
+       0.0625,
+       4,
+       "scale of a sample's texture filter footprint (0.5 = mip bias -1, as temporal AA uses: "
+       "the frames together sample each pixel more finely)",
+       {},
+       true},
+      {"view_jitter",
+       ParamType::Bool,
+       0,
+       0,
+       1,
+       "shift the samples by the view's sub-pixel jitter (a sequence for temporal AA)",
+       {},
        true}};
   for (const ParamDesc& d : whittedParams()) p.push_back(d);
   return p;
@@ -113,11 +130,16 @@ void InterleavedPass::execute(FrameContext& ctx) {
       metric, pairs, ctx.seed);
   const TileShape& shape = tiles.shape;
   Buffer& hdr = ctx.output(*this, "hdr");
-  Buffer& samplesOut =
-      ctx.output(*this, "sample_time_lens", ctx.width * shape.sx, ctx.height * shape.sy);
-  Buffer& layoutOut = ctx.output(*this, "tile_layout");
+  // The viewer's buffers, only when something reads them.
+  Buffer* samplesOut =
+      ctx.isConsumed(*this, "sample_time_lens")
+          ? &ctx.output(*this, "sample_time_lens", ctx.width * shape.sx, ctx.height * shape.sy)
+          : nullptr;
+  Buffer* layoutOut = ctx.outputIfConsumed(*this, "tile_layout");
   Buffer& velocityOut = ctx.output(*this, "velocity");
   Buffer& depthOut = ctx.output(*this, "view_depth");
+  Buffer* motionOut = ctx.outputIfConsumed(*this, "motion");
+  const bool viewJitter = param("view_jitter") != 0;
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   const bool whittedShading = param("shading") == 0;
@@ -146,7 +168,7 @@ void InterleavedPass::execute(FrameContext& ctx) {
     for (int j = 0; j < n; ++j) {
       TimeLensPair p = pairs[size_t(j)];
       p.tau = taus[size_t(j)];
-      cams.push_back(cameraForPair(v, p, time, lens, {0, 0}));
+      cams.push_back(cameraForPair(v, p, time, lens, viewJitter ? v.camera.jitter : Vec2{0, 0}));
     }
 
     // 0. Which samples are needed: those of pixels within the filter's reach of the mask.
@@ -185,7 +207,8 @@ void InterleavedPass::execute(FrameContext& ctx) {
     auto t1 = Clock::now();
     colour_.resize(L.sampleCount());
     position_.resize(L.sampleCount());
-    const float spread = ctx.pixelSpread(v) / std::sqrt(float(k));
+    const float spread =
+        ctx.pixelSpread(v) / std::sqrt(float(k)) * float(param("texture_footprint"));
     // Shading per pixel (MSAA-style): a pixel's samples that see the same triangle at the same
     // pair (or the same time, when the lens does not vary) take the colour of the first of them.
     const bool perPixel = param("shading_rate") == 1;
@@ -315,14 +338,33 @@ void InterleavedPass::execute(FrameContext& ctx) {
     const float t0s = ctx.frame.time, t1s = ctx.frame.shutterClose;
     // Per pair and animated object: world at open (and close) after world at the pair's time
     // undone.
+    // Motion (frame to frame, for temporal AA): the same point at the pair's shutter fraction of
+    // the previous frame, seen by the previous camera moved as far into its shutter (its
+    // displacement over the shutter taken as this frame's).
+    const float tPrev = ctx.frame.prevTime;
     std::vector<std::vector<std::pair<Mat4, Mat4>>> carry(static_cast<size_t>(n));
+    std::vector<std::vector<Mat4>> carryPrev(static_cast<size_t>(n));
+    std::vector<Camera> nowCams, prevCams;
     for (int j = 0; j < n; ++j) {
+      const float into = (t1s - t0s) * taus[size_t(j)];
       carry[size_t(j)].resize(scene.objects.size());
+      carryPrev[size_t(j)].resize(scene.objects.size());
       for (size_t o = 0; o < scene.objects.size(); ++o) {
         const Object& obj = scene.objects[o];
         if (!obj.animated()) continue;
-        const Mat4 undo = obj.worldMatrix(t0s + (t1s - t0s) * taus[size_t(j)]).inverse();
+        const Mat4 undo = obj.worldMatrix(t0s + into).inverse();
         carry[size_t(j)][o] = {obj.worldMatrix(t0s) * undo, obj.worldMatrix(t1s) * undo};
+        carryPrev[size_t(j)][o] = obj.worldMatrix(tPrev + into) * undo;
+      }
+      if (motionOut) {
+        const float tau = time ? taus[size_t(j)] : 0.0f;
+        auto intoShutter = [&](CameraDesc d) {
+          d.position = d.position + (v.shutterCamera.desc.position - v.camera.desc.position) * tau;
+          d.lookAt = d.lookAt + (v.shutterCamera.desc.lookAt - v.camera.desc.lookAt) * tau;
+          return Camera::make(d, W, H);
+        };
+        nowCams.push_back(intoShutter(v.camera.desc));
+        prevCams.push_back(intoShutter(v.prevCamera.desc));
       }
     }
     parallelTiles(W, H, [&](int x0, int y0, int x1, int y1) {
@@ -330,26 +372,31 @@ void InterleavedPass::execute(FrameContext& ctx) {
         for (int px = x0; px < x1; ++px) {
           float* vel = velocityOut.at(px + v.x, py + v.y);
           float* dep = depthOut.at(px + v.x, py + v.y);
+          float* mot = motionOut ? motionOut->at(px + v.x, py + v.y) : nullptr;
           const size_t id = size_t(py * shape.sy) * size_t(SW) + size_t(px * shape.sx);
           vel[0] = vel[1] = 0.0f;
           dep[0] = 1e30f;
+          if (mot) mot[0] = mot[1] = 0.0f;
           if (active && !active[id]) continue;
           const int j = L.pair[id];
-          Vec3 pOpen, pClose;
+          Vec3 pOpen, pClose, pNow, pPrev;
           float wPoint = 1.0f;
           if (vis_.object[id] == kNoObject) {
             Vec3 o;
             cams[size_t(j)].generateRay(L.pos[id].x, L.pos[id].y, o, pOpen);
             pClose = pOpen;  // a direction: only the camera's rotation moves it
+            pNow = pPrev = pOpen;
             wPoint = 0.0f;
           } else {
             const Vec3 p = position_[id];
             const size_t obj = vis_.object[id];
+            pNow = p;
             if (scene.objects[obj].animated()) {
               pOpen = carry[size_t(j)][obj].first.transformPoint(p);
               pClose = carry[size_t(j)][obj].second.transformPoint(p);
+              pPrev = carryPrev[size_t(j)][obj].transformPoint(p);
             } else {
-              pOpen = pClose = p;
+              pOpen = pClose = pPrev = p;
             }
             dep[0] = dot(p - cams[size_t(j)].eye, cams[size_t(j)].forward);
           }
@@ -364,24 +411,33 @@ void InterleavedPass::execute(FrameContext& ctx) {
             vel[0] = b.x - a.x;
             vel[1] = b.y - a.y;
           }
+          if (mot && toPixel(nowCams[size_t(j)], pNow, a) && toPixel(prevCams[size_t(j)], pPrev, b)) {
+            mot[0] = a.x - b.x;
+            mot[1] = a.y - b.y;
+          }
         }
     });
 
     // For the viewer: each sample's time and lens coordinates, each pixel's tile prototype.
-    for (int y = 0; y < L.stridesH(); ++y)
-      for (int x = 0; x < SW; ++x) {
-        const size_t id = size_t(y) * size_t(SW) + size_t(x);
-        const int j = L.pair[id];
-        float* o = samplesOut.at(x + v.x * shape.sx, y + v.y * shape.sy);
-        o[0] = taus[size_t(j)];
-        o[1] = pairs[size_t(j)].u1;
-        o[2] = pairs[size_t(j)].u2;
-      }
+    if (samplesOut)
+      parallelRange(size_t(L.stridesH()), [&](size_t y0, size_t y1) {
+        for (size_t y = y0; y < y1; ++y)
+          for (int x = 0; x < SW; ++x) {
+            const int j = L.pair[y * size_t(SW) + size_t(x)];
+            float* o = samplesOut->at(x + v.x * shape.sx, int(y) + v.y * shape.sy);
+            o[0] = taus[size_t(j)];
+            o[1] = pairs[size_t(j)].u1;
+            o[2] = pairs[size_t(j)].u2;
+          }
+      }, 16);
     const bool tiled = scheme >= SamplingScheme::RandomTiles;
-    for (int y = 0; y < H; ++y)
-      for (int x = 0; x < W; ++x)
-        layoutOut.at(x + v.x, y + v.y)[0] =
-            tiled ? float(tiles.prototypeAt(x / shape.tw, y / shape.th)) : -1.0f;
+    if (layoutOut)
+      parallelRange(size_t(H), [&](size_t y0, size_t y1) {
+        for (size_t y = y0; y < y1; ++y)
+          for (int x = 0; x < W; ++x)
+            layoutOut->at(x + v.x, int(y) + v.y)[0] =
+                tiled ? float(tiles.prototypeAt(x / shape.tw, int(y) / shape.th)) : -1.0f;
+      }, 16);
     resolveMs += msSince(t2);
   }
   if (counted) ctx.passRays += double(counted->raysTraced() - raysBefore);
@@ -396,8 +452,22 @@ void InterleavedPass::execute(FrameContext& ctx) {
 
 void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& layout,
                                        const std::vector<Camera>& cams,
-                                       const std::vector<float>& taus, const uint8_t* /*active*/,
+                                       const std::vector<float>& taus, const uint8_t* active,
                                        VisibilityBuffer& vis) {
+  // A masked pass draws only the cells (tiles) that hold a needed sample.
+  const TileShape& shape = layout.shape;
+  if (active) {
+    cellActive_.assign(size_t(layout.cells()), 0);
+    const int SW = layout.stridesW(), cellSW = shape.tw * shape.sx, cellSH = shape.th * shape.sy;
+    for (int y = 0; y < layout.stridesH(); ++y)
+      for (int x = 0; x < SW; ++x)
+        if (active[size_t(y) * size_t(SW) + size_t(x)])
+          cellActive_[size_t(y / cellSH) * size_t(layout.cellsX) + size_t(x / cellSW)] = 1;
+  }
+  auto masked = [&](Rasterizer::SampleSet set) {
+    set.cellActive = active ? cellActive_.data() : nullptr;
+    return set;
+  };
   // Every sample: a pass costs its triangles' setup, not its samples.
   // When no pair moves the camera (no lens, no camera motion in the shutter), geometry that
   // stands still looks the same at every pair: it is rasterized once into every sample, and
@@ -416,7 +486,7 @@ void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& la
   double setUp = 0, setUpMax = 0, setUpMin = 1e300, shared = 0;
   if (shareStatic) {
     RasterStats stats;
-    rasterizer_.renderSamples(ctx.frame, cams.front(), layout.allSamples(), vis,
+    rasterizer_.renderSamples(ctx.frame, cams.front(), masked(layout.allSamples()), vis,
                               Rasterizer::Subset{&still, false}, &stats,
                               moving ? taus.front() : -1.0f);
     shared = double(stats.trianglesBinned);
@@ -426,7 +496,8 @@ void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& la
     RasterStats stats;
     const Rasterizer::Subset subset =
         shareStatic ? Rasterizer::Subset{&movers, true} : Rasterizer::Subset{};
-    rasterizer_.renderSamples(ctx.frame, cams[j], layout.passSamples(int(j)), vis, subset, &stats,
+    rasterizer_.renderSamples(ctx.frame, cams[j], masked(layout.passSamples(int(j))), vis, subset,
+                              &stats,
                               moving ? taus[j] : -1.0f);
     setUp += double(stats.trianglesBinned);
     setUpMax = std::max(setUpMax, double(stats.trianglesBinned));

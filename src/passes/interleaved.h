@@ -21,7 +21,9 @@
 // prototype, 0-80, false-coloured; -1 for the schemes without tiles); velocity (the screen
 // displacement in pixels over the whole shutter of the surface a pixel's first sample sees: camera
 // open to close, object at open to close) and view_depth (that surface's distance along the view
-// axis) for the post-process motion blur. Counters: triangles set up per pass (raster).
+// axis) for the post-process motion blur; motion (written only when a pass reads it: the
+// screen motion in pixels since the previous frame of that surface at the same shutter fraction,
+// for temporal AA of a sharp image with `view_jitter`). Counters: triangles set up per pass (raster).
 #pragma once
 #include <memory>
 
@@ -53,7 +55,8 @@ class InterleavedPass : public Pass {
             {"sample_time_lens", 3, BufferKind::Mask, Extent::any()},
             {"tile_layout", 1, BufferKind::Id},
             {"velocity", 2, BufferKind::Motion},
-            {"view_depth", 1, BufferKind::Color}};
+            {"view_depth", 1, BufferKind::Color},
+            {"motion", 2, BufferKind::Motion}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
@@ -90,6 +93,7 @@ class InterleavedRasterPass : public InterleavedPass {
 
  private:
   Rasterizer rasterizer_;
+  std::vector<uint8_t> cellActive_;  // masked passes: cells holding a needed sample
 };
 
 class InterleavedRTPass : public InterleavedPass {

@@ -43,7 +43,14 @@ std::vector<ParamDesc> TAAPass::params() const {
        "speed (pixels per frame) at which the weight reaches motion_alpha",
        {}},
       {"clamp", ParamType::Bool, 1, 0, 1, "clamp history to the YCoCg neighbourhood box", {}},
-      {"filter", ParamType::Enum, 1, 0, 1, "history resampling", {"bilinear", "catmull_rom"}}};
+      {"filter", ParamType::Enum, 1, 0, 1, "history resampling", {"bilinear", "catmull_rom"}},
+      {"converge",
+       ParamType::Bool,
+       0,
+       0,
+       1,
+       "average the first frames after a reset equally (weight 1/n until it falls to alpha)",
+       {}}};
 }
 
 void TAAPass::request(FrameRequest& r) const {
@@ -58,9 +65,13 @@ void TAAPass::execute(FrameContext& ctx) {
   Buffer& out = ctx.output(*this, "taa");
   if (!prev || !prev->sameShape(out)) {
     out.data = cur.data;
+    framesAveraged_ = 1;
     return;
   }
-  const float alpha = float(param("alpha")), motionAlpha = float(param("motion_alpha"));
+  ++framesAveraged_;
+  const float converging = param("converge") != 0 ? 1.0f / float(framesAveraged_) : 0.0f;
+  const float alpha = std::max(float(param("alpha")), converging);
+  const float motionAlpha = std::max(float(param("motion_alpha")), converging);
   const float invMotionPixels = 1.0f / float(param("motion_pixels"));
   const bool clampHistory = param("clamp") != 0, catmullRom = param("filter") == 1;
   constexpr int kTile = 32, kPad = kTile + 2;

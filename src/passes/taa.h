@@ -5,7 +5,9 @@
 // blends with the current frame (weight `alpha`, rising to `motion_alpha` for pixels moving
 // `motion_pixels` per frame, since resampled history blurs; weights divided by 1 + luma so a
 // bright sample does not flicker). After a history reset, or where the reprojected point leaves the
-// view, the current frame is taken as is. Inputs: hdr (jittered colour), motion; history input: taa
+// view, the current frame is taken as is. With `converge`, the first frames after a reset are
+// averaged equally (the current frame's weight 1/n, never below alpha), so a short sequence is
+// not dominated by its first aliased frame. Inputs: hdr (jittered colour), motion; history input: taa
 // (last frame's result). Output: taa.
 #pragma once
 #include "pipeline/pass.h"
@@ -23,6 +25,10 @@ class TAAPass : public Pass {
   std::vector<ParamDesc> params() const override;
   void request(FrameRequest& r) const override;
   void execute(FrameContext& ctx) override;
+  void resetHistory() override { framesAveraged_ = 0; }
+
+ private:
+  int framesAveraged_ = 0;  // frames in the history since it was last reset
 };
 
 }  // namespace tandem

@@ -380,9 +380,16 @@ void Rasterizer::renderSamples(const FrameScene& fs, const Camera& cam, const Sa
     const int cx0 = bx * binCellsX, cy0 = by * binCellsY;
     const int cx1 = std::min(set.cellsX, cx0 + binCellsX) - 1;
     const int cy1 = std::min(set.cellsY, cy0 + binCellsY) - 1;
+    auto skipped = [&](size_t c) { return set.cellActive && !set.cellActive[c]; };
+    bool anyActive = !set.cellActive;
+    for (int cy = cy0; cy <= cy1 && !anyActive; ++cy)
+      for (int cx = cx0; cx <= cx1 && !anyActive; ++cx)
+        anyActive = !skipped(size_t(cy) * size_t(set.cellsX) + size_t(cx));
+    if (!anyActive) return;
     for (int cy = cy0; cy <= cy1 && !subset.keep; ++cy)
       for (int cx = cx0; cx <= cx1; ++cx) {
         const size_t c = size_t(cy) * size_t(set.cellsX) + size_t(cx);
+        if (skipped(c)) continue;
         for (uint32_t k = set.start[c]; k < set.start[c + 1]; ++k) {
           const uint32_t id = set.ids[k];
           out.depth[id] = 0.0f;
@@ -414,6 +421,7 @@ void Rasterizer::renderSamples(const FrameScene& fs, const Camera& cam, const Sa
         for (int cy = ty0; cy <= ty1; ++cy)
           for (int cx = tx0; cx <= tx1; ++cx) {
             const size_t c = size_t(cy) * size_t(set.cellsX) + size_t(cx);
+            if (skipped(c)) continue;
             for (uint32_t k = set.start[c]; k < set.start[c + 1]; ++k) {
               const uint32_t id = set.ids[k];
               const int64_t sx = set.fx[id], sy = set.fy[id];

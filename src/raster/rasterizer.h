@@ -51,6 +51,9 @@ class Rasterizer {
     const uint32_t* ids = nullptr;
     const Vec2* pos = nullptr;
     const int32_t *fx = nullptr, *fy = nullptr;
+    // Optional: cells whose entry is 0 are neither cleared nor drawn (a masked pass); a bin
+    // without an active cell skips its triangles.
+    const uint8_t* cellActive = nullptr;
   };
   // Draws `fs` through `cam` into the entries of `out` (indexed by sample id) of the samples in
   // `set`, clearing them first and touching no other entry. Each triangle visits only the cells

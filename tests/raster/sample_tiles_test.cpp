@@ -232,3 +232,47 @@ TEST(SampleTiles, SparseRasterizationMatchesTheDenseRasterizer) {
     EXPECT_EQ(depthOff, 0u) << "n " << c.n;
   }
 }
+
+// A masked pass (cellActive) draws exactly what the full pass draws in its active cells and
+// leaves every entry of the other cells as it was.
+TEST(SampleTiles, MaskedCellsDrawOnlyTheActiveCells) {
+  Scene scene = makeBuiltinScene("atrium");
+  FrameScene fs;
+  fs.update(scene, 0.0f, 0.0f);
+  const int W = 160, H = 96;
+  const Camera cam = Camera::make(scene.camera, W, H);
+  const TileSet set = build(16, 4, TileKind::ColoredCorner);
+  const SampleLayout L = buildSampleLayout(SamplingScheme::ColoredCorner, set, W, H, 1);
+  std::vector<uint8_t> active(size_t(L.cells()), 0);
+  for (int cy = 0; cy < L.cellsY; ++cy)
+    for (int cx = 0; cx < L.cellsX; ++cx)  // a disc of cells and one lone cell
+      active[size_t(cy) * size_t(L.cellsX) + size_t(cx)] =
+          (cx - 30) * (cx - 30) + (cy - 20) * (cy - 20) < 64 || (cx == 5 && cy == 40);
+  Rasterizer full, masked;
+  VisibilityBuffer vf, vm;
+  vf.resize(L.stridesW(), L.stridesH());
+  vm.resize(L.stridesW(), L.stridesH());
+  std::fill(vm.object.begin(), vm.object.end(), 12345u);
+  Rasterizer::SampleSet all = L.allSamples(), some = all;
+  some.cellActive = active.data();
+  full.renderSamples(fs, cam, all, vf);
+  masked.renderSamples(fs, cam, some, vm);
+  const TileShape& s = L.shape;
+  size_t drawn = 0, kept = 0, differ = 0, touched = 0;
+  for (int y = 0; y < L.stridesH(); ++y)
+    for (int x = 0; x < L.stridesW(); ++x) {
+      const size_t id = size_t(y) * size_t(L.stridesW()) + size_t(x);
+      const size_t c = size_t(y / (s.th * s.sy)) * size_t(L.cellsX) + size_t(x / (s.tw * s.sx));
+      if (active[c]) {
+        ++drawn;
+        differ += vf.object[id] != vm.object[id] || vf.prim[id] != vm.prim[id];
+      } else {
+        ++kept;
+        touched += vm.object[id] != 12345u;
+      }
+    }
+  EXPECT_GT(drawn, 500u);
+  EXPECT_GT(kept, drawn);
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(touched, 0u);
+}
