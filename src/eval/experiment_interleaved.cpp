@@ -133,8 +133,8 @@ RenderResult renderShot(const Shot& shot, const std::string& pipeline,
   return out;
 }
 
-Buffer referenceOf(const Shot& shot, int w, int h, float shutter, int spp,
-                   const std::string& cache, float time = 0.0f) {
+Buffer referenceOf(const Shot& shot, int w, int h, float shutter, int spp, const std::string& cache,
+                   float time = 0.0f) {
   ReferenceJob job;
   job.scene = &shot.scene;
   job.camera = pathCameraAt(shot.scene, shot.base, time);
@@ -474,6 +474,9 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
       std::fflush(stdout);
       const Buffer ref = referenceOf(s, o.timingWidth, o.timingHeight, o.shutter, o.referenceSpp,
                                      o.cache, lastTime);
+      const std::string refFile = "mb_" + s.label + "_reference.png";
+      writePng((fs::path(o.out) / refFile).string(), visualizeBuffer(ref));
+      report.image(refFile, s.label + ": reference at " + fmt(lastTime, 3) + " s");
       for (const Variant& v : variants) {
         std::printf("experiment interleaved: hybrid motion blur, %s, %s\n", s.label.c_str(),
                     v.name.c_str());

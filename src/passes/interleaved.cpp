@@ -411,7 +411,8 @@ void InterleavedPass::execute(FrameContext& ctx) {
             vel[0] = b.x - a.x;
             vel[1] = b.y - a.y;
           }
-          if (mot && toPixel(nowCams[size_t(j)], pNow, a) && toPixel(prevCams[size_t(j)], pPrev, b)) {
+          if (mot && toPixel(nowCams[size_t(j)], pNow, a) &&
+              toPixel(prevCams[size_t(j)], pPrev, b)) {
             mot[0] = a.x - b.x;
             mot[1] = a.y - b.y;
           }
@@ -420,24 +421,30 @@ void InterleavedPass::execute(FrameContext& ctx) {
 
     // For the viewer: each sample's time and lens coordinates, each pixel's tile prototype.
     if (samplesOut)
-      parallelRange(size_t(L.stridesH()), [&](size_t y0, size_t y1) {
-        for (size_t y = y0; y < y1; ++y)
-          for (int x = 0; x < SW; ++x) {
-            const int j = L.pair[y * size_t(SW) + size_t(x)];
-            float* o = samplesOut->at(x + v.x * shape.sx, int(y) + v.y * shape.sy);
-            o[0] = taus[size_t(j)];
-            o[1] = pairs[size_t(j)].u1;
-            o[2] = pairs[size_t(j)].u2;
-          }
-      }, 16);
+      parallelRange(
+          size_t(L.stridesH()),
+          [&](size_t y0, size_t y1) {
+            for (size_t y = y0; y < y1; ++y)
+              for (int x = 0; x < SW; ++x) {
+                const int j = L.pair[y * size_t(SW) + size_t(x)];
+                float* o = samplesOut->at(x + v.x * shape.sx, int(y) + v.y * shape.sy);
+                o[0] = taus[size_t(j)];
+                o[1] = pairs[size_t(j)].u1;
+                o[2] = pairs[size_t(j)].u2;
+              }
+          },
+          16);
     const bool tiled = scheme >= SamplingScheme::RandomTiles;
     if (layoutOut)
-      parallelRange(size_t(H), [&](size_t y0, size_t y1) {
-        for (size_t y = y0; y < y1; ++y)
-          for (int x = 0; x < W; ++x)
-            layoutOut->at(x + v.x, int(y) + v.y)[0] =
-                tiled ? float(tiles.prototypeAt(x / shape.tw, int(y) / shape.th)) : -1.0f;
-      }, 16);
+      parallelRange(
+          size_t(H),
+          [&](size_t y0, size_t y1) {
+            for (size_t y = y0; y < y1; ++y)
+              for (int x = 0; x < W; ++x)
+                layoutOut->at(x + v.x, int(y) + v.y)[0] =
+                    tiled ? float(tiles.prototypeAt(x / shape.tw, int(y) / shape.th)) : -1.0f;
+          },
+          16);
     resolveMs += msSince(t2);
   }
   if (counted) ctx.passRays += double(counted->raysTraced() - raysBefore);
@@ -497,8 +504,7 @@ void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& la
     const Rasterizer::Subset subset =
         shareStatic ? Rasterizer::Subset{&movers, true} : Rasterizer::Subset{};
     rasterizer_.renderSamples(ctx.frame, cams[j], masked(layout.passSamples(int(j))), vis, subset,
-                              &stats,
-                              moving ? taus[j] : -1.0f);
+                              &stats, moving ? taus[j] : -1.0f);
     setUp += double(stats.trianglesBinned);
     setUpMax = std::max(setUpMax, double(stats.trianglesBinned));
     setUpMin = std::min(setUpMin, double(stats.trianglesBinned));

@@ -23,7 +23,8 @@
 // open to close, object at open to close) and view_depth (that surface's distance along the view
 // axis) for the post-process motion blur; motion (written only when a pass reads it: the
 // screen motion in pixels since the previous frame of that surface at the same shutter fraction,
-// for temporal AA of a sharp image with `view_jitter`). Counters: triangles set up per pass (raster).
+// for temporal AA of a sharp image with `view_jitter`). Counters: triangles set up per pass
+// (raster).
 #pragma once
 #include <memory>
 

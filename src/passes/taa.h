@@ -7,8 +7,8 @@
 // bright sample does not flicker). After a history reset, or where the reprojected point leaves the
 // view, the current frame is taken as is. With `converge`, the first frames after a reset are
 // averaged equally (the current frame's weight 1/n, never below alpha), so a short sequence is
-// not dominated by its first aliased frame. Inputs: hdr (jittered colour), motion; history input: taa
-// (last frame's result). Output: taa.
+// not dominated by its first aliased frame. Inputs: hdr (jittered colour), motion; history input:
+// taa (last frame's result). Output: taa.
 #pragma once
 #include "pipeline/pass.h"
 
