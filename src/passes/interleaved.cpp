@@ -12,6 +12,7 @@
 #include "rt/reference_render.h"
 #include "rt/whitted.h"
 #include "shading/blinn_phong.h"
+#include "shading/shade_batch.h"
 #include "shading/surface_resolve.h"
 
 namespace tandem {
@@ -255,7 +256,12 @@ void InterleavedPass::execute(FrameContext& ctx) {
               if (whitted) {
                 whitted->shadePrimary8(s, d, m, out);
               } else {
-                for (int q = 0; q < m; ++q) out[q] = shadeBlinnPhong(s[q], -d[q], shading);
+                // Local shading: the same kernel as shadeBlinnPhong, 8 lanes at once.
+                ShadeBatch batch;
+                batch.count = m;
+                for (int q = 0; q < m; ++q) batch.set(q, s[q], -d[q]);
+                shadeBatch(batch, shading);
+                for (int q = 0; q < m; ++q) out[q] = batch.result(q);
               }
               for (int q = 0; q < m; ++q) {
                 colour_[at[q]] = out[q];
