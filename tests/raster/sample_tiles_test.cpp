@@ -202,14 +202,25 @@ TEST(SampleTiles, BadShapesAreNamed) {
   EXPECT_EQ(tileShapeProblem(12, 3), "");
 }
 
+// The atrium at time 0 through its camera, 160 x 96: the rasterizer tests' shot.
+struct AtriumShot {
+  static constexpr int W = 160, H = 96;
+  Scene scene = makeBuiltinScene("atrium");
+  FrameScene fs;
+  Camera cam;
+  AtriumShot() {
+    fs.update(scene, 0.0f, 0.0f);
+    cam = Camera::make(scene.camera, W, H);
+  }
+};
+
 // With one sample per pixel at the pixel centre, the sparse rasterizer finds exactly what the
 // dense one does (the same setup, fill rule and depth plane).
 TEST(SampleTiles, SparseRasterizationMatchesTheDenseRasterizer) {
-  Scene scene = makeBuiltinScene("atrium");
-  FrameScene fs;
-  fs.update(scene, 0.0f, 0.0f);
-  const int W = 160, H = 96;
-  const Camera cam = Camera::make(scene.camera, W, H);
+  const AtriumShot shot;
+  const FrameScene& fs = shot.fs;
+  const Camera& cam = shot.cam;
+  const int W = AtriumShot::W, H = AtriumShot::H;
   Rasterizer dense, sparse;
   VisibilityBuffer vd, vs;
   dense.render(fs, cam, vd);
@@ -236,11 +247,10 @@ TEST(SampleTiles, SparseRasterizationMatchesTheDenseRasterizer) {
 // A masked pass (cellActive) draws exactly what the full pass draws in its active cells and
 // leaves every entry of the other cells as it was.
 TEST(SampleTiles, MaskedCellsDrawOnlyTheActiveCells) {
-  Scene scene = makeBuiltinScene("atrium");
-  FrameScene fs;
-  fs.update(scene, 0.0f, 0.0f);
-  const int W = 160, H = 96;
-  const Camera cam = Camera::make(scene.camera, W, H);
+  const AtriumShot shot;
+  const FrameScene& fs = shot.fs;
+  const Camera& cam = shot.cam;
+  const int W = AtriumShot::W, H = AtriumShot::H;
   const TileSet set = build(16, 4, TileKind::ColoredCorner);
   const SampleLayout L = buildSampleLayout(SamplingScheme::ColoredCorner, set, W, H, 1);
   std::vector<uint8_t> active(size_t(L.cells()), 0);
