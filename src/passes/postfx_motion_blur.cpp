@@ -19,7 +19,15 @@ std::vector<ParamDesc> PostfxMotionBlurPass::params() const {
        0,
        100,
        "mask tiles whose neighbourhood's blur radii differ by more than this (px)",
-       {}}};
+       {}},
+      {"mask",
+       ParamType::Enum,
+       0,
+       0,
+       1,
+       "spread: radii anywhere in the 3 x 3 tiles differ; edges: adjacent pixels' radii jump (a "
+       "motion boundary) somewhere in them, so smooth motion (a camera pan's parallax) stays out",
+       {"spread", "edges"}}};
 }
 
 namespace {
@@ -54,6 +62,7 @@ void PostfxMotionBlurPass::execute(FrameContext& ctx) {
   Buffer& maskOut = ctx.output(*this, "mb_mask");
   const int K = int(param("tile_size")), S = int(param("samples")) | 1;
   const float softZ = float(param("soft_z")), threshold = float(param("mask_threshold"));
+  const bool edgesOnly = param("mask") == 1;
   size_t masked = 0, pixels = 0;
   for (const View& view : ctx.views) {
     const int W = view.width(), H = view.height(), ox = view.x, oy = view.y;
@@ -68,6 +77,7 @@ void PostfxMotionBlurPass::execute(FrameContext& ctx) {
     const int TX = (W + K - 1) / K, TY = (H + K - 1) / K;
     std::vector<Vec2> tileMax(size_t(TX) * TY), neighborMax(tileMax.size());
     std::vector<float> tileMinSpeed(tileMax.size());
+    std::vector<uint8_t> tileEdge(tileMax.size(), 0);  // a jump of > threshold between neighbours
     for (int ty = 0; ty < TY; ++ty)
       for (int tx = 0; tx < TX; ++tx) {
         Vec2 best{0, 0};
@@ -78,6 +88,9 @@ void PostfxMotionBlurPass::execute(FrameContext& ctx) {
             const float l = lengthOf(r);
             if (l > bestL) bestL = l, best = r;
             minL = std::min(minL, l);
+            if (edgesOnly && ((x + 1 < W && lengthOf(radiusAt(x + 1, y) - r) > threshold) ||
+                              (y + 1 < H && lengthOf(radiusAt(x, y + 1) - r) > threshold)))
+              tileEdge[size_t(ty) * TX + size_t(tx)] = 1;
           }
         tileMax[size_t(ty) * TX + size_t(tx)] = best;
         tileMinSpeed[size_t(ty) * TX + size_t(tx)] = minL;
@@ -99,14 +112,17 @@ void PostfxMotionBlurPass::execute(FrameContext& ctx) {
             minL = std::min(minL, tileMinSpeed[size_t(y) * TX + size_t(x)]);
           }
         float spread = bestL - minL;
+        bool edge = false;
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
             const int x = tx + dx, y = ty + dy;
             if (x < 0 || y < 0 || x >= TX || y >= TY) continue;
             spread = std::max(spread, lengthOf(tileMax[size_t(y) * TX + size_t(x)] - best));
+            edge = edge || tileEdge[size_t(y) * TX + size_t(x)];
           }
         neighborMax[size_t(ty) * TX + size_t(tx)] = best;
-        tileMask[size_t(ty) * TX + size_t(tx)] = bestL > 0.5f && spread > threshold ? 1.0f : 0.0f;
+        const bool mixed = edgesOnly ? edge : spread > threshold;
+        tileMask[size_t(ty) * TX + size_t(tx)] = bestL > 0.5f && mixed ? 1.0f : 0.0f;
       }
 
     parallelTiles(W, H, [&](int x0, int y0, int x1, int y1) {
