@@ -222,9 +222,11 @@ cat > "$D/tinyil.json" <<JSON
 JSON
 "$T" experiment "$D/tinyil.json" --out "$D/tinyil" --no-cache >/dev/null 2>&1
 check "interleaved experiment writes its tables" \
-  "grep -q 'Figure check' $D/tinyil/results.md && [ -s $D/tinyil/tile_quality.csv ] && [ -s $D/tinyil/hybrid_motion_blur.csv ]"
+  "grep -q 'Figure check' $D/tinyil/results.md && [ -s $D/tinyil/tile_quality.csv ] && [ -s $D/tinyil/hybrid_motion_blur.csv ] && [ -s $D/tinyil/mb_motion_reference.png ]"
 echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "pairCounts": [6], "sweepSpp": 4}' > "$D/badil.json"
 expect_error "interleaved experiment bad N" "pairCounts / sweepSpp" "$T" experiment "$D/badil.json" --out "$D/err/exp"
+echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "sequenceFrames": 1}' > "$D/badseq.json"
+expect_error "interleaved experiment bad sequence" "sequenceFrames" "$T" experiment "$D/badseq.json" --out "$D/err/exp"
 
 if [ $fail -ne 0 ]; then echo "cli tests failed"; exit 1; fi
 echo "cli tests passed"
