@@ -7,7 +7,7 @@
 
 #include "core/hash.h"
 #include "core/parallel.h"
-#include "passes/rt_secondary.h"
+#include "passes/whitted_settings.h"
 #include "pipeline/frame_context.h"
 #include "rt/reference_render.h"
 #include "rt/whitted.h"
@@ -148,6 +148,8 @@ void InterleavedPass::execute(FrameContext& ctx) {
   RayTracer* counted = whittedShading || tracesPrimaryRays() ? &ctx.rayTracer() : nullptr;
   const uint64_t raysBefore = counted ? counted->raysTraced() : 0;
   const WhittedSettings ws = whittedSettings(*this);
+  const ShadowMaps* shadowMaps = rt ? shadowMapsFor(ctx, *this) : nullptr;
+  ShadowTally shadowTally;
   std::vector<float> taus(static_cast<size_t>(n));
   const float fixedTau = float(param("shutter_time"));
   for (int j = 0; j < n; ++j)
@@ -243,7 +245,11 @@ void InterleavedPass::execute(FrameContext& ctx) {
       const Camera& cam = cams[size_t(j)];
       const float tau = taus[size_t(j)];
       std::unique_ptr<Whitted> whitted;
-      if (rt) whitted = std::make_unique<Whitted>(Whitted(*rt, scene, shading, ws).atTime(tau));
+      if (rt) {
+        whitted = std::make_unique<Whitted>(Whitted(*rt, scene, shading, ws).atTime(tau));
+        whitted->useShadowMaps(shadowMaps);
+        whitted->countShadows(&shadowTally);
+      }
       parallelRange(
           size_t(e - b),
           [&](size_t s0, size_t s1) {
@@ -454,6 +460,7 @@ void InterleavedPass::execute(FrameContext& ctx) {
     resolveMs += msSince(t2);
   }
   if (counted) ctx.passRays += double(counted->raysTraced() - raysBefore);
+  if (rt) reportShadows(ctx, *this, sum(shadowTally), double(ctx.width) * double(ctx.height));
   ctx.passParts.push_back({"visibility", visMs, 0});
   ctx.passParts.push_back({"shade", shadeMs, 0});
   ctx.passParts.push_back({"resolve", resolveMs, 0});

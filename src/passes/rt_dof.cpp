@@ -6,7 +6,7 @@
 
 #include "core/parallel.h"
 #include "passes/dof_common.h"
-#include "passes/rt_secondary.h"
+#include "passes/whitted_settings.h"
 #include "pipeline/frame_context.h"
 #include "rt/sampler.h"
 #include "rt/whitted.h"
@@ -57,7 +57,9 @@ void RTDofPass::execute(FrameContext& ctx) {
   const uint64_t before = rt.raysTraced();
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
-  const Whitted whitted(rt, scene, shading, whittedSettings(*this));
+  Whitted whitted(rt, scene, shading, whittedSettings(*this));
+  ShadowTally tally;
+  prepareShadows(ctx, *this, whitted, &tally);
   const ThinLens lens = ThinLens::of(cams.front());  // the same lens in every view
   const float spread = ctx.pixelSpread(ctx.views.front()) * scale;
   // New lens samples every executed frame (a static shot repeats its frame index).
@@ -191,6 +193,7 @@ void RTDofPass::execute(FrameContext& ctx) {
         o[3] = p.farPosW > 0 ? 1.0f : 0.0f;
       }
   });
+  reportShadows(ctx, *this, sum(tally), double(w) * double(h));
   ctx.passRays += double(rt.raysTraced() - before);
   double lensRays = 0;
   for (size_t i = 0; i < mask.pixelCount(); ++i) lensRays += mask.data[i];

@@ -17,42 +17,15 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> whittedParams() {
-  return {{"max_depth", ParamType::Int, 10, 1, 64, "maximum recursion depth of secondary rays", {}},
-          {"importance_cutoff",
-           ParamType::Float,
-           0.01,
-           0,
-           1,
-           "stop recursing when a ray's weight falls below this",
-           {}},
-          {"shadow_attenuation",
-           ParamType::Enum,
-           0,
-           0,
-           1,
-           "occluder colour for Listing 8b: textured (as the G-buffer) or the base material's",
-           {"textured", "base"}},
-          {"shade_at_max_depth",
-           ParamType::Bool,
-           0,
-           0,
-           1,
-           "at max depth shade pure mirrors / clear glass with Blinn-Phong (Listing 8c: 0)",
-           {}}};
-}
-
-WhittedSettings whittedSettings(const Pass& p) {
-  WhittedSettings w;
-  w.maxDepth = int(p.param("max_depth"));
-  w.importanceCutoff = float(p.param("importance_cutoff"));
-  w.texturedShadows = p.param("shadow_attenuation") == 0;
-  w.shadeAtMaxDepth = p.param("shade_at_max_depth") != 0;
-  return w;
-}
-
 std::vector<ParamDesc> RTSecondaryPass::params() const {
   std::vector<ParamDesc> p = whittedParams();
+  p.push_back({"shadow_class_light",
+               ParamType::Int,
+               -1,
+               -1,
+               1 << 20,
+               "the light shadow_class shows (-1: the shares over every light)",
+               {}});
   p.push_back({"outside_mask_shadow",
                ParamType::Float,
                0,
@@ -72,11 +45,9 @@ std::vector<BufferSlot> RTSecondaryPass::inputs() const {
 }
 
 std::vector<BufferSlot> RTSecondaryPass::outputs() const {
-  return {{"shadow", 3},
-          {"reflection", 3},
-          {"refraction", 3},
-          {"traced_mask", kEffectCount, BufferKind::Mask},
-          rtStatsSlot(false)};
+  return {{"shadow", 3},       {"reflection", 3},
+          {"refraction", 3},   {"traced_mask", kEffectCount, BufferKind::Mask},
+          {"shadow_class", 3}, rtStatsSlot(false)};
 }
 
 namespace {
@@ -108,6 +79,22 @@ size_t traceUntilDeadline(const std::vector<RankedTile>& queue, Clock::time_poin
       tbb::simple_partitioner());
   return cut.load();
 }
+// Lane j's shadow classes (8 lanes a light) as (traced, lit, shadowed) shares of the lights that
+// reach it, or of light `only` alone when it is >= 0.
+Vec3 classShares(const uint8_t* classes, size_t lights, int j, int only) {
+  Vec3 c(0.0f);
+  float reached = 0;
+  for (size_t i = 0; i < lights; ++i) {
+    if (only >= 0 && i != size_t(only)) continue;
+    const auto k = ShadowClass(classes[8 * i + size_t(j)]);
+    if (k == ShadowClass::Culled) continue;
+    reached += 1;
+    c.x += k == ShadowClass::Traced ? 1.0f : 0.0f;
+    c.y += k == ShadowClass::Lit ? 1.0f : 0.0f;
+    c.z += k == ShadowClass::Shadowed ? 1.0f : 0.0f;
+  }
+  return reached > 0 ? c / reached : c;
+}
 }  // namespace
 
 void RTSecondaryPass::execute(FrameContext& ctx) {
@@ -118,7 +105,18 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   const size_t objects = scene.objects.size();
   const ShadingContext shading = ShadingContext::from(scene);
-  Whitted whitted(rt, scene, shading, whittedSettings(*this));
+  const WhittedSettings ws = whittedSettings(*this);
+  Whitted whitted(rt, scene, shading, ws);
+  // Blocks no light is blocked in keep S = 1 unshaded (with every shadow traced and no culling
+  // they are shaded as always, so that setting draws exactly what it always drew).
+  const bool skipUnblocked = ws.shadows != ShadowMode::Rays || ws.shadowCull > 0;
+  ShadowTally shadowTally;
+  prepareShadows(ctx, *this, whitted, &shadowTally);
+  // Classified shadows per pixel (viewer / AOV): R traced, G lit, B shadowed, as shares of the
+  // lights that reach the pixel (or the one light asked for); 0 where no shadow was asked.
+  Buffer* classOut = ctx.outputIfConsumed(*this, "shadow_class");
+  if (classOut) std::fill(classOut->data.begin(), classOut->data.end(), 0.0f);
+  const int classLight = int(param("shadow_class_light"));
   const GBufferReader g = gbufferSource(ctx, *this);
   const Buffer& mask = ctx.input(*this, "heuristic_mask");
   Buffer& shadow = ctx.output(*this, "shadow");
@@ -147,6 +145,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   // the effects of that node rank, and only their outputs (the tile was cleared beforehand).
   auto traceTile = [&](const View& v, int x0, int y0, int x1, int y1, int64_t rank) {
     LightVisibility8 vis(scene.lights.size());
+    std::vector<uint8_t> classes(classOut ? 8 * scene.lights.size() : 0);
     EffectTally* tally = tallies.local().data();
     // 4x2 pixel blocks: a block's shadow rays go as 8-wide packets, its shadow shading as one
     // batch; reflections and refractions recurse pixel by pixel.
@@ -189,18 +188,30 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
           // light; subtracting the light-independent terms leaves only the lights' share.
           const uint64_t c0 = timed ? cycleNow() : 0;
           int rays[8];
-          whitted.lightVisibility8(shadowed, m, vis.data(), rays);
+          Vec3 wo[8];
+          for (int j = 0; j < m; ++j) wo[j] = -d[lane[j]];
+          whitted.lightVisibility8(shadowed, m, vis.data(), rays, wo,
+                                   classOut ? classes.data() : nullptr);
+          if (classOut)
+            for (int j = 0; j < m; ++j)
+              classOut->setRgb(px[lane[j]], py[lane[j]],
+                               classShares(classes.data(), scene.lights.size(), j, classLight));
+          bool blocked = false;
           for (size_t i = 0; i < 3 * 8 * scene.lights.size(); ++i)
-            vis.data()[i] = 1.0f - vis.data()[i];
+            blocked |= (vis.data()[i] = 1.0f - vis.data()[i]) != 0.0f;
           ShadeBatch b;
-          b.count = m;
-          for (int j = 0; j < m; ++j) b.set(j, shadowed[j], -d[lane[j]]);
-          shadeBatch(b, shading, vis.data(), 8);
+          if (blocked || !skipUnblocked) {
+            b.count = m;
+            for (int j = 0; j < m; ++j) b.set(j, shadowed[j], -d[lane[j]]);
+            shadeBatch(b, shading, vis.data(), 8);
+          }
           const uint64_t ticks = timed ? cycleNow() - c0 : 0;
           for (int j = 0; j < m; ++j) {
             const SurfaceSample& sj = shadowed[j];
             shadowRgb[lane[j]] =
-                Vec3(1.0f) - (b.result(j) - (sj.emission + shading.ambient * sj.ambient));
+                b.count == 0
+                    ? Vec3(1.0f)
+                    : Vec3(1.0f) - (b.result(j) - (sj.emission + shading.ambient * sj.ambient));
             // What shadows cost this object, in rays and time (the heuristic's ms budget is
             // built from these); the block's time is shared by its lanes.
             EffectTally& t = tally[size_t(sj.object)];
@@ -285,6 +296,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
     tailMs_ = std::min(0.5 * tailMs_ + 0.5 * tail, 0.5 * deadlineMs);
   }
   writeRtStats(stats, ctx.output(*this, "rt_stats", int(objects) + 1, 1));
+  reportShadows(ctx, *this, sum(shadowTally), double(ctx.width) * double(ctx.height));
   ctx.passRays += double(rt.raysTraced() - raysBefore);
 }
 

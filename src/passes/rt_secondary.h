@@ -9,14 +9,11 @@
 // (what it traced, for the next frame's heuristic).
 // Parameters: max_depth, importance_cutoff.
 #pragma once
+#include "passes/whitted_settings.h"
 #include "pipeline/pass.h"
 #include "rt/whitted.h"
 
 namespace tandem {
-
-// Parameters shared by every pass that traces Whitted rays, and the settings they give.
-std::vector<ParamDesc> whittedParams();
-WhittedSettings whittedSettings(const Pass& p);
 
 class RTSecondaryPass : public Pass {
  public:

@@ -1,6 +1,6 @@
 #include "passes/rt_whitted.h"
 
-#include "passes/rt_secondary.h"
+#include "passes/whitted_settings.h"
 #include "pipeline/frame_context.h"
 #include "rt/primary_rays.h"
 #include "rt/whitted.h"
@@ -9,7 +9,7 @@
 namespace tandem {
 
 std::vector<ParamDesc> RTWhittedPass::params() const {
-  return whittedParams();
+  return whittedParams(ShadowMode::Rays);  // the all-rays baseline
 }
 
 void RTWhittedPass::execute(FrameContext& ctx) {
@@ -18,6 +18,8 @@ void RTWhittedPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   Whitted whitted(rt, scene, shading, whittedSettings(*this));
+  ShadowTally tally;
+  prepareShadows(ctx, *this, whitted, &tally);
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& ids = ctx.output(*this, "object_id");
   for (const View& v : ctx.views) {
@@ -46,6 +48,7 @@ void RTWhittedPass::execute(FrameContext& ctx) {
           for (int j = 0; j < m; ++j) hdr.setRgb(px[at[j]] + v.x, py[at[j]] + v.y, rgb[j]);
         });
   }
+  reportShadows(ctx, *this, sum(tally), double(ctx.width) * double(ctx.height));
   // Primary rays are counted by the tracer too, so the delta covers every ray of the pass.
   ctx.passRays += double(rt.raysTraced() - before);
 }

@@ -128,9 +128,12 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   std::fill(out.data.begin(), out.data.end(), 0.0f);
   if (mode == FallbackMode::Off && !shadows) return;
   const Scene& scene = *ctx.scene;
+  // The frame's shared maps (classified shadows in rt_secondary drew them already when its
+  // size is the same).
+  ShadowMaps* shadowMaps = nullptr;
   if (shadows) {
     const auto t0 = Clock::now();
-    shadowMaps_.update(ctx.frame, int(param("shadow_map_size")));
+    shadowMaps = &ctx.shadowMaps(int(param("shadow_map_size")));
     ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   }
   const ShadingContext shading = ShadingContext::from(scene);
@@ -242,7 +245,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
           const LightSample ls = sampleLight(shading.lights[i], {px[k], py[k], pz[k]});
           lit[k] = dot(shadingNormal[k], ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f;
         }
-        shadowMaps_.visibilityBatch(i, px, py, pz, nx, ny, nz, lit, int(n), vis);
+        shadowMaps->visibilityBatch(i, px, py, pz, nx, ny, nz, lit, int(n), vis);
         for (size_t k = 0; k < n; ++k)
           occluded[i * count + k0 + k] = lit[k] > 0 ? 1.0f - vis[k] : 0.0f;
       }
@@ -304,7 +307,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
     }
     if (batch.count) flush();
   });
-  ctx.counters["ss_fallback/shadow_map_redraws"] = shadowMaps_.redraws();
+  if (shadowMaps) ctx.counters["ss_fallback/shadow_map_redraws"] = shadowMaps->redraws();
 }
 
 }  // namespace tandem

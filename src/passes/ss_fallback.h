@@ -12,8 +12,8 @@
 // flags: 1 where reflection/refraction were written, 1 where the shadow was.
 #pragma once
 #include "passes/reflection_probes.h"
-#include "passes/shadow_maps.h"
 #include "pipeline/pass.h"
+#include "raster/shadow_maps.h"
 
 namespace tandem {
 
@@ -27,14 +27,10 @@ class ScreenSpaceFallbackPass : public Pass {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"fallback", kChannels}}; }
   void execute(FrameContext& ctx) override;
-  void resetHistory() override {
-    shadowMaps_ = {};
-    probes_ = {};
-  }
+  void resetHistory() override { probes_ = {}; }
   static constexpr int kChannels = 11;
 
  private:
-  ShadowMaps shadowMaps_;
   ReflectionProbes probes_;
 };
 

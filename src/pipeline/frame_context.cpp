@@ -18,6 +18,13 @@ RayTracer& FrameContext::rayTracer() {
   return *rt_;
 }
 
+ShadowMaps& FrameContext::shadowMaps(int resolution) {
+  std::unique_ptr<ShadowMaps>& m = shadowMaps_[resolution];
+  if (!m) m = std::make_unique<ShadowMaps>();
+  m->update(frame, resolution);
+  return *m;
+}
+
 Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, int h) {
   const std::optional<BufferSlot> s = pass.outputSlot(slot);
   TANDEM_ASSERT(s.has_value());  // a pass writes only the slots it declares

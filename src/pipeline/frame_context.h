@@ -11,6 +11,7 @@
 #include "core/buffer.h"
 #include "core/error.h"
 #include "core/profiler.h"
+#include "raster/shadow_maps.h"
 #include "rt/ray_tracer.h"
 #include "scene/frame_scene.h"
 #include "scene/view.h"
@@ -52,6 +53,10 @@ struct FrameContext {
 
   // The ray tracer, (re)built for the current frame's geometry on first use in a frame.
   RayTracer& rayTracer();
+  // The frame's shadow maps at `resolution` (texels a side), drawn on first use and redrawn
+  // only for what changed (shadow_maps.h). Every pass of a pipeline that asks for the same
+  // resolution shares one set.
+  ShadowMaps& shadowMaps(int resolution);
 
   // The buffer bound to `pass`'s output slot, created or reshaped to the slot's extent, kind and
   // channels (contents kept when the shape matches). Extent Any: `width` x `height` given here.
@@ -73,6 +78,7 @@ struct FrameContext {
 
  private:
   std::unique_ptr<RayTracer> rt_;
+  std::map<int, std::unique_ptr<ShadowMaps>> shadowMaps_;
 };
 
 }  // namespace tandem

@@ -120,19 +120,79 @@ Vec3 Whitted::shadePrimary(const SurfaceSample& s, Vec3 d) const {
   return out;
 }
 
-void Whitted::lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays) const {
+ShadowCounts sum(ShadowTally& t) {
+  ShadowCounts c;
+  t.combine_each([&](const ShadowCounts& x) { c.add(x); });
+  return c;
+}
+
+void Whitted::lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays, const Vec3* wo,
+                               uint8_t* classes) const {
   constexpr int W = 8;
   for (int k = 0; k < W; ++k)
     if (rays) rays[k] = 0;
-  for (size_t i = 0; i < scene_.lights.size(); ++i) {
+  const size_t lights = scene_.lights.size();
+  const ShadowMode mode = maps_ ? settings_.shadows : ShadowMode::Rays;
+  // Culling by share: each light's unshadowed luminance (one SIMD shading of the lanes) against
+  // the surface's unshadowed total. A light adding nothing (facing away, out of its cone or
+  // range) needs no query at all. Without wo, or with every shadow traced and no threshold, the
+  // per-light test of shadowRay alone decides.
+  const bool shares = wo && n > 0 && (settings_.shadowCull > 0 || mode != ShadowMode::Rays);
+  LightVisibility8 share(shares ? lights : 0);
+  float floor[W] = {};
+  if (shares) {
+    ShadeBatch b;
+    b.count = n;
+    for (int k = 0; k < n; ++k) b.set(k, s[k], wo[k]);
+    lightContributions(b, shading_, share.data(), W);
+    for (int k = 0; k < n; ++k) floor[k] = settings_.shadowCull * luminance(b.result(k));
+  }
+  ShadowCounts counts;
+  counts.surfaces = uint64_t(n);
+  Vec3 pos[W], geo[W];
+  int self[W];
+  if (mode == ShadowMode::Classified)
+    for (int k = 0; k < n; ++k)
+      pos[k] = s[k].position, geo[k] = s[k].geoNormal, self[k] = s[k].object;
+  for (size_t i = 0; i < lights; ++i) {
     Ray r[W];
     bool active[W] = {};
     Vec3 t[W];
     for (int k = 0; k < W; ++k) t[k] = Vec3(1.0f);
     bool any = false;
+    const bool casts = scene_.lights[i].castsShadows;
+    // The lanes the light reaches by enough to ask about (all of them without shares).
+    bool asked[W] = {};
+    ShadowClass cls[W];
     for (int k = 0; k < n; ++k) {
-      any |= active[k] = shadowRay(s[k], i, r[k]);
+      cls[k] = ShadowClass::Culled;
+      if (!shares) continue;
+      const float sh = share.data()[i * W + size_t(k)];
+      asked[k] = casts && sh > 0.0f && sh >= floor[k];
+      if (asked[k]) cls[k] = ShadowClass::Traced;
+    }
+    if (shares && mode == ShadowMode::Classified) maps_->classify(i, n, pos, geo, self, asked, cls);
+    for (int k = 0; k < n; ++k) {
+      ShadowClass c = cls[k];
+      if (!shares) {
+        if (shadowRay(s[k], i, r[k])) c = ShadowClass::Traced;
+      } else if (asked[k]) {
+        if (c == ShadowClass::Shadowed) t[k] = Vec3(0.0f);
+        if (mode == ShadowMode::Maps) {
+          const float v = maps_->visibility(i, s[k].position, s[k].geoNormal);
+          t[k] = Vec3(v);
+          c = v > 0.5f ? ShadowClass::Lit : ShadowClass::Shadowed;
+        }
+        if (c == ShadowClass::Traced && !shadowRay(s[k], i, r[k])) c = ShadowClass::Culled;
+      }
+      active[k] = c == ShadowClass::Traced;
+      any |= active[k];
       if (rays && active[k]) ++rays[k];
+      if (classes) classes[i * W + size_t(k)] = uint8_t(c);
+      counts.culled += c == ShadowClass::Culled;
+      counts.lit += c == ShadowClass::Lit;
+      counts.shadowed += c == ShadowClass::Shadowed;
+      counts.traced += c == ShadowClass::Traced;
     }
     if (any) rt_.transmittance8(r, active, t, settings_.texturedShadows);
     for (int k = 0; k < W; ++k) {
@@ -141,12 +201,15 @@ void Whitted::lightVisibility8(const SurfaceSample* s, int n, float* vis, int* r
       vis[(3 * i + 2) * W + size_t(k)] = t[k].z;
     }
   }
+  if (tally_) tally_->local().add(counts);
 }
 
 void Whitted::shadePrimary8(const SurfaceSample* s, const Vec3* d, int n, Vec3* out) const {
   if (n <= 0) return;
   LightVisibility8 vis(scene_.lights.size());
-  lightVisibility8(s, n, vis.data());
+  Vec3 wo[8];
+  for (int k = 0; k < n; ++k) wo[k] = -d[k];
+  lightVisibility8(s, n, vis.data(), nullptr, wo);
   ShadeBatch b;
   b.count = n;
   for (int k = 0; k < n; ++k) b.set(k, s[k], -d[k]);

@@ -8,12 +8,34 @@
 //  - effects combined by eq. 5-6 (the average of C_M and C_R).
 // Hit shading goes through the one Blinn-Phong function.
 #pragma once
+#include <tbb/combinable.h>
+
 #include <vector>
 
+#include "raster/shadow_maps.h"
 #include "rt/ray_tracer.h"
 #include "shading/blinn_phong.h"
 
 namespace tandem {
+
+// How primary surfaces learn each light's visibility: classified (the shadow maps decide where
+// they are certain, shadow rays the rest), rays (a shadow ray per light) or maps (2x2 PCF shadow
+// maps only, no ray).
+enum class ShadowMode { Classified = 0, Rays = 1, Maps = 2 };
+
+// Light-surface pairs by what decided them, summed over a frame's shadow queries.
+struct ShadowCounts {
+  uint64_t culled = 0, lit = 0, shadowed = 0, traced = 0;
+  uint64_t surfaces = 0;  // surfaces asked about (each of them for every light)
+  void add(const ShadowCounts& o) {
+    culled += o.culled, lit += o.lit, shadowed += o.shadowed, traced += o.traced;
+    surfaces += o.surfaces;
+  }
+  uint64_t pairs() const { return culled + lit + shadowed + traced; }
+};
+// One ShadowCounts per worker thread (shadow queries run in parallel).
+using ShadowTally = tbb::combinable<ShadowCounts>;
+ShadowCounts sum(ShadowTally& t);
 
 struct WhittedSettings {
   int maxDepth = 10;               // [1, 64] recursion depth of secondary rays (paper: 10)
@@ -24,6 +46,11 @@ struct WhittedSettings {
   // Listing 8c at the maximum depth: a fully reflective or refractive surface has no lighting
   // (0); true: it is shaded with Blinn-Phong instead (Tandem's earlier behaviour).
   bool shadeAtMaxDepth = false;
+  ShadowMode shadows = ShadowMode::Rays;  // Classified and Maps need shadow maps (useShadowMaps)
+  // Culling: a light whose unshadowed contribution to a surface is below this fraction of the
+  // surface's unshadowed total gets no shadow query and counts as visible (0: only lights facing
+  // away, outside their cone or range are left out).
+  float shadowCull = 0.0f;
 };
 
 // Eq. 5-6: C_M = OM M + (1 - OM)(OR R + (1 - OR) C), C_R = OR R + (1 - OR)(OM M + (1 - OM) C),
@@ -69,13 +96,21 @@ class Whitted {
     w.time_ = time;
     return w;
   }
+  // The frame's shadow maps, for ShadowMode Classified and Maps (without them every shadow is
+  // traced), and where to count what decided each shadow (optional).
+  void useShadowMaps(const ShadowMaps* maps) { maps_ = maps; }
+  void countShadows(ShadowTally* tally) { tally_ = tally; }
 
   // Per-light RGB transmittance from the surface point to each light (1 where a light casts no
   // shadows or does not face the point). `vis` has one entry per scene light.
   void lightVisibility(const SurfaceSample& s, Vec3* vis) const;
   // The same for up to 8 surfaces, each light's shadow rays in one 8-wide Embree packet, into a
-  // LightVisibility8 (lanes >= n are 1). rays (optional, 8 entries): shadow rays per lane.
-  void lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays = nullptr) const;
+  // LightVisibility8 (lanes >= n are 1), decided as the settings' shadow mode says. wo (unit,
+  // surface -> viewer; optional): lets the culling weigh each light's share of the surface's
+  // light. rays (optional, 8 entries): shadow rays per lane. classes (optional): each light's
+  // ShadowClass per lane at [8 * light + lane].
+  void lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays = nullptr,
+                        const Vec3* wo = nullptr, uint8_t* classes = nullptr) const;
   // The reflection and refraction colours seen from a primary surface hit by direction d
   // (zero where the surface is not reflective / not transparent).
   Vec3 primaryReflection(const SurfaceSample& s, Vec3 d) const;
@@ -100,6 +135,8 @@ class Whitted {
   const ShadingContext& shading_;
   WhittedSettings settings_;
   float time_ = 0.0f;  // shutter fraction of every ray this tracer makes
+  const ShadowMaps* maps_ = nullptr;
+  ShadowTally* tally_ = nullptr;
 };
 
 }  // namespace tandem

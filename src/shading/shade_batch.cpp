@@ -34,8 +34,11 @@ HWY_INLINE V Dot(V ax, V ay, V az, V bx, V by, V bz) {
 }
 
 // Over whole vectors of D; a batch of one runs on a one-lane tag (scalar cost, same code).
+// perLight (optional): each light's unshadowed luminance per lane at perLight[li * plStride +
+// lane], zeroed by the caller.
 template <class D>
-void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride) {
+void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride,
+                float* perLight = nullptr, size_t plStride = 0) {
   using F = ShadeBatch;
   using V = hn::Vec<D>;
   const size_t n = hn::Lanes(d);
@@ -121,6 +124,14 @@ void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis,
         const V nDotH = hn::Max(hn::Mul(Dot(nx, ny, nz, hx, hy, hz), hInv), zero);
         lobe = Pow01(d, nDotH, ex);
       }
+      if (perLight) {
+        const V base = hn::Mul(
+            k, hn::MulAdd(
+                   hn::Set(d, 0.2126f * l.power.x), hn::MulAdd(sr, lobe, dr),
+                   hn::MulAdd(hn::Set(d, 0.7152f * l.power.y), hn::MulAdd(sg, lobe, dg),
+                              hn::Mul(hn::Set(d, 0.0722f * l.power.z), hn::MulAdd(sb, lobe, db)))));
+        hn::BlendedStore(base, live, d, perLight + li * plStride + i);
+      }
       const V kr = hn::Mul(hn::Mul(k, hn::Set(d, l.power.x)), visR);
       const V kg = hn::Mul(hn::Mul(k, hn::Set(d, l.power.y)), visG);
       const V kb = hn::Mul(hn::Mul(k, hn::Set(d, l.power.z)), visB);
@@ -141,6 +152,14 @@ void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, 
     ShadeLanes(hn::ScalableTag<float>(), b, ctx, vis, visStride);
 }
 
+void LightContributionsImpl(ShadeBatch& b, const ShadingContext& ctx, float* perLight,
+                            size_t stride) {
+  if (b.count == 1)
+    ShadeLanes(hn::CappedTag<float, 1>(), b, ctx, nullptr, 0, perLight, stride);
+  else
+    ShadeLanes(hn::ScalableTag<float>(), b, ctx, nullptr, 0, perLight, stride);
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace tandem
 HWY_AFTER_NAMESPACE();
@@ -152,6 +171,16 @@ HWY_AFTER_NAMESPACE();
 namespace tandem {
 
 HWY_EXPORT(ShadeBatchImpl);
+HWY_EXPORT(LightContributionsImpl);
+
+void lightContributions(ShadeBatch& b, const ShadingContext& ctx, float* perLight, size_t stride) {
+  const size_t lights = b.lights ? b.lightCount : ctx.lights.size();
+  for (size_t n = 0; n < lights; ++n) {
+    const size_t li = b.lights ? b.lights[n] : n;
+    std::fill(perLight + li * stride, perLight + li * stride + size_t(b.count), 0.0f);
+  }
+  HWY_DYNAMIC_DISPATCH(LightContributionsImpl)(b, ctx, perLight, stride);
+}
 
 void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisibility,
                 size_t visStride) {

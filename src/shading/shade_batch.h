@@ -74,4 +74,10 @@ void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>&
 void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisibility = nullptr,
                 size_t visStride = ShadeBatch::kMax);
 
+// The same shading with no visibility (b's result: the unshadowed radiance), also writing each
+// evaluated light's unshadowed luminance per lane to perLight[light * stride + lane] (>= 0; 0
+// where the light does not reach). Culling of shadow queries weighs lights by it.
+void lightContributions(ShadeBatch& b, const ShadingContext& ctx, float* perLight,
+                        size_t stride = ShadeBatch::kMax);
+
 }  // namespace tandem

@@ -14,8 +14,8 @@
 #include "passes/heuristic.h"
 #include "passes/ranked_tiles.h"
 #include "passes/reflection_probes.h"
-#include "passes/shadow_maps.h"
 #include "pipeline/frame_context.h"
+#include "raster/shadow_maps.h"
 #include "rt/whitted.h"
 #include "scene/builtin_scenes.h"
 #include "test_util.h"
@@ -75,10 +75,10 @@ TEST(HybridEffects, BlendHonoursEachMaskChannel) {
 }
 
 // The RT pass measures exactly the pixels the mask gave it, per object and effect, and at most
-// one shadow ray per light per pixel.
+// one shadow ray per light per pixel (every shadow traced: classified shadows trace fewer).
 TEST(HybridEffects, RtStatsCountMaskedPixels) {
   Scene s = makeSpheresScene();
-  auto r = makeRenderer(s, "hybrid-all", {}, 96, 54);
+  auto r = makeRenderer(s, "hybrid-all", {"rt_secondary.shadows=rays"}, 96, 54);
   r->renderFrame(0, s.camera);
   const FrameContext& ctx = r->context();
   const RtStats stats = readRtStats(ctx.input("rt_stats"));

@@ -1,11 +1,11 @@
 // Highway kernel of shadow_lookup.h, compiled for each x86 target and dispatched at run time.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "passes/shadow_lookup.cpp"
+#define HWY_TARGET_INCLUDE "raster/shadow_lookup.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 //
 #include <hwy/highway.h>
 
-#include "passes/shadow_lookup.h"
+#include "raster/shadow_lookup.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tandem {

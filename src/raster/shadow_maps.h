@@ -7,12 +7,19 @@
 #pragma once
 #include <vector>
 
-#include "passes/shadow_lookup.h"
+#include "raster/conservative_depth.h"
 #include "raster/rasterizer.h"
+#include "raster/shadow_lookup.h"
 #include "scene/camera.h"
 #include "scene/frame_scene.h"
 
 namespace tandem {
+
+// What classified shadows know of one light at one point before any ray: the light adds nothing
+// there (culled: facing away, outside its cone or range, or too faint to matter), the maps are
+// certain it arrives (lit) or is blocked by opaque casters (shadowed), or only a shadow ray can
+// tell (traced).
+enum class ShadowClass : uint8_t { Culled = 0, Lit = 1, Shadowed = 2, Traced = 3 };
 
 class ShadowMaps {
  public:
@@ -28,23 +35,44 @@ class ShadowMaps {
   void visibilityBatch(size_t i, const float* px, const float* py, const float* pz, const float* nx,
                        const float* ny, const float* nz, const float* use, int count,
                        float* out) const;
+  // Classified shadows: whether the maps decide light `i` at point p (geometric normal n, on
+  // object `self`) without a ray. Lit when no caster can lie between p and the light (the
+  // conservative map of the ray's texel holds nothing nearer than p beyond the receiver's own
+  // slope); shadowed when the 3x3 texels around p all hold opaque, static casters well in front
+  // of it; traced otherwise (an edge, a transparent or moving caster, a grazing light, p outside
+  // the maps). Never returns Culled.
+  ShadowClass classify(size_t i, Vec3 p, Vec3 n, int self) const;
+  // The same for up to 8 points at once (their map lookups overlap): out[k] for the lanes k <
+  // count with want[k].
+  void classify(size_t i, int count, const Vec3* p, const Vec3* n, const int* self,
+                const bool* want, ShadowClass* out) const;
   int redraws() const { return redraws_; }              // full (static) redraws
   int movingRedraws() const { return movingRedraws_; }  // animated casters drawn again
 
  private:
   struct Face {
     Camera camera;
-    VisibilityBuffer map;            // only depth is read (object / prim are scratch)
+    VisibilityBuffer map;            // depth and object are read (prim is scratch)
     std::vector<float> staticDepth;  // the static casters' depth, when animated ones exist
-    ShadowFace lookup{};             // what the batch kernel reads (depth: map's, at lookup)
-    float texelPerDistance = 0;      // a texel's world width per unit distance (ortho: the width)
+    std::vector<uint32_t> staticObject;
+    ConservativeDepth near, staticNear;  // every caster a texel touches (classified shadows)
+    std::vector<float> opaqueDepth;      // map depth where an opaque caster drew it, else 0
+    ShadowFace lookup{};                 // what the batch kernel reads (depth: map's, at lookup)
+    float texelPerDistance = 0;  // a texel's world width per unit distance (ortho: the width)
   };
   void drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still, bool keepCopy);
+  // The face of light i that sees p: the cube face of p's major axis, else the one map.
+  const Face* faceFor(size_t i, Vec3 p) const;
+  void markOpaque(Face& face) const;
 
   std::vector<std::vector<Face>> faces_;  // per light
   uint64_t geometryVersion_ = ~0ull, staticVersion_ = ~0ull;
   const Scene* scene_ = nullptr;
   std::vector<float> lightKey_;
+  // Per object: its shadow is opaque and where the maps drew it (no transmission, no alpha
+  // mask, casts shadows, still while the shutter is open). Only these make a pixel "shadowed".
+  std::vector<uint8_t> opaqueCaster_;
+  bool sweep_ = false;  // the shutter was open when the conservative maps were drawn
   int resolution_ = 0, redraws_ = 0, movingRedraws_ = 0;
   Rasterizer raster_;
 };

@@ -1,7 +1,11 @@
-#include "passes/shadow_maps.h"
+#include "raster/shadow_maps.h"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+
+#include "raster/visibility_buffer.h"
 
 namespace tandem {
 
@@ -26,7 +30,8 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
   std::vector<float> key = lightKey(scene);
   const bool staticStale = fs.staticVersion != staticVersion_ || key != lightKey_ ||
                            resolution != resolution_ || fs.scene != scene_;
-  if (!staticStale && fs.geometryVersion == geometryVersion_) return;
+  if (!staticStale && fs.geometryVersion == geometryVersion_ && fs.motionBlur() == sweep_) return;
+  sweep_ = fs.motionBlur();
   geometryVersion_ = fs.geometryVersion;
   staticVersion_ = fs.staticVersion;
   scene_ = fs.scene;
@@ -41,15 +46,30 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
     still[o] = 1 - moving[o];
     anyMoving |= moving[o] != 0;
   }
+  opaqueCaster_.assign(scene.objects.size(), 0);
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const Material& m = scene.materials[size_t(scene.objects[o].material)];
+    opaqueCaster_[o] = m.castsShadows && m.opacity >= 1.0f && m.alphaMode == AlphaMode::Opaque &&
+                       (!sweep_ || fs.objects[o].stepPositions.empty());
+  }
   if (staticStale) drawStatic(fs, still, anyMoving);
   if (!anyMoving) return;
   ++movingRedraws_;
+  std::vector<Face*> all;
   for (std::vector<Face>& faces : faces_)
     for (Face& face : faces) {
       std::copy(face.staticDepth.begin(), face.staticDepth.end(), face.map.depth.begin());
+      std::copy(face.staticObject.begin(), face.staticObject.end(), face.map.object.begin());
       raster_.render(fs, face.camera, face.map,
                      Rasterizer::Subset{&moving, /*keep=*/true, /*bothFaces=*/true});
+      all.push_back(&face);
     }
+  tbb::parallel_for(size_t(0), all.size(), [&](size_t k) {
+    Face& face = *all[k];
+    face.near = face.staticNear;
+    drawConservativeDepth(fs, face.camera, &moving, /*keep=*/true, sweep_, face.near);
+    markOpaque(face);
+  });
 }
 
 void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still,
@@ -63,6 +83,7 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
   const float radius = std::max(0.5f * length(b.hi - b.lo), 0.01f);
   // Maps keep their memory from one redraw to the next.
   faces_.resize(scene.lights.size());
+  std::vector<Face*> all;
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     if (!l.castsShadows) {
@@ -118,11 +139,140 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
       lf.perspective = c.desc.projection == Projection::Perspective;
       lf.nearPlane = c.desc.nearPlane;
       lf.farPlane = c.desc.farPlane;
-      if (keepCopy)
+      if (keepCopy) {
         face.staticDepth = face.map.depth;
-      else
+        face.staticObject = face.map.object;
+      } else {
         face.staticDepth.clear();
+        face.staticObject.clear();
+      }
+      all.push_back(&face);
     }
+  }
+  tbb::parallel_for(size_t(0), all.size(), [&](size_t k) {
+    Face& face = *all[k];
+    drawConservativeDepth(fs, face.camera, &still, /*keep=*/false, sweep_, face.near);
+    if (keepCopy) face.staticNear = face.near;
+    markOpaque(face);
+  });
+}
+
+const ShadowMaps::Face* ShadowMaps::faceFor(size_t i, Vec3 p) const {
+  if (i >= faces_.size() || faces_[i].empty()) return nullptr;
+  const std::vector<Face>& faces = faces_[i];
+  if (faces.size() != 6) return &faces[0];
+  return &faces[size_t(cubeFace(p - faces[0].camera.desc.position))];
+}
+
+void ShadowMaps::markOpaque(Face& face) const {
+  face.opaqueDepth.resize(face.map.depth.size());
+  for (size_t k = 0; k < face.map.depth.size(); ++k) {
+    const uint32_t o = face.map.object[k];
+    const bool opaque = o != kNoObject && o < opaqueCaster_.size() && opaqueCaster_[o];
+    face.opaqueDepth[k] = opaque ? face.map.depth[k] : 0.0f;
+  }
+}
+
+ShadowClass ShadowMaps::classify(size_t i, Vec3 p, Vec3 n, int self) const {
+  ShadowClass c = ShadowClass::Traced;
+  const bool want = true;
+  classify(i, 1, &p, &n, &self, &want, &c);
+  return c;
+}
+
+void ShadowMaps::classify(size_t i, int count, const Vec3* p, const Vec3* nrm, const int* self,
+                          const bool* want, ShadowClass* out) const {
+  // Two sweeps over the lanes: the first works out every lane's texel and asks for its cache
+  // line, the second reads them (the maps are far larger than the caches). A caster of
+  // reversed-Z depth d lies more than a gap nearer the light than p when d * a > b, with (a, b)
+  // worked out per lane and gap: no division per tap.
+  struct Limit {
+    float a = 0, b = 1;  // never met by d <= 1
+    bool met(float d) const { return d * a > b; }
+  };
+  struct Lane {
+    const Face* face = nullptr;
+    float sx, sy;
+    Limit own, other, shadow;
+  };
+  Lane lanes[8];
+  count = std::min(count, 8);
+  for (int k = 0; k < count; ++k) {
+    if (!want[k]) continue;
+    out[k] = ShadowClass::Traced;
+    const Face* f = faceFor(i, p[k]);
+    if (!f) {
+      out[k] = ShadowClass::Lit;  // the light casts no shadows
+      continue;
+    }
+    const Camera& c = f->camera;
+    const bool perspective = c.desc.projection == Projection::Perspective;
+    const Vec3 rel = p[k] - c.desc.position;
+    const float along = dot(rel, c.forward);
+    if (perspective && along <= c.desc.nearPlane) continue;
+    // Cosine between the normal and the light: n.rel / |rel| (perspective), n.forward (ortho).
+    const float nr = perspective ? dot(nrm[k], rel) : dot(nrm[k], c.forward);
+    const float r2 = perspective ? dot(rel, rel) : 1.0f;
+    if (nr * nr < 0.01f * r2) continue;  // grazing (cosine < 0.1): the slope swamps the map
+    const float texel = perspective ? along * f->texelPerDistance : f->texelPerDistance;
+    // How much nearer than p the receiver's own surface may lie within p's texel (its slope
+    // over the texel's diagonal, plus a texel for curvature).
+    const float tangent = std::sqrt(std::max(r2 - nr * nr, 0.0f)) / std::abs(nr);
+    const float slope = texel * (1.4143f * tangent + 1.0f);
+    const float farPlane = c.desc.farPlane, nearPlane = c.desc.nearPlane;
+    auto limit = [&](float gap) {
+      const float z = along - gap;
+      if (perspective) return z > nearPlane ? Limit{z, nearPlane} : Limit{};
+      return Limit{farPlane - nearPlane, farPlane - z};
+    };
+    const Mat4& m = c.viewProj;
+    const Vec3 q = p[k];
+    const float w =
+        perspective ? m.m[3][0] * q.x + m.m[3][1] * q.y + m.m[3][2] * q.z + m.m[3][3] : 1.0f;
+    if (perspective && w <= 1e-8f) continue;
+    const float iw = 1.0f / w;
+    Lane& l = lanes[k];
+    l.sx = ((m.m[0][0] * q.x + m.m[0][1] * q.y + m.m[0][2] * q.z + m.m[0][3]) * iw * 0.5f + 0.5f) *
+           float(f->map.width);
+    l.sy = (0.5f - (m.m[1][0] * q.x + m.m[1][1] * q.y + m.m[1][2] * q.z + m.m[1][3]) * iw * 0.5f) *
+           float(f->map.height);
+    if (!(l.sx >= 1 && l.sy >= 1 && l.sx < float(f->map.width - 1) &&
+          l.sy < float(f->map.height - 1)))
+      continue;  // outside the map (or NaN): no certainty
+    l.face = f;
+    l.own = limit(slope);
+    // Another object counts from the shadow ray's own start offset on (offsetRayOrigin).
+    l.other = limit(1e-4f * (1.0f + maxComponent(vmax(q, -q))));
+    l.shadow = limit(slope + 2.0f * texel);
+    __builtin_prefetch(&f->near.texels[size_t(l.sy) * size_t(f->near.width) + size_t(l.sx)]);
+  }
+  for (int k = 0; k < count; ++k) {
+    const Lane& l = lanes[k];
+    if (!want[k] || !l.face) continue;
+    const Face& f = *l.face;
+    // Lit: the shadow ray projects onto p's texel (and, within rounding, its neighbours); no
+    // caster touching those texels is nearer than p, beyond the receiver's own slope.
+    const float e = 0.02f;
+    const int tx0 = int(l.sx - e), tx1 = int(l.sx + e), ty0 = int(l.sy - e), ty1 = int(l.sy + e);
+    bool blocked = false;
+    for (int y = ty0; y <= ty1; ++y)
+      for (int x = tx0; x <= tx1; ++x) {
+        const ConservativeDepth::Texel& t =
+            f.near.texels[size_t(y) * size_t(f.near.width) + size_t(x)];
+        blocked |= (int(t.object) == self[k] ? l.own : l.other).met(t.depth);
+      }
+    if (!blocked) {
+      out[k] = ShadowClass::Lit;
+      continue;
+    }
+    // Shadowed: every texel centre around p holds an opaque static caster well in front of it.
+    const int cx = int(l.sx), cy = int(l.sy);
+    bool shadowed = true;
+    for (int y = cy - 1; y <= cy + 1 && shadowed; ++y) {
+      const float* row = &f.opaqueDepth[size_t(y) * size_t(f.map.width) + size_t(cx - 1)];
+      shadowed = l.shadow.met(row[0]) && l.shadow.met(row[1]) && l.shadow.met(row[2]);
+    }
+    if (shadowed) out[k] = ShadowClass::Shadowed;
   }
 }
 
