@@ -6,7 +6,8 @@
 // reflection / refraction); a march that leaves the screen or finds nothing takes the sky.
 // Mode "environment" skips the march and takes the sky; mode "probe" (the default: it measures
 // best) looks up a small cube map drawn from the object's centre (reflection_probes.h). Unselected
-// shadows come from raster shadow maps (shadow_maps.h) through the same shading call rt_secondary
+// shadows come from the frame's raster shadow maps (raster/shadow_maps.h, shared with classified
+// shadows at the same size) through the same shading call rt_secondary
 // uses. Both "off" is the paper's rule, for its tables. Inputs: the G-buffer sample slots, hdr,
 // heuristic_mask. Output: fallback = reflection RGB, refraction RGB, shadow RGB (eq. 4's S), then
 // flags: 1 where reflection/refraction were written, 1 where the shadow was.

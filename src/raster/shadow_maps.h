@@ -1,9 +1,10 @@
-// Raster shadow maps: the cheap stand-in for shadow rays on pixels the heuristic did not select
-// (what production hybrids fall back to). One depth map per directional light (orthographic,
-// over the scene's bounds), per spot light (its cone) and six per point light (a cube), drawn by
-// the same rasterizer as the G-buffer. Casters that are not animated are drawn once (again only
-// when lights or static geometry change); animated casters are drawn over a copy of that depth
-// whenever they moved. A moving camera reuses the maps as they are.
+// Raster shadow maps: what decides shadows without rays — for pixels the heuristic did not select
+// (the fallback production hybrids use) and, with a conservative map beside each, for classified
+// shadows (classify: lit, shadowed, or left to a ray). One depth map per directional light
+// (orthographic, over the scene's bounds), per spot light (its cone) and six per point light (a
+// cube), drawn by the same rasterizer as the G-buffer. Casters that are not animated are drawn once
+// (again only when lights or static geometry change); animated casters are drawn over a copy of
+// that depth whenever they moved. A moving camera reuses the maps as they are.
 #pragma once
 #include <vector>
 

@@ -56,9 +56,9 @@ SurfaceSample floorPoint(float x, float z) {
 }
 
 // Visibility of light 0 at 8 points by the given Whitted settings; rays per lane.
-std::vector<float> visibilityOf(const Scene& s, const FrameScene& fs, const RayTracer& rt,
-                                const ShadowMaps* maps, ShadowMode mode, const SurfaceSample* p,
-                                int n, int* rays, uint8_t* classes = nullptr) {
+std::vector<float> visibilityOf(const Scene& s, const RayTracer& rt, const ShadowMaps* maps,
+                                ShadowMode mode, const SurfaceSample* p, int n, int* rays,
+                                uint8_t* classes = nullptr) {
   const ShadingContext shading = ShadingContext::from(s);
   WhittedSettings ws;
   ws.shadows = mode;
@@ -68,7 +68,6 @@ std::vector<float> visibilityOf(const Scene& s, const FrameScene& fs, const RayT
   for (int k = 0; k < n; ++k) wo[k] = Vec3(0, 1, 0);
   LightVisibility8 vis(s.lights.size());
   w.lightVisibility8(p, n, vis.data(), rays, wo, classes);
-  (void)fs;
   return std::vector<float>(vis.data(), vis.data() + 8);  // light 0, red
 }
 
@@ -124,9 +123,9 @@ TEST(ClassifiedShadows, ThinCasterKeepsItsRayTracedShadow) {
   int raysRt[8], raysCl[8];
   uint8_t classes[8];
   const std::vector<float> byRays =
-      visibilityOf(s, fs, rt, nullptr, ShadowMode::Rays, p, 8, raysRt);
+      visibilityOf(s, rt, nullptr, ShadowMode::Rays, p, 8, raysRt);
   const std::vector<float> byClass =
-      visibilityOf(s, fs, rt, &maps, ShadowMode::Classified, p, 8, raysCl, classes);
+      visibilityOf(s, rt, &maps, ShadowMode::Classified, p, 8, raysCl, classes);
   int unseen = 0;
   for (int k = 0; k < 8; ++k) {
     EXPECT_EQ(byRays[size_t(k)], 0.0f) << "the rod shadows point " << k;
@@ -164,9 +163,9 @@ TEST(ClassifiedShadows, CertainPixelsGetNoRay) {
   int raysRt[8], raysCl[8];
   uint8_t classes[8];
   const std::vector<float> byRays =
-      visibilityOf(s, fs, rt, nullptr, ShadowMode::Rays, p, 8, raysRt);
+      visibilityOf(s, rt, nullptr, ShadowMode::Rays, p, 8, raysRt);
   const std::vector<float> byClass =
-      visibilityOf(s, fs, rt, &maps, ShadowMode::Classified, p, 8, raysCl, classes);
+      visibilityOf(s, rt, &maps, ShadowMode::Classified, p, 8, raysCl, classes);
   for (int k = 0; k < 8; ++k) {
     const bool inShadow = k < 4;
     EXPECT_EQ(byRays[size_t(k)], inShadow ? 0.0f : 1.0f) << k;
