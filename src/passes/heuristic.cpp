@@ -140,7 +140,7 @@ std::vector<ObjectHeuristic> evaluateObjects(
 
 std::vector<HeuristicNode> heuristicNodes(
     const Scene& scene, const std::vector<ObjectHeuristic>& objects, bool perEffect, double I,
-    const std::vector<std::array<double, kEffectCount>>* costPerPixel) {
+    const std::vector<std::array<double, kEffectCount>>* costPerPixel, bool shadowsApart) {
   std::vector<HeuristicNode> nodes;
   for (const ObjectHeuristic& h : objects) {
     const HeuristicParams& hp = scene.objects[size_t(h.object)].heuristic;
@@ -151,11 +151,15 @@ std::vector<HeuristicNode> heuristicNodes(
           costPerPixel ? (*costPerPixel)[size_t(h.object)][size_t(e)] : h.q[size_t(e)];
       return h.A * perPixel * hp.E;
     };
+    if (shadowsApart && h.q[kReflection] <= 0 && h.q[kRefraction] <= 0) continue;
     if (!perEffect) {
-      nodes.push_back({h.object, costPerPixel ? cost(0) + cost(1) + cost(2) : h.C, h.R});
+      const double c = shadowsApart ? cost(kReflection) + cost(kRefraction)
+                       : costPerPixel ? cost(0) + cost(1) + cost(2)
+                                      : h.C;
+      nodes.push_back({h.object, c, h.R});
       continue;
     }
-    for (int e = 0; e < kEffectCount; ++e)
+    for (int e = shadowsApart ? 1 : 0; e < kEffectCount; ++e)
       if (h.q[size_t(e)] > 0)
         nodes.push_back(
             {h.object * kEffectCount + e, cost(e), ((h.Se[size_t(e)] ? I : 0.0) + h.V) * hp.K});
@@ -195,6 +199,14 @@ std::vector<ParamDesc> HeuristicPass::params() const {
        "I: relevancy bonus for objects selected last frame (stability)",
        {}},
       {"select_all", ParamType::Bool, 0, 0, 1, "select every visible object (no heuristic)", {}},
+      {"shadows",
+       ParamType::Enum,
+       0,
+       0,
+       1,
+       "shadows: selected with their object within the budget (seed 002), or every visible "
+       "object's traced (classified shadows), the budget left to reflections and refractions",
+       {"budget", "all"}},
       {"budget_ms",
        ParamType::Float,
        0,
@@ -322,6 +334,7 @@ void HeuristicPass::execute(FrameContext& ctx) {
   std::vector<uint32_t> pixels = countObjectPixels(ids, n);
   selectedLast_.resize(n, 0);
   const bool perEffect = param("per_effect") != 0;
+  const bool shadowsApart = param("shadows") == 1;
   evaluated_ =
       evaluateObjects(scene, bounds_, ctx.camera(), pixels, selectedLast_, param("importance"),
                       param("count_recursion") != 0 ? &measuredRays_ : nullptr);
@@ -355,14 +368,16 @@ void HeuristicPass::execute(FrameContext& ctx) {
         if (p <= 0)
           p = area[e] > 0 ? sum[e] / area[e] : h.q[e] / BudgetCalibration::kPriorRaysPerMs;
       }
-    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"), &perPixel);
+    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"), &perPixel,
+                           shadowsApart);
     pricePerPixel_.assign(n, {});
     for (const ObjectHeuristic& h : evaluated_)
       for (size_t e = 0; e < size_t(kEffectCount); ++e)
         pricePerPixel_[size_t(h.object)][e] =
             perPixel[size_t(h.object)][e] * scene.objects[size_t(h.object)].heuristic.E;
   } else {
-    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"));
+    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"), nullptr,
+                           shadowsApart);
   }
   budget_ = msBudget ? calibration_.unitsFor(param("budget_ms")) : param("budget");
   if (deadline) budget_ *= param("overcommit");
@@ -394,6 +409,8 @@ void HeuristicPass::execute(FrameContext& ctx) {
                                  [&](int x) { return viewCentre(ctx, x); });
     }
   }
+  if (shadowsApart)
+    for (const ObjectHeuristic& h : evaluated_) selected[size_t(h.object)] |= 1u << kShadow;
   selectedFrame_ = ctx.serial;
   selectedLast_ = selected;
   // The partial node counts as selected for stability (I): it stays the one part-traced.

@@ -90,11 +90,14 @@ std::vector<ObjectHeuristic> evaluateObjects(
 // The graph's nodes: one per object (cost C, relevancy R; id = object) or, per effect, one per
 // (object, effect) with cost A q_e E and relevancy (S_e I + V) K (id = object * 3 + effect).
 // `costPerPixel[o][e]`, when given, replaces q_e as the cost of one visible pixel (the ms budget
-// passes measured CPU ms per pixel, so costs are predicted milliseconds).
+// passes measured CPU ms per pixel, so costs are predicted milliseconds). `shadowsApart`: shadows
+// are not the budget's (classified shadows trace them everywhere): nodes price only reflections
+// and refractions, and objects with neither get no node.
 std::vector<HeuristicNode> heuristicNodes(
     const Scene& scene, const std::vector<ObjectHeuristic>& objects, bool perEffect,
     double importanceI,
-    const std::vector<std::array<double, kEffectCount>>* costPerPixel = nullptr);
+    const std::vector<std::array<double, kEffectCount>>* costPerPixel = nullptr,
+    bool shadowsApart = false);
 
 // Visible pixels per object in an object-id buffer (one parallel pass).
 std::vector<uint32_t> countObjectPixels(const Buffer& objectId, size_t objectCount);

@@ -295,3 +295,26 @@ TEST(ClassifiedShadows, BadSettingsNameTheField) {
             std::string::npos);
   EXPECT_EQ(problem("rt_secondary.shadows=maps"), "accepted");
 }
+
+// heuristic.shadows = all: every visible pixel's shadows are traced (classified shadows are
+// cheap), and the budget buys only reflections and refractions: with no budget none are traced.
+TEST(ClassifiedShadows, HeuristicTracesEveryShadowWhenAskedTo) {
+  const Scene s = builtin("spheres");
+  auto r = render(s, "hybrid-heuristic", {"heuristic.shadows=all", "heuristic.budget=0"}, 96, 54);
+  const Buffer& mask = r->context().input("heuristic_mask");
+  const Buffer& ids = r->context().input("object_id");
+  size_t visible = 0;
+  for (size_t i = 0; i < ids.pixelCount(); ++i) {
+    const float* m = &mask.data[3 * i];
+    const bool object = ids.data[i] >= 0;
+    visible += object ? 1 : 0;
+    EXPECT_EQ(m[0], object ? 1.0f : 0.0f) << i;
+    EXPECT_EQ(m[1], 0.0f) << i;
+    EXPECT_EQ(m[2], 0.0f) << i;
+  }
+  EXPECT_GT(visible, ids.pixelCount() / 2);
+  // With a budget, mirrors and glass are selected on top (their nodes alone carry a cost).
+  auto more = render(s, "hybrid-heuristic", {"heuristic.shadows=all"}, 96, 54);
+  EXPECT_GT(more->context().counters.at("heuristic/selected"), 0.0);
+  EXPECT_EQ(r->context().counters.at("heuristic/selected"), 0.0);
+}
