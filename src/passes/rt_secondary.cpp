@@ -10,6 +10,7 @@
 #include "core/cycle_clock.h"
 #include "passes/ranked_tiles.h"
 #include "passes/rt_stats.h"
+#include "passes/shadow_tile.h"
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
 #include "rt/whitted.h"
@@ -51,10 +52,6 @@ std::vector<BufferSlot> RTSecondaryPass::outputs() const {
 }
 
 namespace {
-// Per worker thread and object: pixels, rays and time-stamp ticks of each effect.
-struct EffectTally {
-  std::array<uint64_t, kEffectCount> pixels{}, rays{}, ticks{};
-};
 using EffectTallies = std::vector<EffectTally>;
 
 // Deadline mode: every worker takes the ranked work items in order and traces them until the
@@ -79,22 +76,6 @@ size_t traceUntilDeadline(const std::vector<RankedTile>& queue, Clock::time_poin
       tbb::simple_partitioner());
   return cut.load();
 }
-// Lane j's shadow classes (8 lanes a light) as (traced, lit, shadowed) shares of the lights that
-// reach it, or of light `only` alone when it is >= 0.
-Vec3 classShares(const uint8_t* classes, size_t lights, int j, int only) {
-  Vec3 c(0.0f);
-  float reached = 0;
-  for (size_t i = 0; i < lights; ++i) {
-    if (only >= 0 && i != size_t(only)) continue;
-    const auto k = ShadowClass(classes[8 * i + size_t(j)]);
-    if (k == ShadowClass::Culled) continue;
-    reached += 1;
-    c.x += k == ShadowClass::Traced ? 1.0f : 0.0f;
-    c.y += k == ShadowClass::Lit ? 1.0f : 0.0f;
-    c.z += k == ShadowClass::Shadowed ? 1.0f : 0.0f;
-  }
-  return reached > 0 ? c / reached : c;
-}
 }  // namespace
 
 void RTSecondaryPass::execute(FrameContext& ctx) {
@@ -111,7 +92,9 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   // they are shaded as always, so that setting draws exactly what it always drew).
   const bool skipUnblocked = ws.shadows != ShadowMode::Rays || ws.shadowCull > 0;
   ShadowTally shadowTally;
-  prepareShadows(ctx, *this, whitted, &shadowTally);
+  const ShadowMaps* shadowMaps = shadowMapsFor(ctx, *this);
+  whitted.useShadowMaps(shadowMaps);
+  whitted.countShadows(&shadowTally);
   // Classified shadows per pixel (viewer / AOV): R traced, G lit, B shadowed, as shares of the
   // lights that reach the pixel (or the one light asked for); 0 where no shadow was asked.
   Buffer* classOut = ctx.outputIfConsumed(*this, "shadow_class");
@@ -141,9 +124,16 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   };
   const Buffer& ids = ctx.input(*this, "object_id");
   const Buffer* order = ctx.optionalInput(*this, "heuristic_order");
+  // Classified shadows (and culled rays) of whole tiles go structure of arrays (shadow_tile.h);
+  // the exact all-rays setting keeps the per-block path.
+  const ShadowTile tileJob{g,     mask,    ids,      ctx.input(*this, "geo_normal"),
+                           scene, shading, rt,       shadowMaps,
+                           ws,    shadow,  classOut, classLight,
+                           timed, order};
   // `rank` < 0: every masked effect, every output written. Otherwise (a deadline's work item) only
   // the effects of that node rank, and only their outputs (the tile was cleared beforehand).
   auto traceTile = [&](const View& v, int x0, int y0, int x1, int y1, int64_t rank) {
+    const bool tiled = skipUnblocked;
     LightVisibility8 vis(scene.lights.size());
     std::vector<uint8_t> classes(classOut ? 8 * scene.lights.size() : 0);
     EffectTally* tally = tallies.local().data();
@@ -163,7 +153,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
             for (int e = 0; e < kEffectCount; ++e)
               want[n][e] = m[e] > 0.5f &&
                            (rank < 0 || nodeRank(order, ids.at(x, y)[0], e) == uint32_t(rank));
-            hit[n] = (want[n][0] || want[n][1] || want[n][2]) && g.read(x, y, s[n]);
+            hit[n] = ((!tiled && want[n][0]) || want[n][1] || want[n][2]) && g.read(x, y, s[n]);
             Vec3 origin;
             if (hit[n])
               v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, origin, d[n]);
@@ -177,7 +167,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         for (int k = 0; k < n; ++k) {
           shadowRgb[k] = Vec3(hit[k] ? 1.0f : outsideShadow);
           reflectionRgb[k] = refractionRgb[k] = Vec3(0.0f);
-          if (hit[k] && want[k][kShadow]) {
+          if (hit[k] && want[k][kShadow] && !tiled) {
             shadowed[m] = s[k];
             lane[m++] = k;
           }
@@ -195,7 +185,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
           if (classOut)
             for (int j = 0; j < m; ++j)
               classOut->setRgb(px[lane[j]], py[lane[j]],
-                               classShares(classes.data(), scene.lights.size(), j, classLight));
+                               classShares(classes.data(), scene.lights.size(), 8, j, classLight));
           bool blocked = false;
           for (size_t i = 0; i < 3 * 8 * scene.lights.size(); ++i)
             blocked |= (vis.data()[i] = 1.0f - vis.data()[i]) != 0.0f;
@@ -259,6 +249,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
             }
         }
       }
+    if (tiled) classifiedShadowTile(tileJob, v, x0, y0, x1, y1, rank, tally, shadowTally.local());
   };
   Clock::time_point deadline{};
   if (deadlineMs > 0) {

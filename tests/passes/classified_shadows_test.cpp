@@ -71,6 +71,24 @@ std::vector<float> visibilityOf(const Scene& s, const RayTracer& rt, const Shado
   return std::vector<float>(vis.data(), vis.data() + 8);  // light 0, red
 }
 
+// Light 0's visibility at 8 points traced (every shadow a ray) and classified (maps of
+// `mapSize` texels first), with rays and classes per lane.
+struct TwoWays {
+  std::vector<float> byRays, byClass;
+  int raysRt[8], raysCl[8];
+  uint8_t classes[8];
+};
+TwoWays bothWays(const Scene& s, const ShadowMaps& maps, const SurfaceSample* p) {
+  FrameScene fs;
+  fs.update(s, 0, 0);
+  RayTracer rt;
+  rt.update(fs);
+  TwoWays w;
+  w.byRays = visibilityOf(s, rt, nullptr, ShadowMode::Rays, p, 8, w.raysRt);
+  w.byClass = visibilityOf(s, rt, &maps, ShadowMode::Classified, p, 8, w.raysCl, w.classes);
+  return w;
+}
+
 }  // namespace
 
 // On every built-in scene the classified image is the ray-traced one (PSNR >= 45 dB, the
@@ -115,17 +133,12 @@ TEST(ClassifiedShadows, ThinCasterKeepsItsRayTracedShadow) {
   fs.update(s, 0, 0);
   ShadowMaps maps;
   maps.update(fs, kMapSize);
-  RayTracer rt;
-  rt.update(fs);
   // Points on the floor under the rod's axis: the rod's shadow is 2x its width at y = 0.
   SurfaceSample p[8];
   for (int k = 0; k < 8; ++k) p[k] = floorPoint(-2.0f + 0.5f * float(k) + 0.026f, 0.042f);
-  int raysRt[8], raysCl[8];
-  uint8_t classes[8];
-  const std::vector<float> byRays =
-      visibilityOf(s, rt, nullptr, ShadowMode::Rays, p, 8, raysRt);
-  const std::vector<float> byClass =
-      visibilityOf(s, rt, &maps, ShadowMode::Classified, p, 8, raysCl, classes);
+  const TwoWays w = bothWays(s, maps, p);
+  const std::vector<float>&byRays = w.byRays, &byClass = w.byClass;
+  const uint8_t* classes = w.classes;
   int unseen = 0;
   for (int k = 0; k < 8; ++k) {
     EXPECT_EQ(byRays[size_t(k)], 0.0f) << "the rod shadows point " << k;
@@ -154,18 +167,14 @@ TEST(ClassifiedShadows, CertainPixelsGetNoRay) {
   fs.update(s, 0, 0);
   ShadowMaps maps;
   maps.update(fs, 512);
-  RayTracer rt;
-  rt.update(fs);
   // The roof's shadow is centred at 2 * (0.3, 0.2) = (0.6, 0.4).
   SurfaceSample p[8] = {floorPoint(0.6f, 0.4f),  floorPoint(0.2f, 0.1f), floorPoint(1.0f, 0.8f),
                         floorPoint(0.9f, -0.2f), floorPoint(3.5f, 3.5f), floorPoint(-4.0f, 3.0f),
                         floorPoint(3.0f, -4.0f), floorPoint(4.2f, 0.3f)};
-  int raysRt[8], raysCl[8];
-  uint8_t classes[8];
-  const std::vector<float> byRays =
-      visibilityOf(s, rt, nullptr, ShadowMode::Rays, p, 8, raysRt);
-  const std::vector<float> byClass =
-      visibilityOf(s, rt, &maps, ShadowMode::Classified, p, 8, raysCl, classes);
+  const TwoWays w = bothWays(s, maps, p);
+  const std::vector<float>&byRays = w.byRays, &byClass = w.byClass;
+  const int *raysRt = w.raysRt, *raysCl = w.raysCl;
+  const uint8_t* classes = w.classes;
   for (int k = 0; k < 8; ++k) {
     const bool inShadow = k < 4;
     EXPECT_EQ(byRays[size_t(k)], inShadow ? 0.0f : 1.0f) << k;
