@@ -68,6 +68,8 @@ const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& p) {
   const auto t0 = Clock::now();
   const ShadowMaps* maps = &ctx.shadowMaps(int(p.param("shadow_map_size")));
   ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+  ctx.counters["shadow_maps/static_redraws"] = maps->redraws();
+  ctx.counters["shadow_maps/moving_redraws"] = maps->movingRedraws();
   return maps;
 }
 

@@ -55,21 +55,69 @@ void ShadowMaps::update(const FrameScene& fs, int resolution) {
   if (staticStale) drawStatic(fs, still, anyMoving);
   if (!anyMoving) return;
   ++movingRedraws_;
+  // Only where the moving casters are now or were last time: the rest of each map is the
+  // static casters' as drawn once. A face neither sees is left alone.
+  std::vector<Bounds3> boxes;
+  for (size_t o = 0; o < scene.objects.size(); ++o)
+    if (moving[o]) boxes.push_back(fs.objects[o].bounds);
   std::vector<Face*> all;
   for (std::vector<Face>& faces : faces_)
     for (Face& face : faces) {
-      std::copy(face.staticDepth.begin(), face.staticDepth.end(), face.map.depth.begin());
-      std::copy(face.staticObject.begin(), face.staticObject.end(), face.map.object.begin());
-      raster_.render(fs, face.camera, face.map,
-                     Rasterizer::Subset{&moving, /*keep=*/true, /*bothFaces=*/true});
+      const TexelRect now = footprint(face, boxes);
+      const TexelRect dirty = now.unite(face.moving);
+      if (dirty.empty()) continue;
+      restoreStatic(face, dirty);
+      if (!now.empty())
+        raster_.render(fs, face.camera, face.map,
+                       Rasterizer::Subset{&moving, /*keep=*/true, /*bothFaces=*/true});
+      face.dirty = dirty;
+      face.moving = now;
       all.push_back(&face);
     }
   tbb::parallel_for(size_t(0), all.size(), [&](size_t k) {
     Face& face = *all[k];
-    face.near = face.staticNear;
-    drawConservativeDepth(fs, face.camera, &moving, /*keep=*/true, sweep_, face.near);
-    markOpaque(face);
+    if (!face.moving.empty())
+      drawConservativeDepth(fs, face.camera, &moving, /*keep=*/true, sweep_, face.near);
+    markOpaque(face, face.dirty);
   });
+}
+
+ShadowMaps::TexelRect ShadowMaps::footprint(const Face& f, const std::vector<Bounds3>& boxes) {
+  const Camera& c = f.camera;
+  const bool perspective = c.desc.projection == Projection::Perspective;
+  const TexelRect whole{0, 0, f.map.width, f.map.height};
+  TexelRect r;
+  float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (const Bounds3& b : boxes)
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 p{k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y, k & 4 ? b.hi.z : b.lo.z};
+      if (perspective && dot(p - c.desc.position, c.forward) <= c.desc.nearPlane)
+        return whole;  // around or behind the light: the whole face, to be safe
+      const Vec4 q = c.viewProj * Vec4(p, 1.0f);
+      const float sx = (q.x / q.w * 0.5f + 0.5f) * float(f.map.width);
+      const float sy = (0.5f - q.y / q.w * 0.5f) * float(f.map.height);
+      lo[0] = std::min(lo[0], sx), hi[0] = std::max(hi[0], sx);
+      lo[1] = std::min(lo[1], sy), hi[1] = std::max(hi[1], sy);
+    }
+  if (!(hi[0] >= lo[0])) return r;  // no boxes
+  // Two texels of margin: conservative drawing touches partly covered texels.
+  r.x0 = std::clamp(int(std::floor(lo[0])) - 2, 0, f.map.width);
+  r.y0 = std::clamp(int(std::floor(lo[1])) - 2, 0, f.map.height);
+  r.x1 = std::clamp(int(std::ceil(hi[0])) + 2, 0, f.map.width);
+  r.y1 = std::clamp(int(std::ceil(hi[1])) + 2, 0, f.map.height);
+  return r;
+}
+
+void ShadowMaps::restoreStatic(Face& f, const TexelRect& r) {
+  for (int y = r.y0; y < r.y1; ++y) {
+    const size_t a = size_t(y) * size_t(f.map.width) + size_t(r.x0), n = size_t(r.x1 - r.x0);
+    std::copy_n(f.staticDepth.begin() + std::ptrdiff_t(a), n,
+                f.map.depth.begin() + std::ptrdiff_t(a));
+    std::copy_n(f.staticObject.begin() + std::ptrdiff_t(a), n,
+                f.map.object.begin() + std::ptrdiff_t(a));
+    std::copy_n(f.staticNear.texels.begin() + std::ptrdiff_t(a), n,
+                f.near.texels.begin() + std::ptrdiff_t(a));
+  }
 }
 
 void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still,
@@ -153,7 +201,8 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
     Face& face = *all[k];
     drawConservativeDepth(fs, face.camera, &still, /*keep=*/false, sweep_, face.near);
     if (keepCopy) face.staticNear = face.near;
-    markOpaque(face);
+    face.moving = {};  // the maps hold no moving caster now
+    markOpaque(face, {0, 0, face.map.width, face.map.height});
   });
 }
 
@@ -164,13 +213,15 @@ const ShadowMaps::Face* ShadowMaps::faceFor(size_t i, Vec3 p) const {
   return &faces[size_t(cubeFace(p - faces[0].camera.desc.position))];
 }
 
-void ShadowMaps::markOpaque(Face& face) const {
+void ShadowMaps::markOpaque(Face& face, const TexelRect& r) const {
   face.opaqueDepth.resize(face.map.depth.size());
-  for (size_t k = 0; k < face.map.depth.size(); ++k) {
-    const uint32_t o = face.map.object[k];
-    const bool opaque = o != kNoObject && o < opaqueCaster_.size() && opaqueCaster_[o];
-    face.opaqueDepth[k] = opaque ? face.map.depth[k] : 0.0f;
-  }
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const size_t k = size_t(y) * size_t(face.map.width) + size_t(x);
+      const uint32_t o = face.map.object[k];
+      const bool opaque = o != kNoObject && o < opaqueCaster_.size() && opaqueCaster_[o];
+      face.opaqueDepth[k] = opaque ? face.map.depth[k] : 0.0f;
+    }
 }
 
 ShadowClass ShadowMaps::classify(size_t i, Vec3 p, Vec3 n, int self) const {

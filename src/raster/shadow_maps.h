@@ -6,6 +6,7 @@
 // (again only when lights or static geometry change); animated casters are drawn over a copy of
 // that depth whenever they moved. A moving camera reuses the maps as they are.
 #pragma once
+#include <algorithm>
 #include <vector>
 
 #include "raster/conservative_depth.h"
@@ -51,6 +52,15 @@ class ShadowMaps {
   int movingRedraws() const { return movingRedraws_; }  // animated casters drawn again
 
  private:
+  struct TexelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    TexelRect unite(const TexelRect& o) const {
+      if (empty()) return o;
+      if (o.empty()) return *this;
+      return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
+    }
+  };
   struct Face {
     Camera camera;
     VisibilityBuffer map;            // depth and object are read (prim is scratch)
@@ -58,13 +68,18 @@ class ShadowMaps {
     std::vector<uint32_t> staticObject;
     ConservativeDepth near, staticNear;  // every caster a texel touches (classified shadows)
     std::vector<float> opaqueDepth;      // map depth where an opaque caster drew it, else 0
-    ShadowFace lookup{};                 // what the batch kernel reads (depth: map's, at lookup)
+    TexelRect moving, dirty;  // where the moving casters were drawn; what the last redraw touched
+    ShadowFace lookup{};      // what the batch kernel reads (depth: map's, at lookup)
     float texelPerDistance = 0;  // a texel's world width per unit distance (ortho: the width)
   };
   void drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still, bool keepCopy);
   // The face of light i that sees p: the cube face of p's major axis, else the one map.
   const Face* faceFor(size_t i, Vec3 p) const;
-  void markOpaque(Face& face) const;
+  void markOpaque(Face& face, const TexelRect& r) const;
+  // The texels the boxes cover in f (with a margin; all of f when one reaches behind the light).
+  static TexelRect footprint(const Face& f, const std::vector<Bounds3>& boxes);
+  // The static casters' maps back in r.
+  static void restoreStatic(Face& f, const TexelRect& r);
 
   std::vector<std::vector<Face>> faces_;  // per light
   uint64_t geometryVersion_ = ~0ull, staticVersion_ = ~0ull;

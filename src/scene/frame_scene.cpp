@@ -41,8 +41,11 @@ Vec3 normalAt(const FrameObject& o, size_t v, float tau) {
 
 void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
   const float close = t + std::max(shutter, 0.0f);
+  // The shutter's length as given, not close - t: that difference rounds differently at every
+  // frame time, and a "new" shutter recomputes (and redraws, and rebuilds) everything.
   bool first =
-      scene != &s || objects.size() != s.objects.size() || close - t != shutterClose - time;
+      scene != &s || objects.size() != s.objects.size() || std::max(shutter, 0.0f) != shutterLength;
+  shutterLength = std::max(shutter, 0.0f);
   shutterClose = close;
   scene = &s;
   time = t;

@@ -27,6 +27,7 @@ struct FrameScene {
   float time = 0, prevTime = 0;
   std::vector<FrameObject> objects;
   float shutterClose = 0;        // == time: no motion blur
+  float shutterLength = 0;       // seconds, as the last update was given it
   int motionSteps = 4;           // time steps per moving object while the shutter is open
   uint64_t geometryVersion = 0;  // bumps whenever world-space geometry changed
   uint64_t staticVersion = 0;    // bumps when geometry of an object that is not animated changed
