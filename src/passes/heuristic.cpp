@@ -153,7 +153,7 @@ std::vector<HeuristicNode> heuristicNodes(
     };
     if (shadowsApart && h.q[kReflection] <= 0 && h.q[kRefraction] <= 0) continue;
     if (!perEffect) {
-      const double c = shadowsApart ? cost(kReflection) + cost(kRefraction)
+      const double c = shadowsApart   ? cost(kReflection) + cost(kRefraction)
                        : costPerPixel ? cost(0) + cost(1) + cost(2)
                                       : h.C;
       nodes.push_back({h.object, c, h.R});
@@ -368,16 +368,16 @@ void HeuristicPass::execute(FrameContext& ctx) {
         if (p <= 0)
           p = area[e] > 0 ? sum[e] / area[e] : h.q[e] / BudgetCalibration::kPriorRaysPerMs;
       }
-    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"), &perPixel,
-                           shadowsApart);
+    nodes =
+        heuristicNodes(scene, evaluated_, perEffect, param("importance"), &perPixel, shadowsApart);
     pricePerPixel_.assign(n, {});
     for (const ObjectHeuristic& h : evaluated_)
       for (size_t e = 0; e < size_t(kEffectCount); ++e)
         pricePerPixel_[size_t(h.object)][e] =
             perPixel[size_t(h.object)][e] * scene.objects[size_t(h.object)].heuristic.E;
   } else {
-    nodes = heuristicNodes(scene, evaluated_, perEffect, param("importance"), nullptr,
-                           shadowsApart);
+    nodes =
+        heuristicNodes(scene, evaluated_, perEffect, param("importance"), nullptr, shadowsApart);
   }
   budget_ = msBudget ? calibration_.unitsFor(param("budget_ms")) : param("budget");
   if (deadline) budget_ *= param("overcommit");

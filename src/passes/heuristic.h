@@ -95,8 +95,7 @@ std::vector<ObjectHeuristic> evaluateObjects(
 // and refractions, and objects with neither get no node.
 std::vector<HeuristicNode> heuristicNodes(
     const Scene& scene, const std::vector<ObjectHeuristic>& objects, bool perEffect,
-    double importanceI,
-    const std::vector<std::array<double, kEffectCount>>* costPerPixel = nullptr,
+    double importanceI, const std::vector<std::array<double, kEffectCount>>* costPerPixel = nullptr,
     bool shadowsApart = false);
 
 // Visible pixels per object in an object-id buffer (one parallel pass).
