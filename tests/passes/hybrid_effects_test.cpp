@@ -108,9 +108,10 @@ TEST(HybridEffects, ModesAgreeAtTheExtremes) {
                                 {"heuristic.select_all=1", "heuristic.per_effect=1"}, 96, 54);
   perEffect->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(all->output(), perEffect->output()));
-  auto none = makeRenderer(
-      s, "hybrid-heuristic",
-      {"heuristic.budget=0", "ss_fallback.mode=off", "ss_fallback.shadows=off"}, 96, 54);
+  auto none = makeRenderer(s, "hybrid-heuristic",
+                           {"heuristic.budget=0", "heuristic.shadows=budget",
+                            "ss_fallback.mode=off", "ss_fallback.shadows=off"},
+                           96, 54);
   none->renderFrame(0, s.camera);
   auto deferred = test::renderOnce(s, "deferred", 96, 54, s.camera);
   EXPECT_TRUE(sameBuffer(none->output(), deferred->output()));
@@ -184,7 +185,8 @@ TEST(HybridEffects, DeadlineCutsToTheFallbackAndOtherwiseChangesNothing) {
   ASSERT_FALSE(heuristicOf(*cut).lastSelection().empty());  // something was selected...
   EXPECT_GT(ctx.counters.at("rt_secondary/items_cut"), 0.0);
   for (float v : ctx.input("traced_mask").data) ASSERT_EQ(v, 0.0f);  // ...and nothing traced
-  auto none = makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0"}, 96, 54);
+  auto none = makeRenderer(s, "hybrid-heuristic",
+                           {"heuristic.budget=0", "heuristic.shadows=budget"}, 96, 54);
   none->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(cut->output(), none->output()));
 
@@ -473,10 +475,12 @@ TEST(HybridEffects, FallbacksStandInForUnselectedEffects) {
   Scene s = makeSpheresScene();
   const int w = 160, h = 90;
   auto all = test::renderOnce(s, "hybrid-all", w, h, s.camera);
-  auto paper =
-      makeRenderer(s, "hybrid-heuristic",
-                   {"heuristic.budget=0", "ss_fallback.mode=off", "ss_fallback.shadows=off"}, w, h);
-  auto fallback = makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0"}, w, h);
+  auto paper = makeRenderer(s, "hybrid-heuristic",
+                            {"heuristic.budget=0", "heuristic.shadows=budget",
+                             "ss_fallback.mode=off", "ss_fallback.shadows=off"},
+                            w, h);
+  auto fallback =
+      makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0", "heuristic.shadows=budget"}, w, h);
   paper->renderFrame(0, s.camera);
   fallback->renderFrame(0, s.camera);
   EXPECT_TRUE(heuristicOf(*fallback).lastSelection().empty());
