@@ -88,9 +88,9 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   const ShadingContext shading = ShadingContext::from(scene);
   const WhittedSettings ws = whittedSettings(*this);
   Whitted whitted(rt, scene, shading, ws);
-  // Blocks no light is blocked in keep S = 1 unshaded (with every shadow traced and no culling
-  // they are shaded as always, so that setting draws exactly what it always drew).
-  const bool skipUnblocked = ws.shadows != ShadowMode::Rays || ws.shadowCull > 0;
+  // Classified shadows (and culled rays) of whole tiles go structure of arrays (shadow_tile.h);
+  // every shadow traced without culling keeps the per-block path, exactly as it always drew.
+  const bool tiled = ws.shadows != ShadowMode::Rays || ws.shadowCull > 0;
   ShadowTally shadowTally;
   const ShadowMaps* shadowMaps = shadowMapsFor(ctx, *this);
   whitted.useShadowMaps(shadowMaps);
@@ -124,8 +124,6 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   };
   const Buffer& ids = ctx.input(*this, "object_id");
   const Buffer* order = ctx.optionalInput(*this, "heuristic_order");
-  // Classified shadows (and culled rays) of whole tiles go structure of arrays (shadow_tile.h);
-  // the exact all-rays setting keeps the per-block path.
   const ShadowTile tileJob{g,     mask,    ids,      ctx.input(*this, "geo_normal"),
                            scene, shading, rt,       shadowMaps,
                            ws,    shadow,  classOut, classLight,
@@ -133,7 +131,6 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   // `rank` < 0: every masked effect, every output written. Otherwise (a deadline's work item) only
   // the effects of that node rank, and only their outputs (the tile was cleared beforehand).
   auto traceTile = [&](const View& v, int x0, int y0, int x1, int y1, int64_t rank) {
-    const bool tiled = skipUnblocked;
     LightVisibility8 vis(scene.lights.size());
     std::vector<uint8_t> classes(classOut ? 8 * scene.lights.size() : 0);
     EffectTally* tally = tallies.local().data();
@@ -186,22 +183,17 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
             for (int j = 0; j < m; ++j)
               classOut->setRgb(px[lane[j]], py[lane[j]],
                                classShares(classes.data(), scene.lights.size(), 8, j, classLight));
-          bool blocked = false;
           for (size_t i = 0; i < 3 * 8 * scene.lights.size(); ++i)
-            blocked |= (vis.data()[i] = 1.0f - vis.data()[i]) != 0.0f;
+            vis.data()[i] = 1.0f - vis.data()[i];
           ShadeBatch b;
-          if (blocked || !skipUnblocked) {
-            b.count = m;
-            for (int j = 0; j < m; ++j) b.set(j, shadowed[j], -d[lane[j]]);
-            shadeBatch(b, shading, vis.data(), 8);
-          }
+          b.count = m;
+          for (int j = 0; j < m; ++j) b.set(j, shadowed[j], -d[lane[j]]);
+          shadeBatch(b, shading, vis.data(), 8);
           const uint64_t ticks = timed ? cycleNow() - c0 : 0;
           for (int j = 0; j < m; ++j) {
             const SurfaceSample& sj = shadowed[j];
             shadowRgb[lane[j]] =
-                b.count == 0
-                    ? Vec3(1.0f)
-                    : Vec3(1.0f) - (b.result(j) - (sj.emission + shading.ambient * sj.ambient));
+                Vec3(1.0f) - (b.result(j) - (sj.emission + shading.ambient * sj.ambient));
             // What shadows cost this object, in rays and time (the heuristic's ms budget is
             // built from these); the block's time is shared by its lanes.
             EffectTally& t = tally[size_t(sj.object)];
