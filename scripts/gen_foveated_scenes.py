@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes scenes/foveated_pink_room.json and scenes/foveated_forest.json, the interior and the
-outdoor scene of seed 004's Table 3 kind (issue 14), from built-in shapes and the shared bunny.
+outdoor scene of seed 004's Table 3 kind, from built-in shapes only (the statue is the
+procedural trefoil knot, so the scene needs no file outside the repository).
 Deterministic: re-running gives the same files."""
 import json
 import math
@@ -9,8 +10,6 @@ import random
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = os.path.join(HERE, "..", "scenes")
-BUNNY = "../../shared/scenes/StanfordBunny/bunny.obj"
-
 
 def obj(name, shape, material, position, scale=(1, 1, 1), rotation=(0, 0, 0), **extra):
     o = {"name": name, "material": material, "position": list(position), "scale": list(scale),
@@ -53,7 +52,7 @@ def pink_room():
         obj("sofa_arm_r", "cube", "fabric", (-0.25, 0.45, -2.4), (0.12, 0.45, 0.5)),
         obj("table_top", "cube", "wood", (0.6, 0.72, -0.6), (0.7, 0.03, 0.45)),
         obj("rug", "cube", "teal", (0.2, 0.005, -0.9), (1.8, 0.005, 1.2)),
-        obj("bunny", BUNNY, "porcelain", (0.5, 0.65, -0.6), (3, 3, 3), (0, 30, 0)),
+        obj("statue", "knot", "porcelain", (0.5, 0.99, -0.6), (0.24, 0.24, 0.24), (0, 30, 0)),
         obj("ball", "sphere", "teal", (2.6, 0.45, -1.9), (0.45, 0.45, 0.45), slices=64, stacks=32),
         obj("ball_small", "sphere", "cream", (1.9, 0.2, -2.3), (0.2, 0.2, 0.2), slices=48, stacks=24),
         obj("shelf", "cube", "wood", (-3.75, 1.6, 0.5), (0.22, 0.03, 1.0)),

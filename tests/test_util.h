@@ -1,16 +1,28 @@
 // Shared helpers for tests: paths to the third-party scenes and a scratch folder.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 
+#include "core/assets.h"
 #include "pipeline/renderer.h"
 #include "scene/primitives.h"
 
 namespace tandem::test {
 
-inline std::string sharedScene(const std::string& rel) {
-  return std::string(TANDEM_SHARED_SCENES) + "/" + rel;
+// A third-party scene file under TANDEM_ASSETS (default ../shared/scenes beside the checkout).
+inline std::string assetPath(const std::string& rel) {
+  return assetsDir() + "/" + rel;
 }
+
+// Declares `var` as the path of the third-party file `rel`, or skips the test, saying why, when
+// the file is not there (a clone with nothing beside it).
+#define TANDEM_ASSET(var, rel)                                                                  \
+  const std::string var = ::tandem::test::assetPath(rel);                                       \
+  if (!std::filesystem::exists(var))                                                            \
+  GTEST_SKIP() << "third-party asset " << var << " not found (set TANDEM_ASSETS to the folder " \
+               << "of third-party scenes)"
 
 // A fresh empty folder under the build tree for one test.
 inline std::filesystem::path scratchDir(const std::string& name) {

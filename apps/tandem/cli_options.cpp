@@ -130,7 +130,7 @@ StereoDesc stereoFor(const Scene& s, const RenderOptions& o) {
     st.converged = true;
     st.convergence = o.convergence;
   }
-  return st;
+  return fitStereoToModel(s, defaultCamera(s), st, o.ipd > 0);
 }
 
 RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o) {

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli_options.h"
+#include "rt/diffuse_gi.h"
 #include "verbs.h"
 
 namespace tandem {
@@ -56,6 +57,8 @@ VerbRunner addInfoVerb(CLI::App& app) {
                 s.hasCamera ? "from scene" : "none (auto-framed)", s.cameraPath.size());
     std::printf("memory       %.2f MiB (meshes, textures, materials)\n",
                 s.memoryBytes() / 1048576.0);
+    if (const std::string note = DiffuseGI::blackMaterialsNote(s); !note.empty())
+      std::printf("lambert-only %s\n", note.c_str());
     for (const Light& l : s.lights)
       std::printf("  light %-24s %-11s intensity %g\n", l.name.c_str(), lightTypeName(l.type),
                   l.intensity);

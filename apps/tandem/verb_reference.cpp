@@ -14,6 +14,7 @@
 #include "eval/reference_cache.h"
 #include "mpi_cluster.h"
 #include "pipeline/aov.h"
+#include "rt/diffuse_gi.h"
 #include "verbs.h"
 
 namespace tandem {
@@ -69,7 +70,11 @@ struct ReferenceVerb {
       job.settings.integrator = Integrator::Whitted;
       job.settings.whitted.maxDepth = std::min(maxDepth, 64);
     }
-    if (integrator == "diffuse-gi") job.settings.integrator = Integrator::DiffuseGI;
+    if (integrator == "diffuse-gi") {
+      job.settings.integrator = Integrator::DiffuseGI;
+      if (const std::string note = DiffuseGI::blackMaterialsNote(scene); !note.empty())
+        std::fprintf(stderr, "tandem: warning: %s\n", note.c_str());
+    }
     job.settings.seed = opts.seed;
     job.settings.progress = !quiet;
     const fs::path dir = isFile ? fs::path(out).parent_path() : fs::path(out);

@@ -20,8 +20,25 @@ class InputError : public std::runtime_error {
   static std::string compose(const std::string& file, const std::string& field,
                              const std::string& problem) {
     std::string s = file.empty() ? std::string("input") : file;
-    if (!field.empty()) s += ": " + field;
-    return s + ": " + problem;
+    if (!field.empty()) s += ": " + printable(field);
+    return s + ": " + printable(problem);
+  }
+  // Messages may quote what a broken file holds: keep control bytes off the terminal.
+  static std::string printable(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (unsigned char c : text) {
+      if (c == '\n') {
+        out += "; ";
+      } else if (c < 0x20 || c == 0x7f) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02x", c);
+        out += hex;
+      } else {
+        out += char(c);
+      }
+    }
+    return out;
   }
 };
 

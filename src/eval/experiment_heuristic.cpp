@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> defaultHeuristicScenes() {
   const std::string dir = std::string(TANDEM_SOURCE_DIR) + "/scenes/";
-  return {"spheres", dir + "atrium_spheres.json", dir + "atrium_bunny.json",
+  return {"spheres", dir + "atrium_spheres.json", dir + "atrium_statue.json",
           dir + "cornell_spheres.json"};
 }
 

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 
 #include "core/profiler.h"
 #include "pipeline/frame_context.h"
@@ -47,6 +48,11 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
   variance.fill(0.0f);
   const RayTracer& rt = ctx.rayTracer();
   const ShadingContext shading = ShadingContext::from(*ctx.scene);
+  if (warnedScene_ != ctx.scene) {
+    warnedScene_ = ctx.scene;
+    if (const std::string note = DiffuseGI::blackMaterialsNote(*ctx.scene); !note.empty())
+      std::fprintf(stderr, "tandem: warning: %s\n", note.c_str());
+  }
   const LightGrid* grid = nullptr;
   if (param("light_selection") == 1) {
     const uint64_t key = lightSetKey(shading.lights, DiffuseGI::lightsSampled(*ctx.scene));

@@ -35,6 +35,7 @@ class FoveatedPTPass : public Pass {
   std::unique_ptr<LightGrid> grid_;
   uint64_t gridKey_ = 0;
   const void* gridScene_ = nullptr;
+  const void* warnedScene_ = nullptr;  // the scene whose black (metal) materials were reported
 };
 
 }  // namespace tandem

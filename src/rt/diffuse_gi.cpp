@@ -39,6 +39,29 @@ LightGrid DiffuseGI::buildGrid(const Scene& scene, const ShadingContext& shading
   return LightGrid(shading.lights, lightsSampled(scene), scene.bounds(), visible);
 }
 
+std::vector<std::string> DiffuseGI::blackMaterials(const Scene& scene) {
+  std::vector<char> used(scene.materials.size(), 0);
+  for (const Object& o : scene.objects) used[size_t(o.material)] = 1;
+  std::vector<std::string> names;
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& mat = scene.materials[m];
+    const bool metal = mat.metallicRoughnessTexture < 0 && mat.metallic >= 0.999f;
+    const bool noDiffuse = maxComponent(mat.diffuse) <= 0.0f && mat.diffuseTexture < 0;
+    if (used[m] && maxComponent(mat.emission) <= 0.0f && (metal || noDiffuse))
+      names.push_back(mat.name);
+  }
+  return names;
+}
+
+std::string DiffuseGI::blackMaterialsNote(const Scene& scene) {
+  const std::vector<std::string> names = blackMaterials(scene);
+  if (names.empty()) return "";
+  return std::to_string(names.size()) + " material(s) with no diffuse colour (e.g. '" +
+         names.front() +
+         "', a metal) draw black in the foveated path tracer and the diffuse-gi reference: "
+         "their transport is Lambert only";
+}
+
 Vec3 DiffuseGI::albedo(const SurfaceSample& s) {
   return vmin(vmax(s.diffuse, Vec3(0.0f)), Vec3(1.0f));
 }

@@ -8,6 +8,7 @@
 // by the indirect ray instead). The foveated_pt pass and the reference's diffuse-gi integrator
 // both call it, so the reference is the same path tracer, only converged.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "rt/light_grid.h"
@@ -38,6 +39,11 @@ class DiffuseGI {
   // The whole outgoing radiance: emission + albedo x reflected().
   Vec3 radiance(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
                 uint64_t& rays) const;
+  // Materials on the scene's objects this transport draws black: metals and other surfaces with
+  // a specular colour but no diffuse one (glTF metallic 1). Users are told, not surprised.
+  static std::vector<std::string> blackMaterials(const Scene& scene);
+  // One line saying which materials draw black, or "" when none does.
+  static std::string blackMaterialsNote(const Scene& scene);
   // Lambert's albedo as the transport uses it (the diffuse colour, clamped to [0, 1]).
   static Vec3 albedo(const SurfaceSample& s);
   // Emission seen from wo: emitters light their front side only, as in the path tracer.

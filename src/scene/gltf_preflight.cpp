@@ -61,6 +61,50 @@ bool stripDracoIndices(json& j) {
   return any;
 }
 
+// Why `bytes` is not a JSON object, as "line L, column C" of the first offending byte: the JSON
+// library's own message would quote the bytes it saw, which need not be printable.
+[[noreturn]] void notGltfJson(const std::string& path, const unsigned char* bytes, size_t size) {
+  size_t at = size;
+  try {
+    json j = json::parse(bytes, bytes + size);
+    throw InputError(
+        path, "",
+        std::string("not a glTF JSON file: the top level is ") + j.type_name() + ", not an object");
+  } catch (const json::parse_error& e) {
+    at = std::min(size, e.byte > 0 ? size_t(e.byte - 1) : size_t(0));
+  }
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < at; ++i) {
+    if (bytes[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  throw InputError(path, "",
+                   "not a glTF JSON file (syntax error at line " + std::to_string(line) +
+                       ", column " + std::to_string(column) + ")");
+}
+
+// The containers tinygltf reads without checking their type: name the field that is wrong.
+void checkMeshShapes(const std::string& path, const json& j) {
+  if (!j.contains("meshes")) return;
+  if (!j["meshes"].is_array())
+    throw InputError(path, "meshes",
+                     std::string("must be an array of meshes, not ") + j["meshes"].type_name());
+  for (size_t m = 0; m < j["meshes"].size(); ++m) {
+    const json& mesh = j["meshes"][m];
+    const std::string field = "meshes[" + std::to_string(m) + "]";
+    if (!mesh.is_object())
+      throw InputError(path, field, std::string("must be an object, not ") + mesh.type_name());
+    if (mesh.contains("primitives") && !mesh["primitives"].is_array())
+      throw InputError(
+          path, field + ".primitives",
+          std::string("must be an array of primitives, not ") + mesh["primitives"].type_name());
+  }
+}
+
 }  // namespace
 
 std::string readRegularFile(const std::string& path, std::vector<unsigned char>& out) {
@@ -111,9 +155,10 @@ GltfSource preflightGltf(const std::string& path) {
   }
   json j = json::parse(src.bytes.begin() + long(jsonStart),
                        src.bytes.begin() + long(jsonStart + jsonLength), nullptr, false);
-  // Unparseable JSON is left to tinygltf, whose message names the position.
-  if (j.is_discarded() || !j.is_object()) return src;
+  if (j.is_discarded() || !j.is_object())
+    notGltfJson(path, src.bytes.data() + jsonStart, jsonLength);
   if (looksLikeGltf1(j)) gltf1(path);
+  checkMeshShapes(path, j);
   if (!stripDracoIndices(j)) return src;
   src.usesDraco = true;
   const std::string text = j.dump();

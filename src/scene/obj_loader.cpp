@@ -218,8 +218,30 @@ bool rewriteHugeFaces(const std::string& path, std::string& obj, std::string& mt
 
 }  // namespace
 
+// A binary file (an FBX, a .blend, a zip) renamed .obj parses as an OBJ with no triangles; say
+// what it is instead. OBJ is text: a NUL byte in the first 64 KiB (outside UTF-16, which the
+// loader converts) is proof enough.
+static void checkObjIsText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(65536, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  const std::pair<const char*, const char*> magics[] = {{"Kaydara FBX Binary", "a binary FBX file"},
+                                                        {"BLENDER", "a Blender .blend file"},
+                                                        {"glTF", "a binary glTF (GLB) file"},
+                                                        {"PK\x03\x04", "a zip archive"},
+                                                        {"\x89PNG", "a PNG image"}};
+  for (const auto& [magic, what] : magics)
+    if (head.rfind(magic, 0) == 0)
+      throw InputError(path, "", std::string("not an OBJ text file (it is ") + what + ")");
+  const bool utf16 = head.rfind("\xff\xfe", 0) == 0 || head.rfind("\xfe\xff", 0) == 0;
+  if (!utf16 && head.find('\0') != std::string::npos)
+    throw InputError(path, "", "not an OBJ text file (binary data)");
+}
+
 Scene loadObj(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path, "", "file not found");
+  checkObjIsText(path);
   checkVertexLines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;

@@ -158,6 +158,51 @@ Mesh makeArch(float r0, float r1, float depth, int segments) {
   return m;
 }
 
+Mesh makeTorusKnot(int p, int q, float tube, int segments, int sides) {
+  segments = std::max(8, segments);
+  sides = std::max(3, sides);
+  // The curve on a torus of radii 2 and 1, with analytic first and second derivatives for the
+  // Frenet frame (a torus knot's curvature never vanishes, so the frame is smooth and closed).
+  auto curve = [&](float t, Vec3& d1, Vec3& d2) {
+    float cq = std::cos(q * t), sq = std::sin(q * t), cp = std::cos(p * t), sp = std::sin(p * t);
+    float r = 2 + cq, dr = -q * sq, ddr = -q * q * cq;
+    d1 = {dr * cp - r * p * sp, dr * sp + r * p * cp, -q * cq};
+    d2 = {ddr * cp - 2 * dr * p * sp - r * p * p * cp, ddr * sp + 2 * dr * p * cp - r * p * p * sp,
+          q * q * sq};
+    return Vec3(r * cp, r * sp, -sq);
+  };
+  float scale = 1.0f / (3 + tube);
+  Mesh m;
+  for (int i = 0; i <= segments; ++i) {
+    float u = float(i) / segments;
+    Vec3 d1, d2;
+    Vec3 c = curve(u * 2 * kPi, d1, d2);
+    Vec3 t = normalize(d1);
+    Vec3 n = normalize(d2 - t * dot(d2, t));
+    Vec3 b = cross(t, n);
+    for (int j = 0; j <= sides; ++j) {
+      float v = float(j) / sides, a = v * 2 * kPi;
+      Vec3 dir = n * std::cos(a) + b * std::sin(a);
+      m.positions.push_back((c + dir * tube) * scale);
+      m.normals.push_back(dir);
+      m.uvs.push_back({u * 8, v});
+    }
+  }
+  for (int i = 0; i < segments; ++i)
+    for (int j = 0; j < sides; ++j) {
+      uint32_t a = i * (sides + 1) + j, b = a + 1, c = a + sides + 1, d = c + 1;
+      m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+    }
+  // Winding follows the outward normal whichever way the frame turns.
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    uint32_t* i = &m.indices[3 * t];
+    Vec3 fn = cross(m.positions[i[1]] - m.positions[i[0]], m.positions[i[2]] - m.positions[i[0]]);
+    if (dot(fn, m.normals[i[0]]) < 0) std::swap(i[1], i[2]);
+  }
+  completeMesh(m);
+  return m;
+}
+
 Mesh makeCloth(float w, float h, int nx, int ny, float foldDepth, int folds) {
   Mesh m;
   auto pos = [&](float u, float v) {

@@ -89,6 +89,15 @@ CameraDesc defaultCamera(const Scene& s) {
   return c;
 }
 
+StereoDesc fitStereoToModel(const Scene& s, const CameraDesc& c, StereoDesc st, bool ipdGiven) {
+  if (!st.enabled || s.hasCamera || ipdGiven) return st;
+  const Bounds3 b = s.bounds();
+  const float nearest =
+      length(c.position - b.center()) - std::max(length(b.extent()) * 0.5f, 1e-3f);
+  st.ipd = std::min(st.ipd, std::max(nearest, 1e-4f) / 30.0f);
+  return st;
+}
+
 void fitNearPlane(CameraDesc& c) {
   c.nearPlane = std::min(c.nearPlane, length(c.lookAt - c.position) * 0.05f);
 }

@@ -12,6 +12,11 @@ CameraDesc defaultCamera(const Scene& s);
 // above unless another view shows at least a quarter more of the model's surface (projected
 // area of the faces turned towards it; both sides of double-sided faces).
 Vec3 autoViewDirection(const Scene& s);
+// The stereo pair for a scene without a camera of its own: the eyes no farther apart than 1/30
+// of the distance to the model's nearest point (the stereographer's rule), so both eyes frame a
+// model of any size as a viewer of small objects does. Unchanged when the scene has a camera or
+// `ipdGiven` (the user chose the distance).
+StereoDesc fitStereoToModel(const Scene& s, const CameraDesc& c, StereoDesc st, bool ipdGiven);
 // Keeps the near plane below 5 % of the distance to the target.
 void fitNearPlane(CameraDesc& c);
 // The camera on the scene's path at path time t (seconds); `base` when the scene has no path.

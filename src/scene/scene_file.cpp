@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 
+#include "core/assets.h"
 #include "core/image_io.h"
 #include "core/json_fields.h"
 #include "scene/builtin_scenes.h"
@@ -25,12 +26,19 @@ struct FileCtx {
 };
 
 std::string resolve(const FileCtx& c, const std::string& p) {
-  fs::path q(p);
+  fs::path q(expandAssetPath(p));
   return (q.is_absolute() ? q : c.dir / q).lexically_normal().string();
 }
 
-// A model the scene file refers to; its errors name the scene file and field as well.
-Scene loadModelFor(const FileCtx& c, const std::string& model, const std::string& field) {
+// A model the scene file refers to (as written there); its errors name the scene file and field
+// as well, and a missing third-party asset says how to point Tandem at it.
+Scene loadModelFor(const FileCtx& c, const std::string& written, const std::string& field) {
+  std::string model = resolve(c, written);
+  if (isAssetPath(written) && !fs::exists(model))
+    throw InputError(c.path, field,
+                     model +
+                         ": third-party asset not found (this optional scene needs the "
+                         "third-party scenes: set TANDEM_ASSETS to their folder)");
   try {
     return loadSceneByExtension(model);
   } catch (const InputError& e) {
@@ -155,8 +163,7 @@ void readObject(FileCtx& c, const Json& j, size_t index) {
     }
   };
   if (f.has("file")) {
-    std::string p = resolve(c, f.string("file", ""));
-    Scene sub = loadModelFor(c, p, f.field("file"));
+    Scene sub = loadModelFor(c, f.string("file", ""), f.field("file"));
     size_t first = c.scene.objects.size();
     // With animation the keyframes place the model; otherwise the object's transform does.
     c.scene.append(sub, keys.empty() ? xf.matrix() : Mat4(), material);
@@ -177,10 +184,15 @@ void readObject(FileCtx& c, const Json& j, size_t index) {
     int slices = f.integer("slices", 32, 3, 1024);
     int stacks = f.integer("stacks", 16, 2, 1024);
     mesh = makeUvSphere(slices, stacks);
+  } else if (shape == "knot") {
+    int p = f.integer("p", 2, 1, 16), q = f.integer("q", 3, 1, 16);
+    float tube = f.number("tube", 0.45f, 0.01f, 1.0f);
+    mesh = makeTorusKnot(p, q, tube, f.integer("segments", 256, 8, 8192),
+                         f.integer("sides", 24, 3, 1024));
   } else if (shape.empty()) {
-    f.fail("shape", "an object needs \"shape\" (plane, cube, sphere) or \"file\"");
+    f.fail("shape", "an object needs \"shape\" (plane, cube, sphere, knot) or \"file\"");
   } else {
-    f.fail("shape", "unknown shape '" + shape + "' (plane, cube, sphere)");
+    f.fail("shape", "unknown shape '" + shape + "' (plane, cube, sphere, knot)");
   }
   if (material < 0) material = c.scene.addMaterial(Material{});
   int obj = c.scene.addObject(name, c.scene.addMesh(std::move(mesh)), material,
@@ -367,7 +379,7 @@ Scene loadSceneFile(const std::string& path) {
   JsonFields f(root, path, "");
   if (f.has("base")) {
     std::string base = f.string("base", "");
-    s = isBuiltinScene(base) ? makeBuiltinScene(base) : loadModelFor(c, resolve(c, base), "base");
+    s = isBuiltinScene(base) ? makeBuiltinScene(base) : loadModelFor(c, base, "base");
     for (size_t i = 0; i < s.materials.size(); ++i) c.materials[s.materials[i].name] = int(i);
   }
   s.name = fs::path(path).stem().string();

@@ -16,6 +16,7 @@
 #include "passes/nh_denoise.h"
 #include "passes/periphery_accumulation.h"
 #include "pipeline/frame_context.h"
+#include "rt/diffuse_gi.h"
 #include "scene/builtin_scenes.h"
 #include "test_util.h"
 
@@ -662,4 +663,28 @@ TEST(Atrous, LevelsFromVarianceFollowTheNoisePerArea) {
   const double outer = ctx.counters.at("nh_denoise/levels_region2");
   EXPECT_GE(inner, 2);
   EXPECT_EQ(outer, inner + 1);
+}
+
+// The Lambert-only transport names the materials it draws black (a glTF metal), and only those.
+TEST(FoveatedPT, NamesTheMetalMaterialsItDrawsBlack) {
+  Scene s;
+  const int sphere = s.addMesh(makeUvSphere(8, 4));
+  Material chalk;
+  chalk.name = "chalk";
+  s.addObject("a", sphere, s.addMaterial(chalk));
+  EXPECT_TRUE(DiffuseGI::blackMaterials(s).empty());
+  EXPECT_EQ(DiffuseGI::blackMaterialsNote(s), "");
+  Material gold;
+  gold.name = "gold";
+  const BlinnPhongTerms t = fromMetallicRoughness({1.0f, 0.8f, 0.3f}, 1.0f, 0.3f);
+  gold.diffuse = t.diffuse;
+  gold.specular = t.specular;
+  gold.metallic = 1.0f;
+  s.addObject("b", sphere, s.addMaterial(gold));
+  Material unused;
+  unused.name = "unused";
+  unused.diffuse = Vec3(0.0f);
+  s.addMaterial(unused);
+  ASSERT_EQ(DiffuseGI::blackMaterials(s), std::vector<std::string>{"gold"});
+  EXPECT_NE(DiffuseGI::blackMaterialsNote(s).find("'gold'"), std::string::npos);
 }

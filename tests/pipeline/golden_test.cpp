@@ -61,7 +61,7 @@ std::vector<GoldenCase> goldenCases() {
       continue;
     }
     if (p.rfind("hybrid", 0) == 0 || p == "rt-only")
-      for (const char* s : {"atrium_spheres.json", "atrium_bunny.json"})
+      for (const char* s : {"atrium_spheres.json", "atrium_statue.json"})
         cases.push_back({p, std::string(TANDEM_SOURCE_DIR) + "/scenes/" + s});
   }
   cases.push_back({"accumulation-motion-blur",

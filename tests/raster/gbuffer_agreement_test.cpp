@@ -93,13 +93,15 @@ INSTANTIATE_TEST_SUITE_P(Builtins, GBufferAgreement,
                          ::testing::Values("cornell", "spheres", "atrium"));
 
 TEST(GBufferAgreementFiles, CornellObjAndWaterBottle) {
-  Scene c = loadScene(test::sharedScene("CornellBox/CornellBox-Sphere.obj"));
+  TANDEM_ASSET(cornellSphereObj, "CornellBox/CornellBox-Sphere.obj");
+  TANDEM_ASSET(waterBottle, "WaterBottle/glTF/WaterBottle.gltf");
+  Scene c = loadScene(cornellSphereObj);
   CameraDesc cam;
   cam.position = {0, 0.795f, 3.4f};
   cam.lookAt = {0, 0.795f, 0};
   cam.vfovDeg = 39.3f;
   expectAgreement(compareGBuffers(c, cam, 256, 256), 256 * 256);
-  Scene b = loadScene(test::sharedScene("WaterBottle/glTF/WaterBottle.gltf"));
+  Scene b = loadScene(waterBottle);
   cam.position = {0, 0.02f, 0.45f};
   cam.lookAt = {0, 0, 0};
   cam.vfovDeg = 45;

@@ -181,7 +181,7 @@ TEST(BadInput, GltfNanVertex) {
 }
 
 TEST(BadInput, GltfMalformed) {
-  expectLoadError("p.gltf", "{ not json", {"cannot parse glTF"});
+  expectLoadError("p.gltf", "{ not json", {"not a glTF JSON file", "line 1, column 4"});
 }
 
 TEST(BadInput, GltfMissingImage) {
@@ -249,4 +249,35 @@ TEST(BadInput, GltfBufferUriNamingAFolder) {
       "buffers": [{"byteLength": 36, "uri": ")" +
                         std::string(uri) + R"("}]})",
                     {"cannot parse glTF"});
+}
+
+// Files that are not what their extension says are named for what they are, and a message never
+// carries the file's raw bytes (control characters) to the terminal.
+TEST(BadInput, BinaryFileNamedObjIsNotAnObjTextFile) {
+  expectLoadError("model.obj", std::string("Kaydara FBX Binary  \0\x1a\0", 23) + "\x01\x02geometry",
+                  {"not an OBJ text file", "binary FBX"});
+  expectLoadError("blob.obj", std::string("v 0 0 0\n\0\0\x7f\x03", 12), {"not an OBJ text file"});
+}
+
+TEST(BadInput, GltfThatIsNotJsonSaysWhereAndStaysPrintable) {
+  auto dir = scratchDir("bad_gltf_bytes");
+  writeText(dir / "x.gltf",
+            std::string("{\"asset\": {\"version\": \"2.0\"},\n  \x01\x1b[31m\xff", 35));
+  try {
+    loadSceneByExtension((dir / "x.gltf").string());
+    FAIL() << "bytes loaded as glTF";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("not a glTF JSON file"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("line 2, column 3"), std::string::npos) << msg;
+    for (unsigned char c : msg) EXPECT_TRUE(c >= 0x20 && c != 0x7f) << int(c) << " in " << msg;
+  }
+  expectLoadError("array.gltf", "[1, 2]", {"not a glTF JSON file", "array"});
+}
+
+TEST(BadInput, GltfPrimitivesAsAnObjectNamesTheField) {
+  expectLoadError(
+      "prim.gltf",
+      kTriangleGltfHead + R"("meshes": [{"primitives": {"attributes": {"POSITION": 0}}}]})",
+      {"meshes[0].primitives", "must be an array", "object"});
 }

@@ -41,6 +41,40 @@ TEST(AutoCamera, SeesAFlatModelFaceOnFromEitherSide) {
   }
 }
 
+// An 8 mm quad seen in stereo through the automatic camera: both eyes render it (a 64 mm pair
+// would look past it on either side), and a model of human size keeps the human eye distance.
+TEST(AutoCamera, StereoFramesASmallModelForBothEyes) {
+  Scene s;
+  Mesh quad = makePlane(1);
+  for (Vec3& p : quad.positions) p = p * 0.004f;
+  s.addObject("quad", s.addMesh(std::move(quad)), s.addMaterial(Material{}));
+  s.lights.push_back(Light{});
+  s.lights.back().type = LightType::Directional;
+  s.lights.back().direction = {0, -1, 0};
+  const CameraDesc c = defaultCamera(s);
+  StereoDesc st;
+  st.enabled = true;
+  st = fitStereoToModel(s, c, st, false);
+  EXPECT_LT(st.ipd, 0.001f);
+  EXPECT_EQ(fitStereoToModel(s, c, StereoDesc{.enabled = true}, true).ipd, 0.064f);
+  Renderer r(s, Pipeline::load("deferred"),
+             RenderSettings{.width = 64, .height = 64, .stereo = st});
+  r.renderFrame(0, c);
+  const Buffer& hdr = r.output();
+  for (int eye = 0; eye < 2; ++eye) {
+    int covered = 0;
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) covered += luminance(hdr.rgb(eye * 64 + x, y)) > 0.05f;
+    EXPECT_GT(covered, 64 * 64 / 20) << "eye " << eye;
+  }
+  Scene big;  // a 6 m ball, seen from 5 m away
+  Mesh ball = makeUvSphere(16, 8);
+  for (Vec3& p : ball.positions) p = p * 3.0f;
+  big.addObject("ball", big.addMesh(std::move(ball)), big.addMaterial(Material{}));
+  EXPECT_EQ(fitStereoToModel(big, defaultCamera(big), StereoDesc{.enabled = true}, false).ipd,
+            0.064f);
+}
+
 TEST(AutoCamera, KeepsTheFrontViewForARoundModel) {
   // A sphere shows the same area from everywhere: the familiar front view stays.
   Scene s;

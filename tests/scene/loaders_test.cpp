@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include "core/image_io.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loaders.h"
@@ -7,11 +10,11 @@
 
 using namespace tandem;
 using tandem::test::scratchDir;
-using tandem::test::sharedScene;
 using tandem::test::writeText;
 
 TEST(ObjLoader, CornellBoxOriginal) {
-  Scene s = loadObj(sharedScene("CornellBox/CornellBox-Original.obj"));
+  TANDEM_ASSET(cornellObj, "CornellBox/CornellBox-Original.obj");
+  Scene s = loadObj(cornellObj);
   EXPECT_EQ(s.triangleCount(), 36u);
   EXPECT_GE(s.objects.size(), 8u);
   // The light's MTL Ke = (17, 12, 4) becomes the material's emission.
@@ -24,7 +27,8 @@ TEST(ObjLoader, CornellBoxOriginal) {
 }
 
 TEST(ObjLoader, IllumAndIorMapToOpticalProperties) {
-  Scene s = loadObj(sharedScene("CornellBox/CornellBox-Sphere.obj"));
+  TANDEM_ASSET(cornellSphereObj, "CornellBox/CornellBox-Sphere.obj");
+  Scene s = loadObj(cornellSphereObj);
   const Material *mirror = nullptr, *glass = nullptr;
   for (const Material& m : s.materials) {
     if (m.name == "leftSphere") mirror = &m;
@@ -41,8 +45,9 @@ TEST(ObjLoader, IllumAndIorMapToOpticalProperties) {
 }
 
 TEST(SceneFile, MaterialEditsChangeOnlyTheGivenFieldsOfBaseMaterials) {
-  // cornell_spheres.json keeps the clear glass sphere the heuristic experiment was measured on.
-  Scene s = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/cornell_spheres.json");
+  TANDEM_ASSET(cornellSphereObj, "CornellBox/CornellBox-Sphere.obj");
+  // cornell_spheres_obj.json clears the glass sphere of the original Cornell box OBJ.
+  Scene s = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/cornell_spheres_obj.json");
   const Material* glass = nullptr;
   for (const Material& m : s.materials)
     if (m.name == "rightSphere") glass = &m;
@@ -52,7 +57,7 @@ TEST(SceneFile, MaterialEditsChangeOnlyTheGivenFieldsOfBaseMaterials) {
   EXPECT_FLOAT_EQ(glass->ior, 2.5f);  // untouched fields stay the MTL's
   EXPECT_EQ(glass->opacity, 0.0f);
   auto dir = test::scratchDir("material_edits");
-  writeText(dir / "bad.json", R"({"base": ")" + sharedScene("CornellBox/CornellBox-Sphere.obj") +
+  writeText(dir / "bad.json", R"({"base": ")" + cornellSphereObj +
                                   R"(", "materialEdits": {"noSuchMaterial": {"ior": 1.2}}})");
   try {
     loadScene((dir / "bad.json").string());
@@ -63,7 +68,8 @@ TEST(SceneFile, MaterialEditsChangeOnlyTheGivenFieldsOfBaseMaterials) {
 }
 
 TEST(EmissiveLights, CornellLightBecomesCosineSpotWithKeTimesArea) {
-  Scene s = loadScene(sharedScene("CornellBox/CornellBox-Original.obj"));
+  TANDEM_ASSET(cornellObj, "CornellBox/CornellBox-Original.obj");
+  Scene s = loadScene(cornellObj);
   ASSERT_EQ(s.lights.size(), 1u);
   const Light& l = s.lights[0];
   EXPECT_EQ(l.type, LightType::Spot);
@@ -73,13 +79,13 @@ TEST(EmissiveLights, CornellLightBecomesCosineSpotWithKeTimesArea) {
   EXPECT_NEAR(l.intensity, 17.0f * 0.1786f, 0.05f * 17.0f * 0.1786f);
   EXPECT_NEAR(l.position.y, 1.98f, 0.02f);
   // Turned off on request.
-  Scene off = loadScene(sharedScene("CornellBox/CornellBox-Original.obj"),
-                        {LoadOptions::EmissiveLights::Off});
+  Scene off = loadScene(cornellObj, {LoadOptions::EmissiveLights::Off});
   EXPECT_TRUE(off.lights.empty());
 }
 
 TEST(ObjLoader, BunnyWithoutNormalsGetsSmoothNormals) {
-  Scene s = loadObj(sharedScene("StanfordBunny/bunny.obj"));
+  TANDEM_ASSET(bunnyObj, "StanfordBunny/bunny.obj");
+  Scene s = loadObj(bunnyObj);
   EXPECT_EQ(s.triangleCount() + s.stats.degenerateTriangles, 69451u);
   const Mesh& m = s.meshes[s.objects[0].mesh];
   ASSERT_EQ(m.normals.size(), m.positions.size());
@@ -87,7 +93,8 @@ TEST(ObjLoader, BunnyWithoutNormalsGetsSmoothNormals) {
 }
 
 TEST(GltfLoader, WaterBottleHasTexturesAndNodeRotation) {
-  Scene s = loadGltf(sharedScene("WaterBottle/glTF/WaterBottle.gltf"));
+  TANDEM_ASSET(waterBottle, "WaterBottle/glTF/WaterBottle.gltf");
+  Scene s = loadGltf(waterBottle);
   EXPECT_EQ(s.triangleCount(), 4510u);  // scene README
   ASSERT_EQ(s.objects.size(), 1u);
   const Material& m = s.materials[s.objects[0].material];
@@ -117,7 +124,8 @@ TEST(Material, MetallicRoughnessMapping) {
 }
 
 TEST(GltfLoader, SuzanneMetallicRoughnessMapping) {
-  Scene s = loadGltf(sharedScene("Suzanne/glTF/Suzanne.gltf"));
+  TANDEM_ASSET(suzanne, "Suzanne/glTF/Suzanne.gltf");
+  Scene s = loadGltf(suzanne);
   EXPECT_EQ(s.triangleCount(), 3936u);
   const Material& m = s.materials[s.objects[0].material];
   EXPECT_GE(m.diffuseTexture, 0);
@@ -171,8 +179,16 @@ TEST(GltfLoader, ExtensionsLightsAndCamera) {
   EXPECT_NEAR(s.objects[0].worldMatrix(0).transformPoint({0, 0, 0}).x, 1.0f, 1e-6f);
 }
 
+// A tetrahedron as an OBJ file, for scene files that place a model.
+std::string writeTetrahedronObj(const std::filesystem::path& dir) {
+  writeText(dir / "tet.obj",
+            "o tet\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  return (dir / "tet.obj").string();
+}
+
 TEST(SceneFile, PrimitivesMaterialsLightsCameraAnimation) {
   auto dir = scratchDir("scene_file");
+  const std::string model = writeTetrahedronObj(dir);
   writeText(dir / "s.json", R"({
   "materials": {"red": {"diffuse": [0.8, 0.1, 0.1], "specular": [0.5, 0.5, 0.5], "specularExponent": 64,
                         "reflectivity": 0.3, "ior": 1.4, "opacity": 0.5, "tiling": [2, 3], "offset": [0.1, 0.2],
@@ -182,9 +198,8 @@ TEST(SceneFile, PrimitivesMaterialsLightsCameraAnimation) {
      "heuristic": {"K": 2.5, "E": 3}},
     {"name": "floor", "shape": "plane", "scale": [5, 1, 5]},
     {"name": "box", "shape": "cube", "animation": [{"time": 0, "position": [0, 0, 0]}, {"time": 1, "position": [2, 0, 0]}]},
-    {"name": "bunny", "file": ")" +
-                                sharedScene("StanfordBunny/bunny.obj") +
-                                R"(", "scale": [2, 2, 2], "material": "red"}
+    {"name": "model", "file": ")" +
+                                model + R"(", "scale": [2, 2, 2], "material": "red"}
   ],
   "lights": [{"type": "point", "position": [0, 4, 0], "intensity": 20},
              {"type": "spot", "position": [0, 4, 0], "direction": [0, -1, 0], "innerCone": 10, "outerCone": 20},
@@ -213,7 +228,7 @@ TEST(SceneFile, PrimitivesMaterialsLightsCameraAnimation) {
 TEST(SceneFile, BaseBuiltinPlusModel) {
   auto dir = scratchDir("scene_base");
   writeText(dir / "s.json", R"({"base": "cornell", "objects": [{"file": ")" +
-                                sharedScene("StanfordBunny/bunny.obj") +
+                                writeTetrahedronObj(dir) +
                                 R"(", "material": "glass", "position": [0, 0, 0]}]})");
   Scene s = loadSceneFile((dir / "s.json").string());
   Scene base = makeCornellScene();
@@ -224,12 +239,12 @@ TEST(SceneFile, BaseBuiltinPlusModel) {
 // objectHeuristics sets K and E on objects that came from the base scene, by name.
 TEST(SceneFile, ObjectHeuristicsByName) {
   auto dir = scratchDir("scene_object_heuristics");
-  writeText(dir / "s.json", R"({"base": ")" + sharedScene("CornellBox/CornellBox-Sphere.obj") +
-                                R"(", "objectHeuristics": {"leftSphere": {"K": 4, "E": 0.5}}})");
+  writeText(dir / "s.json",
+            R"({"base": "cornell", "objectHeuristics": {"mirrorSphere": {"K": 4, "E": 0.5}}})");
   Scene s = loadSceneFile((dir / "s.json").string());
   int found = 0;
   for (const Object& o : s.objects) {
-    bool left = o.name == "leftSphere";
+    bool left = o.name == "mirrorSphere";
     found += left;
     EXPECT_FLOAT_EQ(o.heuristic.K, left ? 4.0f : 1.0f) << o.name;
     EXPECT_FLOAT_EQ(o.heuristic.E, left ? 0.5f : 1.0f) << o.name;
@@ -237,9 +252,46 @@ TEST(SceneFile, ObjectHeuristicsByName) {
   EXPECT_EQ(found, 1);
 }
 
-// The experiment's scene files load (they reference ../shared/scenes beside the checkout).
+// Every scene file in scenes/ loads; those made of Tandem's own shapes need no file outside the
+// repository, the optional real-model variants load when the third-party scenes are there.
+TEST(SceneFile, RepositoryScenesLoad) {
+  const bool assets = std::filesystem::exists(test::assetPath("StanfordBunny/bunny.obj"));
+  int loaded = 0;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(TANDEM_SOURCE_DIR) + "/scenes")) {
+    if (e.path().extension() != ".json") continue;
+    std::ifstream in(e.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // Third-party files are named through $TANDEM_ASSETS only, never by a path beside the clone.
+    EXPECT_EQ(text.find("shared/scenes"), std::string::npos) << e.path();
+    if (text.find(kAssetsPrefix) != std::string::npos && !assets) continue;
+    Scene s = loadScene(e.path().string());
+    EXPECT_GT(s.triangleCount(), 0u) << e.path();
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 16);
+}
+
+// A missing third-party file names the scene file, the field and the variable to set.
+TEST(SceneFile, MissingThirdPartyAssetSaysHowToFindIt) {
+  auto dir = scratchDir("scene_missing_asset");
+  writeText(dir / "s.json",
+            R"({"base": "cornell", "objects": [{"file": "$TANDEM_ASSETS/NoSuchModel/m.obj"}]})");
+  try {
+    loadScene((dir / "s.json").string());
+    FAIL() << "a missing asset loaded";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("s.json"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("objects[0].file"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("TANDEM_ASSETS"), std::string::npos) << msg;
+  }
+}
+
+// The heuristic experiment's scenes carry a camera path and objects worth rays.
 TEST(SceneFile, ExperimentScenesLoad) {
-  for (const char* name : {"atrium_spheres", "atrium_bunny", "cornell_spheres", "cornell_bunny"}) {
+  for (const char* name :
+       {"atrium_spheres", "atrium_statue", "cornell_spheres", "cornell_statue"}) {
     Scene s = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/" + name + ".json");
     EXPECT_FALSE(s.cameraPath.empty()) << name;
     int relevant = 0;
@@ -301,4 +353,32 @@ TEST(SceneFile, SkyboxFaces) {
     Vec3 c = s.skyRadiance(axes[k]);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i], colours[k][i], 1e-5f) << "face " << k;
   }
+}
+
+// The knot statue is a closed tube facing outwards: its signed volume (divergence theorem) is the
+// tube's pi r^2 L, and each face turns the way its vertex normals point.
+TEST(Primitives, TorusKnotIsAClosedOutwardTubeInTheUnitCube) {
+  const int segments = 256, sides = 24;
+  const float tube = 0.45f, r = tube / (3 + tube);
+  Mesh m = makeTorusKnot(2, 3, tube, segments, sides);
+  double volume = 0;
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    const uint32_t* i = &m.indices[3 * t];
+    Vec3 a = m.positions[i[0]], b = m.positions[i[1]], c = m.positions[i[2]];
+    volume += dot(a, cross(b, c)) / 6.0;
+    Vec3 fn = cross(b - a, c - a);
+    ASSERT_GT(dot(fn, m.normals[i[0]] + m.normals[i[1]] + m.normals[i[2]]), 0.0f) << t;
+  }
+  double length = 0;
+  Vec3 prev;
+  for (int s = 0; s <= segments; ++s) {
+    Vec3 centre(0.0f);
+    for (int j = 0; j < sides; ++j) centre += m.positions[s * (sides + 1) + j];
+    centre = centre / float(sides);
+    if (s > 0) length += double(::tandem::length(centre - prev));
+    prev = centre;
+  }
+  EXPECT_NEAR(volume, kPi * r * r * length, 0.02 * kPi * r * r * length);
+  for (const Vec3& p : m.positions)
+    for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(p[k]), 1.0f + 1e-5f);
 }
