@@ -140,6 +140,9 @@ struct ExperimentVerb {
         for (GalleryRow& r : go.rows) r.frames = 0;  // --frames sets every row's
       }
       if (!o.scenes.empty()) throw InputError("command line", "--scenes", "not for a gallery");
+      go.cache = o.noCache ? "" : o.cache;
+      if (o.spp)
+        for (GalleryRow& r : go.rows) r.groundTruth.spp = o.spp;
       auto limit = threads > 0 ? std::make_unique<tbb::global_control>(
                                      tbb::global_control::max_allowed_parallelism, threads)
                                : nullptr;
