@@ -7,6 +7,7 @@ pkgs=(
   libembree-dev libtbb-dev libhwy-dev libtinygltf-dev libtinyobjloader-dev libstb-dev libdraco-dev
   libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-openimageio
   libopenmpi-dev openmpi-bin gnuplot-nox
   libglfw3-dev libimgui-dev libgl-dev xvfb xauth libgl1-mesa-dri
 )

@@ -22,6 +22,27 @@ namespace {
 struct RenderVerb {
   RenderOptions opts;
 
+  std::string exrLayers;  // --exr-layers: hdr and every --aov buffer in one multi-layer EXR
+
+  // The frame's hdr (or output) as R, G, B and each AOV of the frame's size as a layer named
+  // after it; other sizes are left to their own files.
+  std::vector<unsigned char> layeredExr(const FrameContext& ctx,
+                                        const std::vector<std::string>& aovs) const {
+    const Buffer& main = ctx.buffers.count("hdr") ? ctx.input("hdr") : ctx.input("output");
+    std::vector<ExrLayer> layers{{"", &main}};
+    for (const std::string& a : aovs) {
+      const Buffer& b = ctx.input(a);
+      if (b.width == main.width && b.height == main.height)
+        layers.push_back({a, &b});
+      else
+        std::fprintf(stderr,
+                     "tandem: --exr-layers: '%s' is %dx%d, not the frame's size: only "
+                     "in its own file\n",
+                     a.c_str(), b.width, b.height);
+    }
+    return encodeExrLayers(exrLayers, layers);
+  }
+
   int run() {
     validateRenderOptions(opts);
     auto threads = limitThreads(opts);
@@ -36,6 +57,8 @@ struct RenderVerb {
             "command line", "--aov",
             "pipeline '" + pipeline.name + "' has no buffer '" + a + "' (has: " + list + ")");
       }
+    if (!exrLayers.empty() && !hasExtension(exrLayers, ".exr"))
+      throw InputError("command line", "--exr-layers", "must name an .exr file");
     // Work out every output path before rendering, so bad paths fail fast and nothing is written.
     std::string out = opts.out.empty() ? "out" : opts.out;
     bool isFile = hasExtension(out, ".png") || hasExtension(out, ".exr");
@@ -94,6 +117,7 @@ struct RenderVerb {
       std::string p = base.string() + "_" + a + ext;
       stage(p, encodeBuffer(p, ctx.input(a)));
     }
+    if (!exrLayers.empty()) stage(exrLayers, layeredExr(ctx, aovs));
     files.commit();
     for (const std::string& p : written) std::printf("wrote %s\n", p.c_str());
     return 0;
@@ -107,6 +131,9 @@ VerbRunner addRenderVerb(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("render", "Render a scene through a pipeline to PNG/EXR");
   sub->add_option("scene", verb->opts.scene, "Scene (same as --scene)");
   addRenderOptions(sub, verb->opts);
+  sub->add_option("--exr-layers", verb->exrLayers,
+                  "Also write hdr and every --aov buffer as layers of one EXR (layer.channel "
+                  "names, as pbrt-v4 and Mitsuba write them)");
   return [verb] { return verb->run(); };
 }
 

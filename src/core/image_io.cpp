@@ -85,34 +85,81 @@ std::vector<unsigned char> encodePng(const std::string& path, const Buffer& img)
   return file;
 }
 
-std::vector<unsigned char> encodeExr(const std::string& path, const Buffer& img, bool half) {
-  checkEncodable(path, img);
+namespace {
+
+// Channel names of one layer: a layer's own letters by what its values mean (R G B A for colours
+// and material terms, X Y Z W for vectors, Z for depth, Y for other scalars), prefixed with
+// "layer." as pbrt-v4 and Mitsuba name them; the unnamed layer keeps the bare letters.
+std::vector<std::string> exrChannelNames(const ExrLayer& l) {
   static const char* kRgba[] = {"R", "G", "B", "A"};
-  int c = std::min(img.channels, 4);
+  static const char* kXyzw[] = {"X", "Y", "Z", "W"};
+  const Buffer& b = *l.buffer;
+  const int c = std::min(b.channels, 4);
+  const bool vector = b.kind == BufferKind::Normal || b.kind == BufferKind::Position ||
+                      b.kind == BufferKind::Motion;
+  std::vector<std::string> names;
+  for (int k = 0; k < c; ++k) {
+    std::string n = c == 1   ? (b.kind == BufferKind::Depth && !l.name.empty() ? "Z" : "Y")
+                    : vector ? kXyzw[k]
+                             : kRgba[k];
+    names.push_back(l.name.empty() ? n : l.name + "." + n);
+  }
+  return names;
+}
+
+}  // namespace
+
+std::vector<unsigned char> encodeExrLayers(const std::string& path,
+                                           const std::vector<ExrLayer>& layers, bool half) {
+  if (layers.empty()) throw InputError(path, "", "EXR encoding failed: no layers");
+  for (const ExrLayer& l : layers) {
+    checkEncodable(path, *l.buffer);
+    if (l.buffer->width != layers[0].buffer->width || l.buffer->height != layers[0].buffer->height)
+      throw InputError(path, l.name,
+                       "layer is " + std::to_string(l.buffer->width) + "x" +
+                           std::to_string(l.buffer->height) + ", not the image's " +
+                           std::to_string(layers[0].buffer->width) + "x" +
+                           std::to_string(layers[0].buffer->height));
+  }
+  const int w = layers[0].buffer->width, h = layers[0].buffer->height;
   MemoryStream stream;
   try {
-    Imf::Header header(img.width, img.height);
+    Imf::Header header(w, h);
     Imf::FrameBuffer fb;
     // OpenEXR converts on read but not on write: half channels need half pixels.
-    std::vector<Imath::half> halves(half ? img.data.size() : 0);
-    for (size_t i = 0; i < halves.size(); ++i) halves[i] = Imath::half(img.data[i]);
+    std::vector<std::vector<Imath::half>> halves(layers.size());
     const size_t bytes = half ? sizeof(Imath::half) : sizeof(float);
-    const char* base = half ? (const char*)halves.data() : (const char*)img.data.data();
-    for (int k = 0; k < c; ++k) {
-      const char* name = c == 1 ? "Y" : kRgba[k];
-      const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
-      header.channels().insert(name, Imf::Channel(type));
-      fb.insert(name, Imf::Slice(type, (char*)(base + k * bytes), bytes * img.channels,
-                                 bytes * img.channels * img.width));
+    const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
+    for (size_t li = 0; li < layers.size(); ++li) {
+      const Buffer& img = *layers[li].buffer;
+      if (half) {
+        halves[li].resize(img.data.size());
+        for (size_t i = 0; i < img.data.size(); ++i) halves[li][i] = Imath::half(img.data[i]);
+      }
+      const char* base = half ? (const char*)halves[li].data() : (const char*)img.data.data();
+      const std::vector<std::string> names = exrChannelNames(layers[li]);
+      for (size_t k = 0; k < names.size(); ++k) {
+        if (header.channels().findChannel(names[k]))
+          throw InputError(path, names[k], "two layers write the same channel");
+        header.channels().insert(names[k], Imf::Channel(type));
+        fb.insert(names[k], Imf::Slice(type, (char*)(base + k * bytes), bytes * img.channels,
+                                       bytes * img.channels * img.width));
+      }
     }
     // The file is complete (line-offset table included) once OutputFile is destroyed.
     Imf::OutputFile file(stream, header);
     file.setFrameBuffer(fb);
-    file.writePixels(img.height);
+    file.writePixels(h);
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError(path, "", std::string("EXR encoding failed: ") + e.what());
   }
   return std::move(stream.bytes);
+}
+
+std::vector<unsigned char> encodeExr(const std::string& path, const Buffer& img, bool half) {
+  return encodeExrLayers(path, {{"", &img}}, half);
 }
 
 void writePng(const std::string& path, const Buffer& img) {

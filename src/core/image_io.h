@@ -17,6 +17,16 @@ void writeExr(const std::string& path, const Buffer& img, bool half = false);
 // names the file in errors.
 std::vector<unsigned char> encodePng(const std::string& path, const Buffer& img);
 std::vector<unsigned char> encodeExr(const std::string& path, const Buffer& img, bool half = false);
+// One layer of a multi-layer EXR: its channels are named "name.R", "name.G", ... (colours and
+// material terms), "name.X", ... (normals, positions, motion), "name.Z" (depth) or "name.Y"
+// (other scalars); an empty name gives the bare R, G, B (the image viewers show).
+struct ExrLayer {
+  std::string name;
+  const Buffer* buffer = nullptr;
+};
+// Every layer in one float (or half) EXR; all layers must have the same size.
+std::vector<unsigned char> encodeExrLayers(const std::string& path,
+                                           const std::vector<ExrLayer>& layers, bool half = false);
 // Loads PNG/JPEG (values in [0,1], display encoded) or EXR (linear float); RGB output.
 Buffer loadImage(const std::string& path);
 // Loads an 8-bit image file for texturing: RGBA in [0,1], not yet linearised.

@@ -67,10 +67,22 @@ ExperimentReport::ExperimentReport(fs::path dir, std::string title)
   if (!dir_.empty()) fs::create_directories(dir_);
 }
 
+namespace {
+
+// One CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
+std::string csvField(const std::string& v) {
+  if (v.find_first_of(",\"\n\r") == std::string::npos) return v;
+  std::string q = "\"";
+  for (char c : v) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
 void ExperimentReport::table(const std::string& name, const std::vector<std::string>& header,
                              const std::vector<std::vector<std::string>>& rows) {
   std::ostringstream csv, md;
-  for (size_t i = 0; i < header.size(); ++i) csv << (i ? "," : "") << header[i];
+  for (size_t i = 0; i < header.size(); ++i) csv << (i ? "," : "") << csvField(header[i]);
   csv << "\n";
   md << "|";
   for (const std::string& h : header) md << " " << h << " |";
@@ -80,7 +92,7 @@ void ExperimentReport::table(const std::string& name, const std::vector<std::str
   for (const auto& row : rows) {
     md << "|";
     for (size_t i = 0; i < row.size(); ++i) {
-      csv << (i ? "," : "") << row[i];
+      csv << (i ? "," : "") << csvField(row[i]);
       md << " " << row[i] << " |";
     }
     csv << "\n";

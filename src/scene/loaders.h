@@ -1,5 +1,6 @@
 // Scene loaders. Each throws InputError naming the file, the field and the problem.
 #pragma once
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "scene/scene.h"
@@ -15,6 +16,13 @@ struct LoadOptions {
 Scene loadObj(const std::string& path);
 Scene loadGltf(const std::string& path);
 Scene loadSceneFile(const std::string& path);  // Tandem JSON
+// A Tandem scene given as JSON text's parsed object (from Python, say): `source` names it in
+// errors and is its name, `dir` is where relative paths start.
+Scene loadSceneJson(const nlohmann::json& root, const std::string& source, const std::string& dir);
+
+// One entry of a scene file's "lights" (docs/scene-format.md); errors name `source` and
+// lights[index].
+Light lightFromJson(const nlohmann::json& j, const std::string& source, size_t index);
 
 // A `.gltf`/`.glb`/`.obj`/`.json` path or a built-in name; applies LoadOptions afterwards.
 Scene loadScene(const std::string& pathOrName, const LoadOptions& opts = {});

@@ -372,10 +372,18 @@ void readSkybox(FileCtx& c, const Json& j) {
 
 }  // namespace
 
+Light lightFromJson(const Json& j, const std::string& source, size_t index) {
+  Scene unused;
+  return readLight(FileCtx{source, fs::path("."), unused, {}, {}}, j, index);
+}
+
 Scene loadSceneFile(const std::string& path) {
-  Json root = readJsonFile(path);
+  return loadSceneJson(readJsonFile(path), path, fs::path(path).parent_path().string());
+}
+
+Scene loadSceneJson(const Json& root, const std::string& path, const std::string& dir) {
   Scene s;
-  FileCtx c{path, fs::path(path).parent_path(), s, {}, {}};
+  FileCtx c{path, fs::path(dir), s, {}, {}};
   JsonFields f(root, path, "");
   if (f.has("base")) {
     std::string base = f.string("base", "");

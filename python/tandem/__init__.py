@@ -1,0 +1,204 @@
+"""Tandem from Python: render through any pipeline and get its buffers as numpy arrays, render
+references, compare images and run the papers' experiments.
+
+    import tandem
+    r = tandem.Renderer("scenes/atrium_spheres.json", pipeline="hybrid-heuristic",
+                        width=640, height=360)
+    r.set("heuristic.budget", 2e5)
+    out = r.render(frames=4)          # {"hdr": (360, 640, 3) float32, "output": ..., "depth": ...}
+    truth = r.render_reference(integrator="whitted", spp=16)
+    print(tandem.compare(out["output"], truth["output"]))
+
+Scenes are files, built-in names ("cornell", "spheres", "atrium") or dicts shaped like the scene
+JSON (docs/scene-format.md); pipelines are built-in names, files or dicts shaped like the pipeline
+JSON (docs/pipelines.md). Bad input raises tandem.Error (a ValueError) with the message the CLI
+prints. Rendering releases the GIL. See docs/python.md.
+"""
+import csv
+import json
+import os
+
+from . import _tandem
+from ._tandem import Error
+
+__all__ = ["Renderer", "Error", "reference", "compare", "experiment", "experiments", "pipelines",
+           "default_cache"]
+
+
+def _spec(value, what):
+    """(name or path, JSON text) for a scene or pipeline given as a string, a path or a dict."""
+    if isinstance(value, dict):
+        return "", json.dumps(value)
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value), ""
+    raise TypeError(f"{what} must be a name, a path or a dict, not {type(value).__name__}")
+
+
+def _json_value(value):
+    """A parameter value as --set writes it: JSON, or a bare enum choice."""
+    if isinstance(value, str):
+        return value
+    return json.dumps(value)
+
+
+def default_cache():
+    """The reference cache folder the CLI uses: $TANDEM_REFERENCE_CACHE or out/reference-cache."""
+    return os.environ.get("TANDEM_REFERENCE_CACHE") or "out/reference-cache"
+
+
+class Renderer:
+    """A scene rendered through a pipeline, kept alive across renders (temporal passes carry
+    their history from one render() to the next, as frames of `tandem render --frames`)."""
+
+    def __init__(self, scene="cornell", pipeline="hybrid-heuristic", width=640, height=360,
+                 stereo=False, shutter=0.0, seed=0, camera=None, lights=None, sets=None):
+        scene_name, scene_json = _spec(scene, "scene")
+        pipe_name, pipe_json = _spec(pipeline, "pipeline")
+        self._scene = (scene_name, scene_json)
+        self._r = _tandem.Renderer(scene_name, scene_json, pipe_name, pipe_json, int(width),
+                                   int(height), bool(stereo), float(shutter), int(seed))
+        self.width, self.height = int(width), int(height)
+        if camera:
+            self.set_camera(**camera)
+        if lights is not None:
+            self.lights = lights
+        for name, value in (sets or {}).items():
+            self.set(name, value)
+
+    def set(self, name, value=None):
+        """Sets a pass parameter, checked as --set is: set("heuristic.budget", 1e5) or
+        set("heuristic.budget=1e5")."""
+        self._r.set(name if value is None else f"{name}={_json_value(value)}")
+
+    @property
+    def camera(self):
+        """The camera as a scene-file "camera" object (position, lookAt, up, vfov, aperture, ...)."""
+        return json.loads(self._r.camera_json())
+
+    @camera.setter
+    def camera(self, fields):
+        self.set_camera(**fields)
+
+    def set_camera(self, **fields):
+        """Changes the given camera fields (scene-file names: position, lookAt, up, vfov,
+        aperture, focalLength, focusDistance, sensorWidth, blades, ...); the rest stay."""
+        self._r.set_camera(json.dumps(fields))
+
+    @property
+    def lights(self):
+        return self._r.lights()
+
+    @lights.setter
+    def lights(self, lights):
+        """Replaces the scene's lights with scene-file "lights" entries (history starts over)."""
+        self._r.set_lights(json.dumps(list(lights)))
+
+    @property
+    def shutter(self):
+        return self._r.shutter
+
+    @shutter.setter
+    def shutter(self, seconds):
+        self._r.shutter = float(seconds)
+
+    @property
+    def stereo(self):
+        return self._r.stereo
+
+    @stereo.setter
+    def stereo(self, on):
+        self._r.stereo = bool(on)
+
+    @property
+    def frame(self):
+        """How many frames this renderer has rendered."""
+        return self._r.frame
+
+    def render(self, frames=1):
+        """Renders `frames` more frames; returns the last one's buffers by name as float32 arrays
+        (height, width[, channels]): "hdr", "output" (display-encoded, what the PNG holds),
+        "depth", "normal", "object_id" and every other buffer the pipeline's passes write."""
+        return self._r.render(int(frames))
+
+    def timings(self):
+        """Milliseconds of the last frame: {"frame": total, "passes": {label: ms}}."""
+        return self._r.timings()
+
+    def counters(self):
+        """The figures the passes reported for the last frame (rays per pixel, shares, ...)."""
+        return self._r.counters()
+
+    def buffers(self):
+        """Names of the buffers the pipeline's passes write."""
+        return self._r.buffers()
+
+    def cut(self):
+        """Starts every temporal pass over (an unrelated next camera)."""
+        self._r.cut()
+
+    def render_reference(self, integrator="path", spp=64, cache=None, seed=0):
+        """The reference of this renderer's scene, camera, size, shutter and stereo pair."""
+        return reference(dict_or_name(self._scene), integrator=integrator, spp=spp,
+                         width=self.width, height=self.height, camera=self.camera,
+                         shutter=self.shutter, stereo=self.stereo, cache=cache, seed=seed)
+
+
+def dict_or_name(scene):
+    name, text = scene
+    return json.loads(text) if text else name
+
+
+def reference(scene="cornell", integrator="path", spp=64, width=640, height=360, camera=None,
+              time=0.0, shutter=0.0, stereo=False, cache=None, seed=0):
+    """A reference render (`tandem reference`): integrator "path", "whitted" (the same shading
+    as the pipelines, with lens and shutter) or "diffuse-gi" (the foveated path tracer,
+    converged). Cached as the CLI caches (cache="" renders anew). Returns {"hdr", "output",
+    "variance", "spp", "seconds", "from_cache"}."""
+    name, text = _spec(scene, "scene")
+    return _tandem.reference(name, text, integrator, int(spp), int(width), int(height),
+                             json.dumps(camera) if camera else "", float(time), float(shutter),
+                             bool(stereo), default_cache() if cache is None else cache, int(seed))
+
+
+def compare(a, b, hdr=False, maps=False):
+    """RMSE, PSNR, SSIM and FLIP between two images (a is the reference for FLIP). `hdr`:
+    FLIP sees both tonemapped as `render` writes them. `maps`: also "ssim_map" and "flip_map"."""
+    return _tandem.compare(a, b, bool(hdr), bool(maps))
+
+
+def _number(text):
+    try:
+        return int(text)
+    except ValueError:
+        try:
+            return float(text)
+        except ValueError:
+            return text
+
+
+def experiment(name, out=None, scenes=None, width=0, height=0, warmup=-1, frames=0, spp=0,
+               cache=None, no_cache=False, static_frames=-1, path_frames=-1, budget=-1.0,
+               budget_ms=-1.0, threads=0):
+    """Runs `tandem experiment NAME` with the same overrides; returns {"out": folder,
+    "tables": {table: [row dicts]}}, the tables it wrote as CSV, numbers as numbers."""
+    folder = _tandem.run_experiment(
+        name, out or "", list(scenes or []), int(width), int(height), int(warmup), int(frames),
+        int(spp), default_cache() if cache is None else cache, bool(no_cache),
+        int(static_frames), int(path_frames), float(budget), float(budget_ms), int(threads))
+    tables = {}
+    for entry in sorted(os.listdir(folder)):
+        if entry.endswith(".csv"):
+            with open(os.path.join(folder, entry), newline="") as f:
+                tables[entry[:-4]] = [{k: _number(v) for k, v in row.items()}
+                                      for row in csv.DictReader(f)]
+    return {"out": folder, "tables": tables}
+
+
+def experiments():
+    """The built-in experiments: [(name, title)]."""
+    return _tandem.experiments()
+
+
+def pipelines():
+    """The built-in pipeline names."""
+    return _tandem.pipelines()

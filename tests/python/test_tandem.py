@@ -1,0 +1,209 @@
+"""The Python module through the package users import: buffers equal to what the CLI writes,
+settings checked as --set is, errors with the CLI's messages, the GIL released while rendering,
+flat memory over many renders, references, metrics, experiments and multi-layer EXR."""
+import os
+import subprocess
+import threading
+
+import numpy as np
+import OpenImageIO as oiio
+import pytest
+
+import tandem
+
+SRC = os.environ.get("TANDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+BINARY = os.environ.get("TANDEM", "tandem")
+SCRATCH = os.environ.get("TANDEM_TEST_SCRATCH", "/tmp/tandem-python-tests")
+
+
+def scratch(name):
+    d = os.path.join(SCRATCH, name)
+    os.makedirs(d, exist_ok=True)
+    return d
+
+
+def read_exr(path):
+    """{channel name: (h, w) float32} of an EXR, read by OpenImageIO."""
+    inp = oiio.ImageInput.open(path)
+    assert inp, oiio.geterror()
+    spec = inp.spec()
+    pixels = inp.read_image(0, 0, 0, spec.nchannels, "float")
+    inp.close()
+    return {name: pixels[:, :, k] for k, name in enumerate(spec.channelnames)}
+
+
+def test_render_returns_named_float32_buffers():
+    r = tandem.Renderer("cornell", pipeline="deferred", width=64, height=36)
+    out = r.render()
+    for name in ("hdr", "output", "depth", "normal", "object_id"):
+        assert name in out, name
+        assert out[name].dtype == np.float32
+        assert out[name].shape[:2] == (36, 64)
+        assert np.isfinite(out[name]).all()
+    assert out["hdr"].shape == (36, 64, 3) and out["depth"].shape == (36, 64)
+    assert out["hdr"].mean() > 0.02, "the Cornell box is lit"
+    assert set(r.buffers()) <= set(out)
+    assert r.frame == 1
+    t = r.timings()
+    assert t["frame"] > 0 and "vbuffer_shading" in t["passes"]
+
+
+def test_buffers_equal_what_the_cli_writes():
+    d = scratch("cli_equal")
+    subprocess.run([BINARY, "render", "cornell", "--pipeline", "hybrid-heuristic", "--width", "48",
+                    "--height", "27", "--aov", "depth,normal", "--exr-layers",
+                    os.path.join(d, "layers.exr"), "--out", os.path.join(d, "x.exr")],
+                   check=True, capture_output=True)
+    out = tandem.Renderer("cornell", pipeline="hybrid-heuristic", width=48, height=27).render()
+    layers = read_exr(os.path.join(d, "layers.exr"))
+    for k, c in enumerate("RGB"):
+        np.testing.assert_array_equal(layers[c], out["hdr"][:, :, k])
+    np.testing.assert_array_equal(layers["depth.Z"], out["depth"])
+    for k, c in enumerate("XYZ"):
+        np.testing.assert_array_equal(layers["normal." + c], out["normal"][:, :, k])
+    # The single-file output is the display image; its AOV files hold the raw buffers.
+    single = read_exr(os.path.join(d, "x.exr"))
+    np.testing.assert_array_equal(single["R"], out["output"][:, :, 0])
+    np.testing.assert_array_equal(read_exr(os.path.join(d, "x_depth.exr"))["Y"], out["depth"])
+
+
+def test_settings_are_checked_as_set_is():
+    r = tandem.Renderer("spheres", pipeline="hybrid-heuristic", width=32, height=18)
+    r.set("heuristic.budget", 0)
+    r.set("heuristic.budget=1000")
+    with pytest.raises(tandem.Error, match="budget"):
+        r.set("heuristic.budget", -1)
+    with pytest.raises(tandem.Error, match="no_such_pass"):
+        r.set("no_such_pass.x", 1)
+    with pytest.raises(ValueError):  # tandem.Error is a ValueError
+        r.set("heuristic.no_such_param", 1)
+
+
+def test_budget_zero_traces_no_secondary_rays():
+    r = tandem.Renderer("spheres", pipeline="hybrid-heuristic", width=64, height=36)
+    r.set("heuristic.budget", 0)
+    r.render()
+    c = r.counters()
+    assert c["heuristic/selected"] == 0 and c["rt_secondary/shadow_rays_per_pixel"] == 0
+    r.set("heuristic.budget", 1e9)
+    r.render()
+    c = r.counters()
+    assert c["heuristic/selected"] > 0 and c["rt_secondary/shadow_rays_per_pixel"] > 0
+
+
+def test_scene_and_pipeline_as_dicts():
+    scene = {"base": "cornell",
+             "objects": [{"name": "statue", "shape": "knot", "material": "red",
+                          "position": [0, 0.5, 0], "scale": [0.3, 0.3, 0.3]}]}
+    with open(os.path.join(SRC, "pipelines", "deferred.json")) as f:
+        import json
+        pipeline = json.load(f)
+    a = tandem.Renderer(scene, pipeline=pipeline, width=48, height=27).render()
+    b = tandem.Renderer("cornell", pipeline="deferred", width=48, height=27).render()
+    assert (a["object_id"] != b["object_id"]).any(), "the knot is drawn"
+    with pytest.raises(tandem.Error, match=r"objects\[0\]\.shape"):
+        tandem.Renderer({"objects": [{"shape": "teapot"}]}, pipeline="deferred")
+    with pytest.raises(tandem.Error, match="passes"):
+        tandem.Renderer("cornell", pipeline={"name": "x"})
+
+
+def test_camera_lights_shutter_and_stereo():
+    r = tandem.Renderer("cornell", pipeline="deferred", width=48, height=27)
+    first = r.render()["output"]
+    cam = r.camera
+    assert "position" in cam and "lookAt" in cam
+    r.set_camera(position=[0.5, 1.2, 3.0])
+    moved = r.render()["output"]
+    assert np.abs(moved - first).mean() > 1e-3
+    assert r.camera["position"] == pytest.approx([0.5, 1.2, 3.0])
+    r.lights = [{"type": "directional", "direction": [0, -1, 0], "intensity": 2}]
+    assert len(r.lights) == 1 and r.lights[0]["type"] == "directional"
+    with pytest.raises(tandem.Error, match=r"lights\[0\]"):
+        r.lights = [{"type": "lamp"}]
+    r.shutter = 0.05
+    assert r.shutter == pytest.approx(0.05)
+    r.stereo = True
+    assert r.render()["output"].shape == (27, 96, 3), "both eyes side by side"
+
+
+def test_errors_carry_the_cli_message():
+    with pytest.raises(tandem.Error, match="file not found"):
+        tandem.Renderer("/nonexistent/model.obj")
+    with pytest.raises(tandem.Error, match="not a built-in"):
+        tandem.Renderer("cornell", pipeline="no-such-pipeline")
+    with pytest.raises(tandem.Error, match="width"):
+        tandem.Renderer("cornell", width=0)
+    with pytest.raises(tandem.Error, match="not an experiment"):
+        tandem.experiment("no-such-experiment")
+    with pytest.raises(TypeError):
+        tandem.Renderer(42)
+
+
+def test_rendering_releases_the_gil():
+    r = tandem.Renderer("atrium", pipeline="rt-only", width=160, height=90)
+    r.render()  # the BVH is built on the first frame
+    done = threading.Event()
+
+    def work():
+        r.render(frames=3)
+        done.set()
+
+    t = threading.Thread(target=work)
+    t.start()
+    spins = 0
+    while not done.is_set():
+        spins += 1
+    t.join()
+    # With the GIL held the loop would not run while the frames render.
+    assert spins > 10000, spins
+
+
+def rss_mib():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2**20
+
+
+def test_a_thousand_renders_keep_memory_flat():
+    r = tandem.Renderer("cornell", pipeline="deferred", width=16, height=16)
+    for _ in range(100):
+        r.render()
+    base = rss_mib()
+    for _ in range(900):
+        r.render()
+    for _ in range(20):
+        tandem.Renderer("spheres", pipeline="deferred", width=16, height=16).render()
+    grown = rss_mib() - base
+    assert grown < 16, f"resident memory grew {grown:.1f} MiB over 900 renders"
+
+
+def test_reference_and_compare():
+    ref = tandem.reference("cornell", integrator="whitted", spp=8, width=128, height=72, cache="")
+    assert ref["hdr"].shape == (72, 128, 3) and ref["spp"] == 8 and not ref["from_cache"]
+    out = tandem.Renderer("cornell", pipeline="rt-only", width=128, height=72).render()
+    same = tandem.compare(out["output"], out["output"])
+    assert same["rmse"] == 0 and same["ssim"] == pytest.approx(1.0)
+    m = tandem.compare(ref["output"], out["output"], maps=True)
+    # The same shading, a box filter of 8 samples against one sample at each pixel's centre.
+    assert m["ssim"] > 0.95 and m["psnr"] > 28, m
+    assert m["ssim_map"].shape == (72, 128) and m["flip_map"].shape[:2] == (72, 128)
+    with pytest.raises(tandem.Error, match="shape"):
+        tandem.compare(out["output"], out["output"][:10])
+    cached_dir = scratch("reference_cache")
+    first = tandem.reference("cornell", integrator="whitted", spp=2, width=16, height=9,
+                             cache=cached_dir)
+    again = tandem.reference("cornell", integrator="whitted", spp=2, width=16, height=9,
+                             cache=cached_dir)
+    assert again["from_cache"] and np.array_equal(first["hdr"], again["hdr"])
+
+
+def test_experiment_returns_its_tables():
+    res = tandem.experiment("demo", out=scratch("demo"), width=32, height=18, frames=2, spp=2)
+    rows = res["tables"]["demo"]
+    assert os.path.isfile(os.path.join(res["out"], "contact_sheet.png"))
+    pipelines = {row["pipeline"] for row in rows}
+    assert {"hybrid-heuristic-taa", "hybrid-dof", "foveated-nh3ld-temporal",
+            "hybrid-motion-blur"} <= pipelines
+    measured = [row for row in rows if row["pipeline"] != "reference" and row["SSIM"] != ""]
+    assert all(isinstance(row["SSIM"], float) and 0 < row["SSIM"] <= 1 for row in measured)
+    assert "demo" in dict(tandem.experiments())
+    assert "hybrid-heuristic" in tandem.pipelines()
