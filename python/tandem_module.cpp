@@ -146,16 +146,27 @@ class PyRenderer {
   }
 
   // Renders `frames` frames (the frame counter carries on across calls, as in `tandem render
-  // --frames`), without the GIL; returns every buffer of the last one.
-  py::dict render(int frames) {
+  // --frames`), without the GIL; returns the named buffers of the last one (all when `names` is
+  // empty).
+  py::dict render(int frames, const std::vector<std::string>& names) {
     if (frames < 1) throw InputError("render", "frames", "must be at least 1");
     {
       py::gil_scoped_release release;
       for (int i = 0; i < frames; ++i) last_ = renderer_->renderFrame(frame_++, camera_);
     }
+    const auto& buffers = renderer_->context().buffers;
     py::dict out;
-    for (const auto& [name, buffer] : renderer_->context().buffers)
-      out[name.c_str()] = toArray(buffer);
+    if (names.empty())
+      for (const auto& [name, buffer] : buffers) out[name.c_str()] = toArray(buffer);
+    for (const std::string& n : names) {
+      auto it = buffers.find(n);
+      if (it == buffers.end()) {
+        std::string list;
+        for (const auto& [name, b] : buffers) list += (list.empty() ? "" : ", ") + name;
+        throw InputError("render", "buffers", "no buffer '" + n + "' (has: " + list + ")");
+      }
+      out[n.c_str()] = toArray(it->second);
+    }
     return out;
   }
 
@@ -314,7 +325,8 @@ PYBIND11_MODULE(_tandem, m) {
       .def("set_lights", &PyRenderer::setLights)
       .def_property("shutter", &PyRenderer::shutter, &PyRenderer::setShutter)
       .def_property("stereo", &PyRenderer::stereo, &PyRenderer::setStereo)
-      .def("render", &PyRenderer::render, py::arg("frames") = 1)
+      .def("render", &PyRenderer::render, py::arg("frames") = 1,
+           py::arg("buffers") = std::vector<std::string>{})
       .def("timings", &PyRenderer::timings)
       .def("counters", &PyRenderer::counters)
       .def("buffers", &PyRenderer::buffers)

@@ -114,11 +114,12 @@ class Renderer:
         """How many frames this renderer has rendered."""
         return self._r.frame
 
-    def render(self, frames=1):
+    def render(self, frames=1, buffers=None):
         """Renders `frames` more frames; returns the last one's buffers by name as float32 arrays
         (height, width[, channels]): "hdr", "output" (display-encoded, what the PNG holds),
-        "depth", "normal", "object_id" and every other buffer the pipeline's passes write."""
-        return self._r.render(int(frames))
+        "depth", "normal", "object_id" and every other buffer the pipeline's passes write, or
+        only those named in `buffers` (each a copy: naming few saves the copying)."""
+        return self._r.render(int(frames), list(buffers or []))
 
     def timings(self):
         """Milliseconds of the last frame: {"frame": total, "passes": {label: ms}}."""

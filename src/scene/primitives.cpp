@@ -1,8 +1,31 @@
 #include "scene/primitives.h"
 
 #include <cmath>
+#include <utility>
 
 namespace tandem {
+
+namespace {
+
+// Two triangles per cell of a vertex grid laid out row by row, `cols` + 1 vertices to a row.
+void addGridTriangles(Mesh& m, int cols, int rows) {
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i) {
+      uint32_t a = j * (cols + 1) + i, b = a + 1, c = a + cols + 1, d = c + 1;
+      m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+    }
+}
+
+// Turns each triangle to face the way its first vertex's intended normal points.
+void windAlongNormals(Mesh& m) {
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    uint32_t* i = &m.indices[3 * t];
+    Vec3 fn = cross(m.positions[i[1]] - m.positions[i[0]], m.positions[i[2]] - m.positions[i[0]]);
+    if (dot(fn, m.normals[i[0]]) < 0) std::swap(i[1], i[2]);
+  }
+}
+
+}  // namespace
 
 Mesh makePlane(int n) {
   n = std::max(1, n);
@@ -14,11 +37,7 @@ Mesh makePlane(int n) {
       m.normals.push_back({0, 1, 0});
       m.uvs.push_back({u, v});
     }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
-    }
+  addGridTriangles(m, n, n);
   completeMesh(m);
   return m;
 }
@@ -148,12 +167,7 @@ Mesh makeArch(float r0, float r1, float depth, int segments) {
             [&](float) { return Vec3(0, 0, 1); });
   quadStrip([&](float a, int k) { return dir(a) * (k ? r1 : r0) + Vec3(0, 0, -hz); },
             [&](float) { return Vec3(0, 0, -1); });
-  // Winding of each strip is fixed up against its intended normal.
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
-    uint32_t* i = &m.indices[3 * t];
-    Vec3 fn = cross(m.positions[i[1]] - m.positions[i[0]], m.positions[i[2]] - m.positions[i[0]]);
-    if (dot(fn, m.normals[i[0]]) < 0) std::swap(i[1], i[2]);
-  }
+  windAlongNormals(m);  // each strip's winding follows its intended normal
   completeMesh(m);
   return m;
 }
@@ -188,17 +202,8 @@ Mesh makeTorusKnot(int p, int q, float tube, int segments, int sides) {
       m.uvs.push_back({u * 8, v});
     }
   }
-  for (int i = 0; i < segments; ++i)
-    for (int j = 0; j < sides; ++j) {
-      uint32_t a = i * (sides + 1) + j, b = a + 1, c = a + sides + 1, d = c + 1;
-      m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
-    }
-  // Winding follows the outward normal whichever way the frame turns.
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
-    uint32_t* i = &m.indices[3 * t];
-    Vec3 fn = cross(m.positions[i[1]] - m.positions[i[0]], m.positions[i[2]] - m.positions[i[0]]);
-    if (dot(fn, m.normals[i[0]]) < 0) std::swap(i[1], i[2]);
-  }
+  addGridTriangles(m, sides, segments);
+  windAlongNormals(m);  // outwards, whichever way the Frenet frame turns
   completeMesh(m);
   return m;
 }
@@ -215,11 +220,7 @@ Mesh makeCloth(float w, float h, int nx, int ny, float foldDepth, int folds) {
       m.positions.push_back(pos(u, v));
       m.uvs.push_back({u, v});
     }
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + nx + 1, d = c + 1;
-      m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
-    }
+  addGridTriangles(m, nx, ny);
   // Analytic-free normals: averaged face normals over the shared grid (smooth everywhere).
   m.normals.assign(m.positions.size(), Vec3(0.0f));
   for (size_t t = 0; t < m.triangleCount(); ++t) {
