@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
       {"render", tandem::addRenderVerb(app)},         {"info", tandem::addInfoVerb(app)},
       {"compare", tandem::addCompareVerb(app)},       {"bench", tandem::addBenchVerb(app)},
       {"experiment", tandem::addExperimentVerb(app)}, {"reference", tandem::addReferenceVerb(app)},
-      {"export", tandem::addExportVerb(app)},         {"view", tandem::addViewVerb(app)}};
+      {"export", tandem::addExportVerb(app)},         {"view", tandem::addViewVerb(app)},
+      {"pipeline", tandem::addPipelineVerb(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

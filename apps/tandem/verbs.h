@@ -14,5 +14,6 @@ VerbRunner addExperimentVerb(CLI::App& app);
 VerbRunner addReferenceVerb(CLI::App& app);
 VerbRunner addExportVerb(CLI::App& app);
 VerbRunner addViewVerb(CLI::App& app);
+VerbRunner addPipelineVerb(CLI::App& app);
 
 }  // namespace tandem

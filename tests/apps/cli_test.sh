@@ -219,6 +219,12 @@ check "info names the default rig" "grep -q 'the default rig' <<<\"\$out\""
 out=$("$T" info "$D/quad.obj" --default-lights off 2>&1)
 check "--default-lights off leaves it unlit" "grep -q '^lights       0' <<<\"\$out\" && ! grep -q 'default rig' <<<\"\$out\""
 expect_error "--default-lights value" "--default-lights" "$T" render "$D/quad.obj" --default-lights maybe --out "$D/err/x.png"
+# A pipeline's passes and buffers, and its graph.
+out=$("$T" pipeline hybrid-dof --dot "$D/hybrid-dof.dot")
+check "pipeline lists its passes and history" "grep -q 'rt_dof' <<<\"\$out\" && grep -q '^history' <<<\"\$out\" && grep -q '^digraph' $D/hybrid-dof.dot"
+expect_error "unknown pipeline" "no-such-pipeline" "$T" pipeline no-such-pipeline --dot "$D/err/x.dot"
+expect_error "--dot names a graph file" "--dot" "$T" pipeline deferred --dot "$D/err/x.png"
+
 # The demo gallery (what scripts/demo.sh shows), tiny: a contact sheet and index.html.
 "$T" experiment demo --width 64 --height 36 --frames 2 --out "$D/gallery" >/dev/null
 check "demo gallery writes its contact sheet and index" "[ -s $D/gallery/contact_sheet.png ] && [ -s $D/gallery/index.html ] && grep -q rt-dof $D/gallery/demo.csv"

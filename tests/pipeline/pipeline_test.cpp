@@ -2,9 +2,11 @@
 #include <tbb/global_control.h>
 
 #include <fstream>
+#include <set>
 
 #include "core/error.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/pipeline_graph.h"
 #include "raster/gbuffer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loaders.h"
@@ -211,5 +213,38 @@ TEST(Pipeline, VisibilityBufferShadingEqualsDeferred) {
       }
       EXPECT_LE(worst, 1e-6 * std::max(range, 1.0)) << name << " " << buffer;
     }
+  }
+}
+
+// `tandem pipeline`: the passes in order with what each reads and writes, history marked, and a
+// Graphviz graph with a box per pass and an edge per buffer written and read.
+TEST(PipelineGraph, DescribesPassesBuffersAndHistory) {
+  const Pipeline taa = Pipeline::load("deferred-taa");
+  const std::string text = describePipeline(taa);
+  EXPECT_NE(text.find("3. taa"), std::string::npos) << text;
+  EXPECT_NE(text.find("reads  taa (3 colour; last frame's)"), std::string::npos) << text;
+  EXPECT_NE(text.find("history (kept for the next frame): taa"), std::string::npos) << text;
+  const std::string dot = pipelineDot(taa);
+  EXPECT_EQ(dot.rfind("digraph \"deferred-taa\" {", 0), 0u);
+  EXPECT_NE(dot.find("\"b:taa\" -> p2 [style=dashed"), std::string::npos) << dot;
+  for (const std::string& name : Pipeline::builtinNames()) {
+    const Pipeline p = Pipeline::load(name);
+    const std::string g = pipelineDot(p);
+    std::set<std::string> produced;
+    size_t edges = 0;
+    for (const auto& pass : p.passes)
+      for (const BufferSlot& out : pass->outputs()) {
+        produced.insert(pass->bufferName(out.slot));
+        ++edges;
+      }
+    for (const auto& pass : p.passes)
+      for (const BufferSlot& in : pass->inputs())
+        edges += produced.count(pass->bufferName(in.slot));
+    size_t arrows = 0, boxes = 0;
+    for (size_t at = g.find(" -> "); at != std::string::npos; at = g.find(" -> ", at + 1)) ++arrows;
+    for (size_t at = g.find("shape=box"); at != std::string::npos; at = g.find("shape=box", at + 1))
+      ++boxes;
+    EXPECT_EQ(arrows, edges) << name;
+    EXPECT_EQ(boxes, p.passes.size()) << name;
   }
 }
