@@ -139,12 +139,13 @@ class Renderer:
 
     def render_reference(self, integrator="path", spp=64, cache=None, seed=0):
         """The reference of this renderer's scene, camera, size, shutter and stereo pair."""
-        return reference(dict_or_name(self._scene), integrator=integrator, spp=spp,
+        return reference(_scene_arg(self._scene), integrator=integrator, spp=spp,
                          width=self.width, height=self.height, camera=self.camera,
                          shutter=self.shutter, stereo=self.stereo, cache=cache, seed=seed)
 
 
-def dict_or_name(scene):
+def _scene_arg(scene):
+    """The scene as given to the Renderer: its name or path, or its dict."""
     name, text = scene
     return json.loads(text) if text else name
 
