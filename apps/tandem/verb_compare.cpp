@@ -5,8 +5,8 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
-#include "eval/flip.h"
-#include "eval/metrics.h"
+#include "eval/metrics/flip.h"
+#include "eval/metrics/metrics.h"
 #include "pipeline/aov.h"
 #include "verbs.h"
 

@@ -10,7 +10,7 @@
 
 #include "cli_options.h"
 #include "core/error.h"
-#include "eval/experiment_runner.h"
+#include "eval/experiments/experiment_runner.h"
 #include "verbs.h"
 
 namespace tandem {

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "core/file_commit.h"
 #include "core/image_io.h"
-#include "eval/reference_cache.h"
+#include "eval/reference/reference_cache.h"
 #include "mpi_cluster.h"
 #include "pipeline/aov.h"
 #include "rt/diffuse_gi.h"

@@ -29,6 +29,7 @@ void Pass::setParam(const std::string& name, double value) {
       throw InputError("", "pass '" + type() + "' parameter '" + name + "'", "expected an integer");
     if (d.invalidatesHistory && param(name) != value) historyInvalidated = true;
     values_[name] = value;
+    onParamSet(name, value);
     return;
   }
   throw InputError("", "pass '" + type() + "' parameter '" + name + "'", "unknown parameter");
@@ -36,6 +37,7 @@ void Pass::setParam(const std::string& name, double value) {
 
 void Pass::resetParams() {
   values_.clear();
+  onParamsReset();
 }
 
 const std::string& Pass::bufferName(const std::string& slot) const {

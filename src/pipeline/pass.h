@@ -18,12 +18,12 @@ enum class ParamType { Float, Int, Bool, Enum };
 
 // One parameter, described once: name, type, default, range, doc (and choices for enums).
 struct ParamDesc {
-  std::string name;
+  std::string name{};
   ParamType type = ParamType::Float;
   double defaultValue = 0, min = 0, max = 1;
-  std::string doc;
-  std::vector<std::string> choices;  // Enum: value is the index into choices
-  bool invalidatesHistory = false;   // an edit resets every pass's history (a new picture)
+  std::string doc{};
+  std::vector<std::string> choices{};  // Enum: value is the index into choices
+  bool invalidatesHistory = false;     // an edit resets every pass's history (a new picture)
 };
 
 // What a pass asks of the next frame before it is rendered (the renderer merges every enabled
@@ -66,6 +66,11 @@ class Pass {
   bool enabled = true;
   // Set when a parameter marked invalidatesHistory was edited; the pipeline resets and clears it.
   bool historyInvalidated = false;
+
+ protected:
+  // Told of every accepted value and of a reset, so typed settings (param_table.h) follow.
+  virtual void onParamSet(const std::string&, double) {}
+  virtual void onParamsReset() {}
 
  private:
   std::map<std::string, double> values_;

@@ -41,6 +41,7 @@ struct ShadeBatch {
     OB,  // output: reflected radiance
     kFields
   };
+
   int count = 0;  // surfaces in lanes [0, count); later lanes are never read
   // The lights to evaluate (indices into ShadingContext::lights); null: all of them. Deferred
   // shading leaves out lights that cannot reach any lane (cullLights).
@@ -59,8 +60,20 @@ struct ShadeBatch {
     f[ER][lane] = s.emission.x, f[EG][lane] = s.emission.y, f[EB][lane] = s.emission.z;
     f[AR][lane] = s.ambient.x, f[AG][lane] = s.ambient.y, f[AB][lane] = s.ambient.z;
   }
+  // Lane j's light-independent terms (emission + global ambient x ambient colour), as the kernel
+  // sums them: what is left of its result when every light is blocked.
+  Vec3 unlit(int j, Vec3 ambient) const {
+    return {f[ER][j] + ambient.x * f[AR][j], f[EG][j] + ambient.y * f[AG][j],
+            f[EB][j] + ambient.z * f[AB][j]};
+  }
   Vec3 result(int lane) const { return {f[OR][lane], f[OG][lane], f[OB][lane]}; }
 };
+
+// Listing 8a's shadow value of lane j, shaded with each light weighted by how much of it is
+// blocked (1 - visibility): 1 minus the light the occluders take away.
+inline Vec3 shadowFromBlocked(const ShadeBatch& b, int j, Vec3 ambient) {
+  return Vec3(1.0f) - (b.result(j) - b.unlit(j, ambient));
+}
 
 // Lists in `out` the lights of `ctx` that may light a point within `radius` of `centre`
 // (range and spot cone; directional and hemisphere lights always) and points b.lights at it.

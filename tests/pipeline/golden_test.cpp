@@ -23,7 +23,7 @@
 #include <fstream>
 
 #include "core/image_io.h"
-#include "eval/metrics.h"
+#include "eval/metrics/metrics.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"

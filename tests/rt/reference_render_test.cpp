@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "eval/metrics.h"
+#include "eval/metrics/metrics.h"
 #include "rt/reference_render.h"
 #include "scene/loaders.h"
 #include "scene/primitives.h"

@@ -1,7 +1,7 @@
 // Ray-traced effects against geometry and the paper's rules; hybrid vs ray-tracing-only.
 #include <gtest/gtest.h>
 
-#include "eval/metrics.h"
+#include "eval/metrics/metrics.h"
 #include "rt/whitted.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loaders.h"

@@ -1,0 +1,33 @@
+// Running an experiment by name: experiments/NAME.json in the source tree (or any JSON file),
+// whose "runner" picks the procedure — "sweep" (scenes x pipelines x a parameter sweep against
+// cached references), "heuristic" (seed 002), "taa", "hybrid-dof" (seed 000), "foveated"
+// (seed 004), "interleaved" (seed 003) or "gallery" (the demo). The request's overrides replace
+// the file's settings. `tandem experiment` and the Python module both call it.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "eval/experiments/experiment_sweep.h"
+
+namespace tandem {
+
+struct ExperimentRequest {
+  std::string name;  // experiments/NAME.json, or a JSON file
+  ExperimentOverrides o;
+  int staticFrames = -1, pathFrames = -1, threads = 0;  // -1: not given
+  double budget = -1, budgetMs = -1;                    // heuristic runner; -1: not given
+};
+
+// The folder of the built-in experiments (experiments/ in the source tree).
+std::filesystem::path experimentsDir();
+// The experiment file `name` stands for; an InputError listing the built-in ones otherwise.
+std::filesystem::path resolveExperiment(const std::string& name);
+// Built-in experiments: name and title.
+std::vector<std::pair<std::string, std::string>> listExperiments();
+// Where the request writes its results (its `out`, or out/experiment-NAME).
+std::string experimentOutDir(const ExperimentRequest& r);
+// Runs it; returns the exit status (0 on success). Bad files and overrides throw InputError.
+int runExperiment(const ExperimentRequest& r);
+
+}  // namespace tandem

@@ -1,0 +1,56 @@
+#include "passes/baselines/rt_whitted.h"
+
+#include "passes/common/whitted_settings.h"
+#include "pipeline/frame_context.h"
+#include "rt/primary_rays.h"
+#include "rt/whitted.h"
+#include "shading/surface_resolve.h"
+
+namespace tandem {
+
+std::vector<ParamDesc> RTWhittedPass::params() const {
+  return whittedParams(ShadowMode::Rays);  // the all-rays baseline
+}
+
+void RTWhittedPass::execute(FrameContext& ctx) {
+  RayTracer& rt = ctx.rayTracer();
+  const uint64_t before = rt.raysTraced();
+  const Scene& scene = *ctx.scene;
+  const ShadingContext shading = ShadingContext::from(scene);
+  Whitted whitted(rt, scene, shading, whittedSettings(*this));
+  ShadowTally tally;
+  prepareShadows(ctx, *this, whitted, &tally);
+  Buffer& hdr = ctx.output(*this, "hdr");
+  Buffer& ids = ctx.output(*this, "object_id");
+  for (const View& v : ctx.views) {
+    const float spread = ctx.pixelSpread(v);  // the pixel's cone picks texture LOD
+    tracePrimaryBlocks(
+        v.camera, rt, [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
+          // The block's surfaces are shaded together: shadow rays as packets, one batch.
+          SurfaceSample s[8];
+          Vec3 d[8], rgb[8];
+          int at[8], m = 0;
+          for (int k = 0; k < n; ++k) {
+            const int x = px[k] + v.x, y = py[k] + v.y;
+            const Hit& h = hits[k];
+            ids.at(x, y)[0] = h.valid() ? float(h.object) : -1.0f;
+            if (!h.valid()) {
+              hdr.setRgb(x, y, scene.skyRadiance(rs[k].dir));
+              continue;
+            }
+            const float tuv[3] = {h.t, h.u, h.v};  // Embree's hit: no second intersection
+            s[m] = resolveSurface(ctx.frame, h.object, h.prim, rs[k].origin, rs[k].dir, rs[k].time,
+                                  tuv, spread);
+            d[m] = rs[k].dir;
+            at[m++] = k;
+          }
+          whitted.shadePrimary8(s, d, m, rgb);
+          for (int j = 0; j < m; ++j) hdr.setRgb(px[at[j]] + v.x, py[at[j]] + v.y, rgb[j]);
+        });
+  }
+  reportShadows(ctx, *this, sum(tally), double(ctx.width) * double(ctx.height));
+  // Primary rays are counted by the tracer too, so the delta covers every ray of the pass.
+  ctx.passRays += double(rt.raysTraced() - before);
+}
+
+}  // namespace tandem

@@ -1,0 +1,144 @@
+#include "passes/baselines/taa.h"
+
+#include <cmath>
+
+#include "core/image_filters.h"
+#include "pipeline/frame_context.h"
+#include "pipeline/view_tiles.h"
+
+namespace tandem {
+
+namespace {
+inline Vec3 toYCoCg(Vec3 c) {
+  return {0.25f * c.x + 0.5f * c.y + 0.25f * c.z, 0.5f * c.x - 0.5f * c.z,
+          -0.25f * c.x + 0.5f * c.y - 0.25f * c.z};
+}
+inline Vec3 fromYCoCg(Vec3 y) {
+  return {y.x + y.y - y.z, y.x + y.z, y.x - y.y - y.z};
+}
+}  // namespace
+
+std::vector<BufferSlot> TAAPass::inputs() const {
+  BufferSlot history{"taa", 3};
+  history.history = true;
+  return {{"hdr", 3}, {"motion", 2, BufferKind::Motion}, history};
+}
+
+std::vector<ParamDesc> TAAPass::params() const {
+  return {
+      {"alpha", ParamType::Float, 0.1, 0.01, 1, "weight of the current frame", {}},
+      {"jitter_phases", ParamType::Int, 8, 1, 256, "length of the Halton (2,3) jitter cycle", {}},
+      {"motion_alpha",
+       ParamType::Float,
+       0.2,
+       0.01,
+       1,
+       "weight of the current frame for pixels moving motion_pixels or more per frame",
+       {}},
+      {"motion_pixels",
+       ParamType::Float,
+       8,
+       0.1,
+       1000,
+       "speed (pixels per frame) at which the weight reaches motion_alpha",
+       {}},
+      {"clamp", ParamType::Bool, 1, 0, 1, "clamp history to the YCoCg neighbourhood box", {}},
+      {"filter", ParamType::Enum, 1, 0, 1, "history resampling", {"bilinear", "catmull_rom"}},
+      {"converge",
+       ParamType::Bool,
+       0,
+       0,
+       1,
+       "average the first frames after a reset equally (weight 1/n until it falls to alpha)",
+       {}}};
+}
+
+void TAAPass::request(FrameRequest& r) const {
+  r.jitter = true;
+  r.jitterPhases = int(param("jitter_phases"));
+}
+
+void TAAPass::execute(FrameContext& ctx) {
+  const Buffer& cur = ctx.input(*this, "hdr");
+  const Buffer& motion = ctx.input(*this, "motion");
+  const Buffer* prev = ctx.previous(*this, "taa");
+  Buffer& out = ctx.output(*this, "taa");
+  if (!prev || !prev->sameShape(out)) {
+    out.data = cur.data;
+    framesAveraged_ = 1;
+    return;
+  }
+  ++framesAveraged_;
+  const float converging = param("converge") != 0 ? 1.0f / float(framesAveraged_) : 0.0f;
+  const float alpha = std::max(float(param("alpha")), converging);
+  const float motionAlpha = std::max(float(param("motion_alpha")), converging);
+  const float invMotionPixels = 1.0f / float(param("motion_pixels"));
+  const bool clampHistory = param("clamp") != 0, catmullRom = param("filter") == 1;
+  constexpr int kTile = 32, kPad = kTile + 2;
+  // One tile of at most kTile x kTile pixels (the scheduler may hand out larger ranges).
+  auto tile = [&](const View& v, int x0, int y0, int x1, int y1) {
+    // The tile and a 1-pixel border (clamped to the view) in YCoCg, then the 3-wide minimum
+    // and maximum along rows: the 3x3 box of a pixel is three rows of those.
+    float ycc[kPad][kPad][3], rowLo[kPad][kTile][3], rowHi[kPad][kTile][3];
+    const int w = x1 - x0, h = y1 - y0;
+    const int vx1 = v.x + v.width() - 1, vy1 = v.y + v.height() - 1;
+    if (clampHistory) {
+      for (int j = 0; j < h + 2; ++j) {
+        const int sy = std::clamp(y0 + j - 1, v.y, vy1);
+        for (int i = 0; i < w + 2; ++i) {
+          const Vec3 c = toYCoCg(cur.rgb(std::clamp(x0 + i - 1, v.x, vx1), sy));
+          ycc[j][i][0] = c.x;
+          ycc[j][i][1] = c.y;
+          ycc[j][i][2] = c.z;
+        }
+        for (int i = 0; i < w; ++i)
+          for (int k = 0; k < 3; ++k) {
+            const float a = ycc[j][i][k], b = ycc[j][i + 1][k], c = ycc[j][i + 2][k];
+            rowLo[j][i][k] = std::min(a, std::min(b, c));
+            rowHi[j][i][k] = std::max(a, std::max(b, c));
+          }
+      }
+    }
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const Vec3 c = cur.rgb(x, y);
+        const float* m = motion.at(x, y);
+        const float px = float(x) + 0.5f - m[0], py = float(y) + 0.5f - m[1];
+        if (px < float(v.x) || py < float(v.y) || px >= float(v.x + v.width()) ||
+            py >= float(v.y + v.height())) {
+          out.setRgb(x, y, c);  // came from outside the view: nothing to reuse
+          continue;
+        }
+        float hs[3];
+        if (catmullRom) {
+          if (!sampleCatmullRomRgbInside(*prev, px, py, hs)) sampleCatmullRom(*prev, px, py, hs);
+        } else {
+          sampleBilinear(*prev, px, py, hs);
+        }
+        Vec3 hist(std::max(hs[0], 0.0f), std::max(hs[1], 0.0f), std::max(hs[2], 0.0f));
+        if (clampHistory) {
+          const int i = x - x0, j = y - y0;  // rows j .. j + 2 of the padded tile
+          Vec3 lo, hi;
+          for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(rowLo[j][i][k], std::min(rowLo[j + 1][i][k], rowLo[j + 2][i][k]));
+            hi[k] = std::max(rowHi[j][i][k], std::max(rowHi[j + 1][i][k], rowHi[j + 2][i][k]));
+          }
+          hist = fromYCoCg(vmin(vmax(toYCoCg(hist), lo), hi));
+        }
+        // A moving pixel trusts its (resampled, so slightly blurred) history less.
+        const float speed = std::sqrt(m[0] * m[0] + m[1] * m[1]) * invMotionPixels;
+        const float a = alpha + (motionAlpha - alpha) * std::min(speed, 1.0f);
+        // Luma-weighted blend (Karis): 1 / (1 + luma) tames fireflies.
+        const float wc = a / (1.0f + std::max(toYCoCg(c).x, 0.0f));
+        const float wh = (1.0f - a) / (1.0f + std::max(toYCoCg(hist).x, 0.0f));
+        out.setRgb(x, y, (c * wc + hist * wh) * (1.0f / (wc + wh)));
+      }
+  };
+  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
+    for (int ty = y0; ty < y1; ty += kTile)
+      for (int tx = x0; tx < x1; tx += kTile)
+        tile(v, tx, ty, std::min(tx + kTile, x1), std::min(ty + kTile, y1));
+  });
+}
+
+}  // namespace tandem

@@ -1,0 +1,18 @@
+#include "passes/common/downsample.h"
+
+#include "core/image_filters.h"
+#include "pipeline/frame_context.h"
+
+namespace tandem {
+
+void DownsamplePass::execute(FrameContext& ctx) {
+  const Buffer& hdr = ctx.input(*this, "hdr");
+  Buffer& half = ctx.output(*this, "half");
+  Buffer& quarter = ctx.output(*this, "quarter");
+  const bool box = param("filter") == 0;
+  half.data = (box ? downsampleBox(hdr) : resizeBilinear(hdr, half.width, half.height)).data;
+  quarter.data =
+      (box ? downsampleBox(half) : resizeBilinear(hdr, quarter.width, quarter.height)).data;
+}
+
+}  // namespace tandem

@@ -1,0 +1,59 @@
+#include "passes/common/rt_gbuffer.h"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <atomic>
+
+#include "pipeline/gbuffer_io.h"
+#include "pipeline/view_tiles.h"
+#include "rt/primary_rays.h"
+
+#include "shading/surface_resolve.h"
+#include "shading/surface_resolve_inline.h"
+
+namespace tandem {
+
+std::vector<BufferSlot> RTGBufferPass::outputs() const {
+  return gbufferSlots();
+}
+
+void RTGBufferPass::execute(FrameContext& ctx) {
+  RayTracer& rt = ctx.rayTracer();
+  GBufferView g = gbufferTargets(ctx, *this);
+  // Each worker's recently set-up triangles (neighbouring rays mostly hit the same ones).
+  tbb::enumerable_thread_specific<TriangleSetupCache<>> caches;
+  // Both eyes of a stereo frame in one parallel dispatch (seed 004 §5.1's single ray-generation
+  // pass over the dual screen); tiles never straddle the eyes.
+  std::atomic<uint64_t> rays{0};
+  parallelViewTiles(ctx.views, [&](const View& v, int fx0, int fy0, int fx1, int fy1) {
+    const float spread = ctx.pixelSpread(v);  // texture level of detail, as raster
+    auto pixel = [&](int x, int y, const Ray& r, const Hit& h) {
+      if (!h.valid()) {
+        g.writeBackground(x + v.x, y + v.y,
+                          g.wantsMotion() ? backgroundMotion(v, r.dir) : Vec2{0, 0});
+        return;
+      }
+      // Embree's own distance and barycentrics: no second intersection.
+      const float tuv[3] = {h.t, h.u, h.v};
+      const SurfaceSample s = [&] {
+        if (!ctx.frame.objects[size_t(h.object)].stepPositions.empty())
+          return resolveSurface(ctx.frame, h.object, h.prim, r.origin, r.dir, r.time, tuv, spread);
+        bool fresh;
+        const TriangleSetup& tri =
+            caches.local().get(ctx.frame, uint32_t(h.object), uint32_t(h.prim), fresh).setup;
+        return resolveSurfaceInline(tri, r.origin, r.dir, tuv, spread);
+      }();
+      const float depth = g.wantsDepth() ? v.camera.depthOf(r.origin + r.dir * h.t) : 0.0f;
+      g.write(x + v.x, y + v.y, s, depth,
+              g.wantsMotion() ? motionVector(ctx.frame, v, s.object, s.position) : Vec2{0, 0});
+    };
+    rays +=
+        tracePrimaryTile(v.camera, rt, fx0 - v.x, fy0 - v.y, fx1 - v.x, fy1 - v.y,
+                         [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
+                           for (int k = 0; k < n; ++k) pixel(px[k], py[k], rs[k], hits[k]);
+                         });
+  });
+  ctx.passRays += double(rays.load());
+}
+
+}  // namespace tandem

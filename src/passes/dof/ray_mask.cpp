@@ -1,0 +1,195 @@
+#include "passes/dof/ray_mask.h"
+
+#include <cmath>
+
+#include "core/image_filters.h"
+#include "core/parallel.h"
+#include "passes/dof/dof_common.h"
+#include "pipeline/frame_context.h"
+
+namespace tandem {
+
+std::vector<BufferSlot> RayMaskPass::inputs() const {
+  BufferSlot variance{"dof_variance", 1, BufferKind::Variance, Extent::any()};
+  variance.history = true;
+  BufferSlot bokeh{"bokeh", 2, BufferKind::Mask};
+  bokeh.optional = true;
+  return {{"position", 3, BufferKind::Position},
+          {"normal", 3, BufferKind::Normal},
+          {"depth", 1, BufferKind::Depth},
+          {"coc", 1, BufferKind::Signed},
+          variance,
+          bokeh};
+}
+
+std::vector<ParamDesc> RayMaskPass::params() const {
+  return {{"m", ParamType::Int, 10, 0, 1024, "ray budget: most lens rays per pixel", {}},
+          {"s", ParamType::Float, 0.8, 0, 1, "eq. 2: scale of the depth + normal gradient", {}},
+          {"variance_weight",
+           ParamType::Float,
+           100000,
+           0,
+           1e9,
+           "eq. 4: weight of the accumulated luminance variance",
+           {}},
+          {"dilate",
+           ParamType::Bool,
+           0,
+           0,
+           1,
+           "one ray within the near field's CoC radius around it (beyond the paper, Fig. 8b)",
+           {}},
+          {"mode",
+           ParamType::Enum,
+           0,
+           0,
+           1,
+           "adaptive: eq. 2-4; all: m rays in every pixel (rt-dof)",
+           {"adaptive", "all"}},
+          {"fine_coc",
+           ParamType::Float,
+           12,
+           0,
+           64,
+           "no rays where dof_composite gathers the sharp image instead (|CoC| below half of "
+           "this, no foreground over the pixel: keep equal to dof_composite.fine_coc; 0 = off)",
+           {}},
+          {"resolution",
+           ParamType::Enum,
+           0,
+           0,
+           1,
+           "of the mask and the ray-traced DoF (the paper: half)",
+           {"half", "full"},
+           /*invalidatesHistory=*/true}};
+}
+
+void RayMaskPass::execute(FrameContext& ctx) {
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer& depth = ctx.input(*this, "depth");
+  const Buffer& coc = ctx.input(*this, "coc");
+  const int scale = param("resolution") == 0 ? 2 : 1;
+  const int W = ctx.width, H = ctx.height, w = (W + scale - 1) / scale, h = (H + scale - 1) / scale;
+  Buffer& mask = ctx.output(*this, "ray_mask", w, h);
+  const float m = float(param("m"));
+  if (param("mode") == 1) {
+    mask.fill(m);
+    return;
+  }
+  const Camera& cam = ctx.camera();
+  const float focus = cam.desc.focusDistance;
+
+  // Inverse depth relative to the focus distance, d / z (a depth buffer's kind of value: a
+  // slanted floor in the distance has almost no gradient, a near silhouette against what is
+  // behind it a large one; the sky is 0, nearer than d / 8 clamps at 8), and normals,
+  // Gaussian-filtered.
+  Buffer g(W, H, 4);
+  parallelRows(H, [&](int y) {
+    for (int x = 0; x < W; ++x) {
+      const float* p = position.at(x, y);
+      const float z = dot(Vec3(p[0], p[1], p[2]) - cam.eye, cam.forward);
+      const float zr = depth.at(x, y)[0] > 0 ? std::min(focus / std::max(z, 1e-6f), 8.0f) : 0.0f;
+      float* o = g.at(x, y);
+      o[0] = zr;
+      o[1] = normal.at(x, y)[0];
+      o[2] = normal.at(x, y)[1];
+      o[3] = normal.at(x, y)[2];
+    }
+  });
+  Buffer low = gaussianBlur(g, 1.0f);
+  if (scale == 2) low = downsampleBox(low);
+  // 5x5 Sobel; a unit step gives 48 (the kernel's half-sum), so / 48 reads as the step height.
+  Buffer gradients[4];
+  for (int c = 0; c < 4; ++c) gradients[c] = sobel5x5(low, c);
+
+  // Near-field pixels (at the mask's resolution) and, for the dilation, their CoC radius; and
+  // the pixels whose every frame pixel the composite takes wholly from its full-resolution gather
+  // of the sharp image (|CoC| below half of fine_coc, no foreground share in the post-process
+  // gather): rays there would not be seen (beyond the paper).
+  const Buffer* bokeh = ctx.optionalInput(*this, "bokeh");
+  const float fineCoc = bokeh ? 0.5f * float(param("fine_coc")) : 0.0f;
+  Buffer nearRadius(w, h, 1);
+  std::vector<unsigned char> gathered(size_t(w) * size_t(h), 0);
+  parallelRows(h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      float c = 0.0f;
+      bool fine = fineCoc > 0;
+      for (int j = 0; j < scale; ++j)
+        for (int i = 0; i < scale; ++i) {
+          const int px = std::min(x * scale + i, W - 1), py = std::min(y * scale + j, H - 1);
+          const float cp = coc.at(px, py)[0];
+          c = std::min(c, cp);
+          fine = fine && std::abs(cp) < fineCoc && bokeh->at(px, py)[1] <= dof::kSilhouette;
+        }
+      nearRadius.at(x, y)[0] = c < -dof::kZoneOfFocusCoc ? -0.5f * c / float(scale) : 0.0f;
+      gathered[size_t(y) * size_t(w) + size_t(x)] = fine;
+    }
+  });
+  // Dilation: a summed-area table of near-field pixels answers "any within radius r?" per pixel;
+  // r is the largest near radius in the surrounding 16x16-pixel tiles (3x3 of them).
+  const bool dilate = param("dilate") != 0;
+  std::vector<int> sat;
+  std::vector<float> tileR;
+  constexpr int kT = 16;
+  const int tw = (w + kT - 1) / kT, th = (h + kT - 1) / kT;
+  if (dilate) {
+    sat.assign(size_t(w + 1) * (h + 1), 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        sat[size_t(y + 1) * (w + 1) + x + 1] =
+            (nearRadius.at(x, y)[0] > 0 ? 1 : 0) + sat[size_t(y) * (w + 1) + x + 1] +
+            sat[size_t(y + 1) * (w + 1) + x] - sat[size_t(y) * (w + 1) + x];
+    std::vector<float> t(size_t(tw) * th, 0.0f);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        float& r = t[size_t(y / kT) * tw + size_t(x / kT)];
+        r = std::max(r, nearRadius.at(x, y)[0]);
+      }
+    tileR.assign(t.size(), 0.0f);
+    for (int ty = 0; ty < th; ++ty)
+      for (int tx = 0; tx < tw; ++tx)
+        for (int j = std::max(ty - 1, 0); j <= std::min(ty + 1, th - 1); ++j)
+          for (int i = std::max(tx - 1, 0); i <= std::min(tx + 1, tw - 1); ++i)
+            tileR[size_t(ty) * tw + tx] =
+                std::max(tileR[size_t(ty) * tw + tx], t[size_t(j) * tw + i]);
+  }
+
+  const Buffer* variance = ctx.previous(*this, "dof_variance");
+  if (variance && (variance->width != w || variance->height != h)) variance = nullptr;
+  const float s = float(param("s")), vw = float(param("variance_weight"));
+  parallelRows(h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const float* gd = gradients[0].at(x, y);
+      const float dd = std::sqrt(gd[0] * gd[0] + gd[1] * gd[1]) / 48.0f;
+      float nn = 0.0f;
+      for (int c = 1; c < 4; ++c) {
+        const float* gn = gradients[c].at(x, y);
+        nn += gn[0] * gn[0] + gn[1] * gn[1];
+      }
+      const float xe = (dd + std::sqrt(nn) / 48.0f) * s;          // eq. 2
+      const float xn = dof::saturate(1.0f - 1.0f / (xe + 1.0f));  // eq. 3
+      const float var = variance ? variance->at(x, y)[0] : 0.0f;
+      float rays = std::round(dof::saturate(xn + var * vw) * m);  // eq. 4
+      bool near = nearRadius.at(x, y)[0] > 0;
+      if (!near && dilate) {
+        const int r = int(std::ceil(tileR[size_t(y / kT) * tw + size_t(x / kT)]));
+        if (r > 0) {
+          const int x0 = std::max(x - r, 0), x1 = std::min(x + r + 1, w);
+          const int y0 = std::max(y - r, 0), y1 = std::min(y + r + 1, h);
+          near = sat[size_t(y1) * (w + 1) + x1] - sat[size_t(y0) * (w + 1) + x1] -
+                     sat[size_t(y1) * (w + 1) + x0] + sat[size_t(y0) * (w + 1) + x0] >
+                 0;
+        }
+      }
+      if (near && m > 0) rays = std::max(rays, 1.0f);
+      mask.at(x, y)[0] = gathered[size_t(y) * size_t(w) + size_t(x)] ? 0.0f : rays;
+    }
+  });
+  double total = 0, masked = 0;
+  for (size_t i = 0; i < mask.pixelCount(); ++i) total += mask.data[i], masked += mask.data[i] > 0;
+  ctx.counters["ray_mask/rays_per_pixel"] = total / double(mask.pixelCount());
+  ctx.counters["ray_mask/masked_share"] = masked / double(mask.pixelCount());
+}
+
+}  // namespace tandem

@@ -1,0 +1,125 @@
+#include "passes/foveated/foveated_pt.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+
+#include "core/profiler.h"
+#include "pipeline/frame_context.h"
+#include "rt/diffuse_gi.h"
+#include "scene/scene.h"
+
+namespace tandem {
+
+std::vector<BufferSlot> FoveatedPTPass::inputs() const {
+  return {{"position", 3, BufferKind::Position},
+          {"normal", 3, BufferKind::Normal},
+          {"geo_normal", 3, BufferKind::Normal},
+          {"diffuse", 4, BufferKind::Material},
+          {"emission", 3, BufferKind::Color},
+          {"depth", 1, BufferKind::Depth},
+          {"fov_coords", 3, BufferKind::List, Extent::any()}};
+}
+
+std::vector<ParamDesc> FoveatedPTPass::params() const {
+  return {{"light_selection",
+           ParamType::Enum,
+           1,
+           0,
+           1,
+           "uniform: any light alike (the thesis); grid: by estimated irradiance where the path is",
+           {"uniform", "grid"}}};
+}
+
+void FoveatedPTPass::execute(FrameContext& ctx) {
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer& geoNormal = ctx.input(*this, "geo_normal");
+  const Buffer& diffuse = ctx.input(*this, "diffuse");
+  const Buffer& emission = ctx.input(*this, "emission");
+  const Buffer& depth = ctx.input(*this, "depth");
+  const Buffer& coords = ctx.input(*this, "fov_coords");
+  Buffer& out = ctx.output(*this, "pt_noisy");
+  Buffer& variance = ctx.output(*this, "pt_variance");
+  out.fill(0.0f);
+  variance.fill(0.0f);
+  const RayTracer& rt = ctx.rayTracer();
+  const ShadingContext shading = ShadingContext::from(*ctx.scene);
+  if (warnedScene_ != ctx.scene) {
+    warnedScene_ = ctx.scene;
+    if (const std::string note = DiffuseGI::blackMaterialsNote(*ctx.scene); !note.empty())
+      std::fprintf(stderr, "tandem: warning: %s\n", note.c_str());
+  }
+  const LightGrid* grid = nullptr;
+  if (param("light_selection") == 1) {
+    const uint64_t key = lightSetKey(shading.lights, DiffuseGI::lightsSampled(*ctx.scene));
+    if (!grid_ || key != gridKey_ || gridScene_ != ctx.scene) {
+      const auto t0 = Clock::now();
+      grid_ = std::make_unique<LightGrid>(DiffuseGI::buildGrid(*ctx.scene, shading, &rt));
+      gridKey_ = key;
+      gridScene_ = ctx.scene;
+      ctx.counters["foveated_pt/light_grid_built"] = 1;
+      ctx.counters["foveated_pt/light_grid_probe_rays"] = double(grid_->probeRays());
+      ctx.passParts.push_back({"light_grid", msSince(t0), 0});
+    }
+    grid = grid_.get();
+  }
+  const DiffuseGI gi(rt, *ctx.scene, shading, grid);
+  const uint64_t seed = hashCombine(uint32_t(ctx.seed), uint32_t(ctx.serial + 1));
+  const size_t listed = size_t(coords.width) * (coords.height > 0 ? 1 : 0);
+  const size_t eyes = ctx.views.size();
+  std::atomic<uint64_t> rays{0}, samples{0};
+  // One dispatch over both eyes: entry k is coordinate k % listed of eye k / listed.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, listed * eyes, 64), [&](const auto& range) {
+    uint64_t localRays = 0, localSamples = 0;
+    for (size_t k = range.begin(); k != range.end(); ++k) {
+      const View& v = ctx.views[k / listed];
+      const float* c = coords.at(int(k % listed), 0);
+      const int ex = int(c[0]), ey = int(c[1]), spp = int(c[2]);
+      if (ex >= v.width() || ey >= v.height()) continue;
+      const int x = ex + v.x, y = ey + v.y;
+      Vec3 sum(0.0f);
+      double lum2 = 0;  // the samples' squared luminances
+      if (depth.at(x, y)[0] <= 0.0f) {
+        Vec3 o, d;
+        v.camera.generateRay(ex + 0.5f, ey + 0.5f, o, d);
+        sum = ctx.scene->skyRadiance(d) * float(spp);
+      } else {
+        SurfaceSample s;
+        s.position = Vec3(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]);
+        s.normal = Vec3(normal.at(x, y)[0], normal.at(x, y)[1], normal.at(x, y)[2]);
+        s.geoNormal = Vec3(geoNormal.at(x, y)[0], geoNormal.at(x, y)[1], geoNormal.at(x, y)[2]);
+        s.diffuse = Vec3(diffuse.at(x, y)[0], diffuse.at(x, y)[1], diffuse.at(x, y)[2]);
+        s.emission = Vec3(emission.at(x, y)[0], emission.at(x, y)[1], emission.at(x, y)[2]);
+        const Vec3 wo = v.camera.desc.projection == Projection::Perspective
+                            ? normalize(v.camera.desc.position - s.position)
+                            : -v.camera.forward;
+        const uint64_t pixel = uint64_t(y) * uint64_t(ctx.width) + uint64_t(x);
+        for (int i = 0; i < spp; ++i) {
+          SobolSampler rng(seed, pixel, uint32_t(i));
+          Vec3 L = gi.radiance(s, wo, rng, 0.0f, localRays);
+          if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
+            sum += L;
+            lum2 += double(luminance(L)) * double(luminance(L));
+          }
+        }
+      }
+      localSamples += uint64_t(spp);
+      const float n = float(std::max(spp, 1));
+      out.setRgb(x, y, sum / n);
+      // The variance of the mean's luminance from the samples' spread; unknown (-1) from one.
+      const double mean = double(luminance(sum)) / n;
+      variance.at(x, y)[0] =
+          spp >= 2 ? float(std::max(lum2 - n * mean * mean, 0.0) / ((n - 1.0) * n)) : -1.0f;
+    }
+    rays += localRays;
+    samples += localSamples;
+  });
+  ctx.passRays += double(rays.load());
+  ctx.counters["foveated_pt/samples"] = double(samples.load());
+}
+
+}  // namespace tandem

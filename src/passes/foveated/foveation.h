@@ -1,0 +1,40 @@
+// foveation: the foveated sample distribution (seed 004 §4.2, passes/foveation_map.h), computed
+// once per configuration and again only when a parameter, the eye's size or the gaze changes —
+// as in the thesis it is not part of a frame's work (the frame that recomputes it reports
+// counter foveation/recomputed = 1; benchmarks warm up past it). One distribution serves both
+// eyes. Outputs: fov_coords (the coordinate buffer: one eye's listed pixels as (x, y, spp)
+// records), fov_mask (the binary mask over the dual image), fov_layer (0 inner, 1 middle,
+// 2 outer; the overlay view). mode = full is Base: every pixel listed with spp_inner samples.
+// The gaze follows the scene's gazeTrace (at the frame's time) when it has one, else gaze_x/y.
+#pragma once
+#include "passes/foveated/foveation_map.h"
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class FoveationPass : public Pass {
+ public:
+  std::string type() const override { return "foveation"; }
+  std::string description() const override {
+    return "Foveated sample distribution: 3 layers, coordinate buffer + binary mask (seed 004 "
+           "§4.2)";
+  }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"fov_coords", 3, BufferKind::List, Extent::any()},
+            {"fov_mask", 1, BufferKind::Mask},
+            {"fov_layer", 1, BufferKind::Id}};
+  }
+  std::vector<ParamDesc> params() const override;
+  void execute(FrameContext& ctx) override;
+  // The distribution the parameters describe for an eye of width x height (what execute uses).
+  FoveationDesc desc(int width, int height) const;
+  const FoveationMap& map() const { return map_; }
+
+ private:
+  FoveationMap map_;
+  FoveationDesc built_;
+  bool valid_ = false;
+  const float* written_ = nullptr;  // the mask buffer last written (rewritten when it changes)
+};
+
+}  // namespace tandem

@@ -1,0 +1,41 @@
+// nh_denoise: the non-homogeneous denoiser of seed 004 §4.4 (Algorithm 1, passes/atrous.h): the
+// foveation layers become regions — three (inner, middle, outer: NH3LD), two (inner, and middle
+// + outer merged: NH2LD) or one (the whole frame: Base) — filtered one after another, each with
+// its own level count and decreasing step widths, over both eyes in one pass. Only pixels the
+// binary mask marks as sampled are read; the others are filled from them. With `demodulate` the
+// filter runs on the illumination (colour minus emission, over the diffuse albedo; Dammertz's
+// optional diffuse-buffer step) and the albedo is multiplied back after.
+// Beyond the thesis, `levels_from = variance` sets each region's level count from this frame's
+// measured noise: the variance of a listed pixel about its listed neighbours (same surface),
+// relative to the mean luminance, over the region's listed share (the noise per pixel area);
+// each level widens the footprint about fourfold, so levels = ceil(log4(noise / target)).
+// Inputs: pt_noisy, normal, position, depth, diffuse, emission, fov_mask, fov_layer.
+// Output: denoised.
+#pragma once
+#include <utility>
+#include <vector>
+
+#include "passes/foveated/atrous.h"
+#include "pipeline/pass.h"
+
+namespace tandem {
+
+class NHDenoisePass : public Pass {
+ public:
+  std::string type() const override { return "nh_denoise"; }
+  std::string description() const override {
+    return "Non-homogeneous edge-avoiding À-Trous denoising per foveation layer (seed 004 §4.4)";
+  }
+  std::vector<BufferSlot> inputs() const override;
+  std::vector<BufferSlot> outputs() const override { return {{"denoised", 3, BufferKind::Color}}; }
+  std::vector<ParamDesc> params() const override;
+  void execute(FrameContext& ctx) override;
+  // The (region, step width) of every level the last frame ran, in order (Algorithm 1).
+  const std::vector<std::pair<int, int>>& lastSteps() const { return steps_; }
+
+ private:
+  std::vector<std::pair<int, int>> steps_;
+  AtrousImage image_;  // planes kept between frames (no reallocation)
+};
+
+}  // namespace tandem

@@ -1,0 +1,182 @@
+#include "passes/foveated/periphery_accumulation.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include "passes/foveated/demodulation.h"
+#include "pipeline/frame_context.h"
+#include "pipeline/view_tiles.h"
+
+namespace tandem {
+
+std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
+  BufferSlot history{"pt_history", 10, BufferKind::List};
+  history.history = true;
+  BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
+  variance.optional = true;
+  return {{"pt_noisy", 3, BufferKind::Color},
+          {"fov_mask", 1, BufferKind::Mask},
+          {"fov_layer", 1, BufferKind::Id},
+          {"motion", 2, BufferKind::Motion},
+          {"position", 3, BufferKind::Position},
+          {"normal", 3, BufferKind::Normal},
+          {"depth", 1, BufferKind::Depth},
+          {"diffuse", 4, BufferKind::Material},
+          {"emission", 3, BufferKind::Color},
+          variance,
+          history};
+}
+
+std::vector<ParamDesc> PeripheryAccumulationPass::params() const {
+  using T = ParamType;
+  return {{"from_layer",
+           T::Int,
+           1,
+           0,
+           3,
+           "first layer accumulated (0 inner, 1 middle, 2 outer; 3: none)",
+           {}},
+          {"alpha_min",
+           T::Float,
+           0.1,
+           0.01,
+           1,
+           "smallest weight of this frame (the history's length)",
+           {}},
+          {"position_tolerance",
+           T::Float,
+           0.02,
+           0.0001,
+           1,
+           "same surface: world distance over eye distance",
+           {}},
+          {"normal_tolerance",
+           T::Float,
+           25,
+           0,
+           180,
+           "same surface: largest angle (degrees) between the normals",
+           {}},
+          {"demodulate",
+           T::Bool,
+           1,
+           0,
+           1,
+           "accumulate illumination (divided by the diffuse albedo): texture never lags",
+           {}},
+          {"fill_unlisted",
+           T::Bool,
+           1,
+           0,
+           1,
+           "unlisted pixels take their reprojected history (pt_accum_mask marks them)",
+           {}}};
+}
+
+void PeripheryAccumulationPass::execute(FrameContext& ctx) {
+  const Buffer& noisy = ctx.input(*this, "pt_noisy");
+  const Buffer& mask = ctx.input(*this, "fov_mask");
+  const Buffer& layer = ctx.input(*this, "fov_layer");
+  const Buffer& motion = ctx.input(*this, "motion");
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& depth = ctx.input(*this, "depth");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer* prev = ctx.previous(*this, "pt_history");
+  Buffer& accum = ctx.output(*this, "pt_accum");
+  Buffer& accumVariance = ctx.output(*this, "pt_accum_variance");
+  const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
+  Buffer& history = ctx.output(*this, "pt_history");
+  const int fromLayer = int(param("from_layer"));
+  const float alphaMin = float(param("alpha_min"));
+  const float cap = 1.0f / alphaMin, tol = float(param("position_tolerance"));
+  const float minCos = std::cos(float(param("normal_tolerance")) * kPi / 180.0f);
+  Buffer& accumMask = ctx.output(*this, "pt_accum_mask");
+  const bool fill = param("fill_unlisted") != 0;
+  const Demodulation dm{ctx.input(*this, "diffuse"), ctx.input(*this, "emission"), depth,
+                        param("demodulate") != 0};
+  // The mean history length (frames) over the accumulated layers' pixels with an estimate.
+  std::atomic<double> historyFrames = 0, historyPixels = 0;
+  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
+    const Vec3 eye = v.camera.desc.position;
+    double tileFrames = 0, tilePixels = 0;
+    // Where pixel (x, y) was last frame, read bilinearly from those of the four history pixels
+    // around it that saw the same surface (position and normal): rgb and frames averaged; false
+    // when they cover under a quarter of the footprint. Nearest-pixel reads would round a slow
+    // motion (< 1/2 px per frame) away every frame and let the history lag behind; the normal
+    // keeps a lit face from bleeding into a shaded one across a crease, which positions within
+    // the tolerance would allow.
+    auto reproject = [&](int x, int y, Vec3 p, Vec3 nrm, float out[4]) {
+      const float* mv = motion.at(x, y);
+      const float bx = float(x) - mv[0], by = float(y) - mv[1];  // in pixel indices
+      const int ix = int(std::floor(bx)), iy = int(std::floor(by));
+      const float tx = bx - float(ix), ty = by - float(iy);
+      const float limit = tol * length(p - eye);
+      float wsum = 0;
+      std::fill(out, out + 4, 0.0f);
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const float w = (i ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
+          if (w <= 0.0f || !v.contains(ix + i, iy + j)) continue;
+          const float* ph = prev->at(ix + i, iy + j);
+          if (ph[3] <= 0 || length(Vec3(ph[4], ph[5], ph[6]) - p) > limit ||
+              dot(Vec3(ph[7], ph[8], ph[9]), nrm) < minCos)
+            continue;
+          for (int k = 0; k < 4; ++k) out[k] += w * ph[k];
+          wsum += w;
+        }
+      if (wsum < 0.25f) return false;
+      for (int k = 0; k < 4; ++k) out[k] /= wsum;
+      return true;
+    };
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        float* h = history.at(x, y);
+        float* out = accum.at(x, y);
+        const bool listed = mask.at(x, y)[0] > 0.0f;
+        const bool accumulated =
+            prev && int(layer.at(x, y)[0]) >= fromLayer && depth.at(x, y)[0] > 0;
+        const Vec3 p = position.rgb(x, y), nrm = normal.rgb(x, y);
+        float hist[4] = {0, 0, 0, 0};
+        const bool reprojected = accumulated && (listed || fill) && reproject(x, y, p, nrm, hist);
+        if (!listed && !reprojected) {
+          std::fill(h, h + 10, 0.0f);
+          out[0] = out[1] = out[2] = 0.0f;
+          accumVariance.at(x, y)[0] = -1.0f;
+          accumMask.at(x, y)[0] = 0.0f;
+          continue;
+        }
+        // In illumination units (texture is this frame's): this frame's sample where listed,
+        // else the history alone (an unlisted pixel keeps what the surface had).
+        Vec3 result = Vec3(hist[0], hist[1], hist[2]);
+        float n = hist[3];
+        if (listed) {
+          const Vec3 c = noisy.rgb(x, y);
+          result = Vec3(dm.illumination(c.x, x, y, 0), dm.illumination(c.y, x, y, 1),
+                        dm.illumination(c.z, x, y, 2));
+          n = 1.0f;
+        }
+        if (listed && reprojected) {
+          const float alpha = std::max(1.0f / (hist[3] + 1.0f), alphaMin);
+          result = Vec3(hist[0], hist[1], hist[2]) * (1.0f - alpha) + result * alpha;
+          n = std::min(hist[3] + 1.0f, cap);
+        }
+        for (int k = 0; k < 3; ++k) out[k] = dm.colour(result[k], x, y, k);
+        accumMask.at(x, y)[0] = 1.0f;
+        // The mean of n frames: this frame's variance over n (the young history's equal weights).
+        const float var = variance && listed ? variance->at(x, y)[0] : -1.0f;
+        accumVariance.at(x, y)[0] = var >= 0.0f ? var / n : -1.0f;
+        h[0] = result.x, h[1] = result.y, h[2] = result.z, h[3] = n;
+        h[4] = p.x, h[5] = p.y, h[6] = p.z;
+        h[7] = nrm.x, h[8] = nrm.y, h[9] = nrm.z;
+        if (int(layer.at(x, y)[0]) >= fromLayer) tileFrames += n, tilePixels += 1;
+      }
+    historyFrames += tileFrames;
+    historyPixels += tilePixels;
+  });
+  const double count = historyPixels.load();
+  ctx.counters["periphery_accumulation/mean_frames"] =
+      count > 0 ? historyFrames.load() / count : 0.0;
+}
+
+}  // namespace tandem

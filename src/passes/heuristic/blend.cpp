@@ -1,0 +1,52 @@
+#include "passes/heuristic/blend.h"
+
+#include "core/parallel.h"
+#include "passes/heuristic/rt_stats.h"
+#include "pipeline/frame_context.h"
+#include "rt/whitted.h"
+
+namespace tandem {
+
+void BlendPass::execute(FrameContext& ctx) {
+  const Buffer& L = ctx.input(*this, "hdr");
+  const Buffer& S = ctx.input(*this, "shadow");
+  const Buffer& M = ctx.input(*this, "reflection");
+  const Buffer& R = ctx.input(*this, "refraction");
+  const Buffer& optical = ctx.input(*this, "optical");
+  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  Buffer& out = ctx.output(*this, "composite");
+  const Buffer* fallback = ctx.optionalInput(*this, "fallback");
+  parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const float* m = mask.at(x, y);
+        const float* fb = fallback ? fallback->at(x, y) : nullptr;
+        const bool hasFallback = fb && fb[9] > 0.5f, hasShadowFallback = fb && fb[10] > 0.5f;
+        if (m[kShadow] < 0.5f && m[kReflection] < 0.5f && m[kRefraction] < 0.5f && !hasFallback &&
+            !hasShadowFallback) {
+          out.setRgb(x, y, L.rgb(x, y));
+          continue;
+        }
+        // An effect that was not traced for this pixel plays no part (no shadowing, O_M or O_R
+        // taken as 0), as for an unselected object, unless a fallback stands in for it.
+        const float* op = optical.at(x, y);
+        const bool traceM = m[kReflection] > 0.5f, traceR = m[kRefraction] > 0.5f;
+        const float om = traceM || hasFallback ? op[0] : 0.0f;
+        const float orr = traceR || hasFallback ? 1.0f - op[2] : 0.0f;
+        const Vec3 refl = traceM        ? M.rgb(x, y)
+                          : hasFallback ? Vec3(fb[0], fb[1], fb[2])
+                                        : Vec3(0.0f);
+        const Vec3 refr = traceR        ? R.rgb(x, y)
+                          : hasFallback ? Vec3(fb[3], fb[4], fb[5])
+                                        : Vec3(0.0f);
+        Vec3 c = L.rgb(x, y);
+        if (m[kShadow] > 0.5f)
+          c = c - (Vec3(1.0f) - S.rgb(x, y));  // eq. 4
+        else if (hasShadowFallback)
+          c = c - (Vec3(1.0f) - Vec3(fb[6], fb[7], fb[8]));
+        out.setRgb(x, y, combineEffects(om, orr, refl, refr, c));
+      }
+  });
+}
+
+}  // namespace tandem

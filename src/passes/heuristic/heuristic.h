@@ -1,0 +1,171 @@
+// heuristic: seed 002 §3.2. Every frame, for every object: visible area A (pixel count from the
+// object-id buffer, one pass over the image), P (projected bounding-box centre, [0.01, 1]),
+// D (distance to the camera), V = A P / D (eq. 1), Q (lights; + lights + 1 if reflective;
+// + lights + 4 if refractive), S (selected last frame), C = A Q E (eq. 2), R = (S I + V) K (eq. 3).
+// Then phase 3: nodes sorted by cost, each pointing to cheaper-or-equal, more relevant nodes,
+// walked while budget T remains. Output: the per-pixel heuristic mask (Figure 2h), one channel
+// per effect (shadow, reflection, refraction; the paper's mode sets all three together).
+// Beyond the paper, each switchable (defaults keep the paper's behaviour):
+//  - budget_ms: costs become predicted CPU ms (A E x the CPU ms per pixel the RT pass measured
+//    for that object and effect, recursion included) and T is the budget times the measured
+//    ratio of predicted CPU ms to RT wall ms (smoothed), so the RT stage follows the budget;
+//  - per_effect: nodes are (object, effect) pairs, so an object may get shadows but not its
+//    reflection (the paper's future work);
+//  - partial_objects (ms budget; off: it measured worse tracking): the unspent budget buys the
+//    central part of the most relevant node left out (mask set on that share of its pixels
+//    nearest the view centre);
+//  - count_recursion: Q is the rays per pixel the RT pass actually traced for the object and
+//    effect (recursion included), the paper's Q being the prior until it has been traced;
+//  - deadline (ms budget): the budget becomes rt_secondary's deadline. The walk selects
+//    `overcommit` times the budget, rt_secondary traces the selection most relevant first and
+//    stops at the deadline (what it reached is its traced_mask), so a misprediction costs the
+//    least relevant pixels instead of time. The calibration then learns from the cost of what was
+//    traced.
+// Inputs: object_id, rt_stats (last frame's, a history input). Outputs: heuristic_mask (3
+// channels), rt_request (1 x 1: [1 asks rt_secondary to time each object and effect, deadline ms
+// or 0]), heuristic_order (objects x 1: per effect, the node's rank by relevancy among the
+// selected, 0 first; -1 not selected).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/buffer.h"
+#include "passes/heuristic/rt_stats.h"
+#include "pipeline/pass.h"
+#include "scene/camera.h"
+#include "scene/frame_scene.h"
+
+namespace tandem {
+
+struct ObjectHeuristic {
+  int object = -1;
+  double A = 0, P = 0, D = 0, V = 0, Q = 0, C = 0, R = 0;
+  bool S = false;
+  // Q split by effect: shadow = lights, reflection = lights + 1, refraction = lights + 4 (0 where
+  // the material lacks the effect), or measured rays per pixel when supplied. Q = their sum.
+  std::array<double, kEffectCount> q{};
+  std::array<bool, kEffectCount> Se{};  // effect selected last frame
+};
+
+struct HeuristicNode {
+  int id = -1;
+  double cost = 0, relevancy = 0;
+};
+
+// Phase 3 of §3.2: returns the ids of the selected nodes in selection order; the sum of their
+// costs never exceeds `budget`.
+std::vector<int> selectWithinBudget(std::vector<HeuristicNode> nodes, double budget);
+
+// Partial objects (ms-budget mode, beyond the paper): the most relevant node the walk left out
+// and the share of its cost that the unspent budget `left` pays for, so one large object that
+// does not fit whole is traced over part of its pixels instead of not at all. id -1: none.
+struct PartialNode {
+  int id = -1;
+  double fraction = 0;  // (0, 1)
+};
+PartialNode partialNode(const std::vector<HeuristicNode>& nodes, const std::vector<int>& selected,
+                        double left);
+
+// The squared distance from the view centre (pixels) within which `object` has `fraction` of its
+// visible pixels: the part of a partial object that is traced is the part nearest the centre (a
+// contiguous region, the part the eye is on). `centreOf(x)` is the centre of the view holding
+// column x.
+double centralRadius2(const Buffer& objectId, int object, double fraction,
+                      const std::function<Vec2(int)>& centreOf);
+
+// P of §3.2: 1 at the view centre falling to 0.01 at (and beyond) the edge, from NDC x, y.
+double centreWeight(double ndcX, double ndcY);
+
+// Phase 2 of §3.2 for every visible object (A > 0). `pixelCounts[o]` is object o's visible area;
+// `selectedLast[o]` has bit e set when effect e of object o was selected last frame (S is any
+// bit). `raysPerPixel`, when given, replaces the paper's q_e wherever it is positive.
+std::vector<ObjectHeuristic> evaluateObjects(
+    const Scene& scene, const std::vector<Bounds3>& worldBounds, const Camera& cam,
+    const std::vector<uint32_t>& pixelCounts, const std::vector<uint8_t>& selectedLast,
+    double importanceI,
+    const std::vector<std::array<double, kEffectCount>>* raysPerPixel = nullptr);
+
+// The graph's nodes: one per object (cost C, relevancy R; id = object) or, per effect, one per
+// (object, effect) with cost A q_e E and relevancy (S_e I + V) K (id = object * 3 + effect).
+// `costPerPixel[o][e]`, when given, replaces q_e as the cost of one visible pixel (the ms budget
+// passes measured CPU ms per pixel, so costs are predicted milliseconds). `shadowsApart`: shadows
+// are not the budget's (classified shadows trace them everywhere): nodes price only reflections
+// and refractions, and objects with neither get no node.
+std::vector<HeuristicNode> heuristicNodes(
+    const Scene& scene, const std::vector<ObjectHeuristic>& objects, bool perEffect,
+    double importanceI, const std::vector<std::array<double, kEffectCount>>* costPerPixel = nullptr,
+    bool shadowsApart = false);
+
+// Visible pixels per object in an object-id buffer (one parallel pass).
+std::vector<uint32_t> countObjectPixels(const Buffer& objectId, size_t objectCount);
+
+// Turns a budget in ms into cost units from the RT pass's measured time for the cost it was
+// given. The rate is the median of the last three frames' cost / ms: one frame the OS stalls
+// (or one mispriced object) does not halve the next frame's budget, and a real change is
+// followed within two frames. The heuristic's ms-budget costs are predicted CPU ms, so the rate
+// is the RT pass's effective parallelism (CPU ms per wall ms), and its prior the worker count.
+class BudgetCalibration {
+ public:
+  // Rays per CPU ms assumed before any effect has been measured (about this machine).
+  static constexpr double kPriorRaysPerMs = 10000;
+  explicit BudgetCalibration(double priorUnitsPerMs = 1) : prior_(priorUnitsPerMs) {}
+  void observe(double selectedCost, double ms);
+  double unitsFor(double budgetMs) const { return budgetMs * unitsPerMs(); }
+  double unitsPerMs() const;
+
+ private:
+  double prior_;
+  std::array<double, 3> samples_{};
+  int count_ = 0;  // samples observed (the ring holds the last three)
+};
+
+class HeuristicPass : public Pass {
+ public:
+  std::string type() const override { return "heuristic"; }
+  std::string description() const override {
+    return "Per-object relevancy/cost selection under budget T (seed 002 §3.2)";
+  }
+  std::vector<BufferSlot> inputs() const override {
+    return {{"object_id", 1, BufferKind::Id}, rtStatsSlot(true)};
+  }
+  std::vector<BufferSlot> outputs() const override {
+    return {{"heuristic_mask", 3, BufferKind::Mask},
+            {"rt_request", 2, BufferKind::Mask, Extent::fixed(1, 1)},
+            {"heuristic_order", kEffectCount, BufferKind::List, Extent::any()}};
+  }
+  std::vector<ParamDesc> params() const override;
+  void execute(FrameContext& ctx) override;
+  void resetHistory() override;
+
+  const std::vector<ObjectHeuristic>& lastEvaluation() const { return evaluated_; }
+  // Selected node ids (objects, or object * 3 + effect with per_effect).
+  const std::vector<int>& lastSelection() const { return selected_; }
+  double lastBudget() const { return budget_; }                // T used this frame (cost units)
+  double lastSelectedCost() const { return selectedCost_; }    // sum of the selected costs
+  const PartialNode& lastPartial() const { return partial_; }  // partial_objects: the part
+
+ private:
+  void updateMeasurements(const RtStats& stats);
+  double tracedCost(const RtStats& stats) const;
+  void writeOrder(const std::vector<HeuristicNode>& nodes, bool perEffect, Buffer& order) const;
+
+  std::vector<uint8_t> selectedLast_;  // effect bits per object
+  std::vector<ObjectHeuristic> evaluated_;
+  std::vector<int> selected_;
+  std::vector<Bounds3> bounds_;
+  uint64_t boundsVersion_ = ~0ull;
+  std::vector<std::array<double, kEffectCount>> measuredRays_;
+  BudgetCalibration calibration_;
+  bool calibrationPrior_ = false;  // prior set to the worker count on first use
+  std::vector<std::array<double, kEffectCount>> msPerPixel_;  // measured, smoothed
+  // Deadline mode: last frame's price of one traced pixel of each object and effect (cost units),
+  // for the cost of what rt_secondary actually traced.
+  std::vector<std::array<double, kEffectCount>> pricePerPixel_;
+  double budget_ = 0, selectedCost_ = 0;
+  PartialNode partial_;
+  int64_t selectedFrame_ = -1;
+};
+
+}  // namespace tandem

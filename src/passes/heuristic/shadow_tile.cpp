@@ -1,0 +1,187 @@
+#include "passes/heuristic/shadow_tile.h"
+
+#include <algorithm>
+
+#include "core/cycle_clock.h"
+#include "passes/heuristic/ranked_tiles.h"
+#include "scene/scene.h"
+#include "shading/shade_batch.h"
+
+namespace tandem {
+
+Vec3 classShares(const uint8_t* classes, size_t lights, size_t stride, int j, int only) {
+  Vec3 c(0.0f);
+  float reached = 0;
+  for (size_t i = 0; i < lights; ++i) {
+    if (only >= 0 && i != size_t(only)) continue;
+    const auto k = ShadowClass(classes[stride * i + size_t(j)]);
+    if (k == ShadowClass::Culled) continue;
+    reached += 1;
+    c.x += k == ShadowClass::Traced ? 1.0f : 0.0f;
+    c.y += k == ShadowClass::Lit ? 1.0f : 0.0f;
+    c.z += k == ShadowClass::Shadowed ? 1.0f : 0.0f;
+  }
+  return reached > 0 ? c / reached : c;
+}
+
+namespace {
+
+constexpr int W = ShadeBatch::kMax;
+using F = ShadeBatch;
+
+// One batch of up to 16 lanes: their shadow term S, light by light.
+class ShadowBatch {
+ public:
+  ShadowBatch(const ShadowTile& t, EffectTally* tally, ShadowCounts& counts)
+      : t_(t),
+        tally_(tally),
+        counts_(counts),
+        lights_(t.scene.lights.size()),
+        share_(lights_ * W),
+        blocked_(3 * lights_ * W),
+        classes_(t.classes ? lights_ * W : 0) {}
+
+  ShadeBatch& batch() { return b_; }
+  void push(int x, int y) {
+    xs_[b_.count] = x;
+    ys_[b_.count++] = y;
+    if (b_.count == W) flush();
+  }
+
+  void flush() {
+    const int n = b_.count;
+    if (n == 0) return;
+    const uint64_t c0 = t_.timed ? cycleNow() : 0;
+    b_.lights = nullptr;
+    lightContributions(b_, t_.shading, share_.data(), W);
+    float floor[W];
+    Vec3 pos[W], geo[W];
+    int self[W], rays[W] = {};
+    for (int k = 0; k < n; ++k) {
+      floor[k] = t_.settings.shadowCull * luminance(b_.result(k));
+      pos[k] = {b_.f[F::PX][k], b_.f[F::PY][k], b_.f[F::PZ][k]};
+      geo[k] = t_.geoNormal.rgb(xs_[k], ys_[k]);
+      self[k] = int(t_.ids.at(xs_[k], ys_[k])[0]);
+    }
+    blockedLights_.clear();
+    for (size_t i = 0; i < lights_; ++i)
+      if (light(i, n, floor, pos, geo, self, rays)) blockedLights_.push_back(uint32_t(i));
+    if (!blockedLights_.empty()) {
+      b_.lights = blockedLights_.data();
+      b_.lightCount = blockedLights_.size();
+      shadeBatch(b_, t_.shading, blocked_.data(), W);
+    }
+    const uint64_t ticks = t_.timed ? cycleNow() - c0 : 0;
+    for (int k = 0; k < n; ++k) {
+      const Vec3 s =
+          blockedLights_.empty() ? Vec3(1.0f) : shadowFromBlocked(b_, k, t_.shading.ambient);
+      t_.shadow.setRgb(xs_[k], ys_[k], s);
+      if (t_.classes)
+        t_.classes->setRgb(xs_[k], ys_[k],
+                           classShares(classes_.data(), lights_, W, k, t_.classLight));
+      EffectTally& e = tally_[size_t(self[k])];
+      e.pixels[kShadow] += 1;
+      e.rays[kShadow] += uint64_t(rays[k]);
+      e.ticks[kShadow] += ticks / uint64_t(n);
+    }
+    counts_.surfaces += uint64_t(n);
+    b_.count = 0;
+  }
+
+ private:
+  // Light i for lanes [0, n): classes, rays for the undecided, the blocked fraction per channel
+  // into blocked_; true when it blocks anything in any lane.
+  bool light(size_t i, int n, const float* floor, const Vec3* pos, const Vec3* geo, const int* self,
+             int* rays) {
+    bool asked[W];
+    ShadowClass c[W];
+    const bool casts = t_.scene.lights[i].castsShadows;
+    for (int k = 0; k < n; ++k) {
+      const float sh = share_[i * W + size_t(k)];
+      asked[k] = casts && sh > 0.0f && sh >= floor[k];
+      c[k] = asked[k] ? ShadowClass::Traced : ShadowClass::Culled;
+    }
+    const ShadowMode mode = t_.maps ? t_.settings.shadows : ShadowMode::Rays;
+    if (mode == ShadowMode::Classified)
+      for (int k0 = 0; k0 < n; k0 += 8)
+        t_.maps->classify(i, std::min(8, n - k0), pos + k0, geo + k0, self + k0, asked + k0,
+                          c + k0);
+    Vec3 vis[W];
+    Ray r[8];
+    bool active[8] = {};
+    int lane[8], m = 0;
+    auto trace = [&] {
+      Vec3 tr[8];
+      t_.rt.transmittance8(r, active, tr, t_.settings.texturedShadows);
+      for (int j = 0; j < m; ++j) vis[lane[j]] = tr[j];
+      std::fill(active, active + 8, false);
+      m = 0;
+    };
+    for (int k = 0; k < n; ++k) {
+      vis[k] = Vec3(1.0f);
+      if (mode == ShadowMode::Maps && asked[k]) {
+        vis[k] = Vec3(t_.maps->visibility(i, pos[k], geo[k]));
+        c[k] = vis[k].x > 0.5f ? ShadowClass::Lit : ShadowClass::Shadowed;
+      }
+      if (c[k] == ShadowClass::Shadowed && mode != ShadowMode::Maps) vis[k] = Vec3(0.0f);
+      if (c[k] == ShadowClass::Traced) {
+        SurfaceSample s;
+        s.position = pos[k];
+        s.geoNormal = geo[k];
+        r[m] = shadowRayTowards(s, sampleLight(t_.shading.lights[i], pos[k]), 0.0f);
+        active[m] = true;
+        lane[m++] = k;
+        ++rays[k];
+        if (m == 8) trace();
+      }
+      counts_.culled += c[k] == ShadowClass::Culled;
+      counts_.lit += c[k] == ShadowClass::Lit;
+      counts_.shadowed += c[k] == ShadowClass::Shadowed;
+      counts_.traced += c[k] == ShadowClass::Traced;
+      if (t_.classes) classes_[i * W + size_t(k)] = uint8_t(c[k]);
+    }
+    if (m > 0) trace();
+    bool any = false;
+    for (int k = 0; k < n; ++k)
+      for (int ch = 0; ch < 3; ++ch) {
+        const float b = 1.0f - vis[k][ch];
+        blocked_[(3 * i + size_t(ch)) * W + size_t(k)] = b;
+        any |= b != 0.0f;
+      }
+    return any;
+  }
+
+  const ShadowTile& t_;
+  EffectTally* tally_;
+  ShadowCounts& counts_;
+  size_t lights_;
+  ShadeBatch b_;
+  int xs_[W], ys_[W];
+  std::vector<float> share_, blocked_;
+  std::vector<uint8_t> classes_;
+  std::vector<uint32_t> blockedLights_;
+};
+
+}  // namespace
+
+void classifiedShadowTile(const ShadowTile& t, const View& v, int x0, int y0, int x1, int y1,
+                          int64_t rank, EffectTally* tally, ShadowCounts& counts) {
+  ShadowBatch batch(t, tally, counts);
+  const bool perspective = v.camera.desc.projection == Projection::Perspective;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      if (t.mask.at(x, y)[kShadow] <= 0.5f) continue;
+      if (rank >= 0 && nodeRank(t.order, t.ids.at(x, y)[0], kShadow) != uint32_t(rank)) continue;
+      ShadeBatch& b = batch.batch();
+      const int l = b.count;
+      if (!t.g.read(x, y, b, l)) continue;
+      // The eye direction as deferred shading takes it.
+      const Vec3 p{b.f[F::PX][l], b.f[F::PY][l], b.f[F::PZ][l]};
+      const Vec3 wo = perspective ? normalize(v.camera.eye - p) : -v.camera.forward;
+      b.f[F::WX][l] = wo.x, b.f[F::WY][l] = wo.y, b.f[F::WZ][l] = wo.z;
+      batch.push(x, y);
+    }
+  batch.flush();
+}
+
+}  // namespace tandem

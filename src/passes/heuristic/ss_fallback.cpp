@@ -1,0 +1,307 @@
+#include "passes/heuristic/ss_fallback.h"
+
+#include <algorithm>
+
+#include "passes/heuristic/rt_stats.h"
+#include "pipeline/frame_context.h"
+#include "pipeline/gbuffer_io.h"
+#include "pipeline/view_tiles.h"
+#include "rt/whitted.h"
+#include "shading/shade_batch.h"
+
+namespace tandem {
+
+namespace {
+enum class FallbackMode { Off = 0, Environment = 1, ScreenSpace = 2, Probe = 3 };
+}
+
+std::vector<ParamDesc> ScreenSpaceFallbackPass::params() const {
+  // Defaults measured (docs/benchmarks.md): probes score best against rt-only on the heuristic
+  // scenes (SSIM and FLIP; the sky and the screen-space march tie below them); 1024 maps as well
+  // as 2048 within 0.01.
+  return {{"mode",
+           ParamType::Enum,
+           3,
+           0,
+           3,
+           "unselected reflections/refractions: off (seed 002: black), sky, screen space, "
+           "per-object reflection probes",
+           {"off", "environment", "screen_space", "probe"}},
+          {"shadows",
+           ParamType::Enum,
+           1,
+           0,
+           1,
+           "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
+           {"off", "shadow_map"}},
+          {"shadow_map_size", ParamType::Int, 1024, 64, 8192, "shadow map resolution", {}},
+          {"probe_size", ParamType::Int, 128, 8, 1024, "reflection probe face resolution", {}},
+          {"max_probes",
+           ParamType::Int,
+           32,
+           0,
+           4096,
+           "most objects with a probe (the largest on screen; others show the sky)",
+           {}},
+          {"probe_refresh",
+           ParamType::Int,
+           2,
+           0,
+           1024,
+           "probes redrawn per frame when geometry moved (oldest first; new ones always)",
+           {}},
+          {"steps", ParamType::Int, 32, 1, 512, "march steps along the reflected ray", {}},
+          {"thickness",
+           ParamType::Float,
+           0.05,
+           0,
+           100,
+           "depth a surface is taken to have, as a fraction of the distance marched",
+           {}}};
+}
+
+std::vector<BufferSlot> ScreenSpaceFallbackPass::inputs() const {
+  std::vector<BufferSlot> in = gbufferSampleSlots();
+  in.push_back({"hdr", 3});
+  in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
+  return in;
+}
+
+namespace {
+
+struct Frame {
+  const Buffer &hdr, &position, &objectId, &optical;
+  const Scene& scene;
+  float reach;  // longest march: the scene's diagonal
+};
+
+// Colour seen from p along unit direction r in view v: the first frame pixel whose surface the
+// march passes just behind (skipping `self` for refraction), else the sky.
+// A refraction march (self >= 0) takes the first surface it passes behind, however far: the
+// front faces hide where the ray would leave the object.
+Vec3 marchScreen(const Frame& f, const View& v, Vec3 p, Vec3 r, int steps, float thickness,
+                 int self) {
+  const Camera& cam = v.camera;
+  // Clip coordinates and view depth are affine in t along the ray: one matrix product each for
+  // the start and the direction, then a few multiply-adds a step.
+  const Vec4 c0 = cam.viewProj * Vec4(p, 1.0f), cr = cam.viewProj * Vec4(r, 0.0f);
+  const float z0 = dot(p - cam.eye, cam.forward), zr = dot(r, cam.forward);
+  // Geometric steps: fine near the surface, coarse far away.
+  const float growth = std::pow(f.reach / 0.01f, 1.0f / float(std::max(steps - 1, 1)));
+  float t = 0.01f;
+  for (int i = 0; i < steps; ++i, t *= growth) {
+    const Vec4 c = c0 + cr * t;
+    if (c.w <= 1e-6f) break;  // behind the eye
+    const float iw = 1.0f / c.w;
+    const float sx = (c.x * iw * 0.5f + 0.5f) * float(cam.width);
+    const float sy = (0.5f - c.y * iw * 0.5f) * float(cam.height);
+    if (!(sx >= 0 && sy >= 0 && sx < float(cam.width) && sy < float(cam.height))) break;
+    const int fx = int(sx) + v.x, fy = int(sy) + v.y;
+    const int id = int(f.objectId.at(fx, fy)[0]);
+    if (id < 0 || id == self) continue;
+    const float surface = dot(f.position.rgb(fx, fy) - cam.eye, cam.forward);
+    const float behind = z0 + zr * t - surface;
+    if (behind > 0 && (self >= 0 || behind < thickness * t + 0.02f)) {
+      // A mirror or glass pixel's raster colour is not what it shows: the sky stands in.
+      const float* op = f.optical.at(fx, fy);
+      if (op[0] > 0 || op[2] < 1) break;
+      return f.hdr.rgb(fx, fy);
+    }
+  }
+  return f.scene.skyRadiance(r);
+}
+
+}  // namespace
+
+void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
+  const auto mode = FallbackMode(int(param("mode")));
+  const bool shadows = param("shadows") != 0;
+  const GBufferReader g = gbufferSource(ctx, *this);
+  const Buffer& hdr = ctx.input(*this, "hdr");
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer& optical = ctx.input(*this, "optical");
+  const Buffer& objectId = ctx.input(*this, "object_id");
+  const Buffer& geoNormal = ctx.input(*this, "geo_normal");
+  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  Buffer& out = ctx.output(*this, "fallback");
+  std::fill(out.data.begin(), out.data.end(), 0.0f);
+  if (mode == FallbackMode::Off && !shadows) return;
+  const Scene& scene = *ctx.scene;
+  // The frame's shared maps (classified shadows in rt_secondary drew them already when its
+  // size is the same).
+  ShadowMaps* shadowMaps = nullptr;
+  if (shadows) {
+    const auto t0 = Clock::now();
+    shadowMaps = &ctx.shadowMaps(int(param("shadow_map_size")));
+    ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+  }
+  const ShadingContext shading = ShadingContext::from(scene);
+  if (mode == FallbackMode::Probe) {
+    // A probe for every reflective or transparent object that shows an untraced effect.
+    const auto t0 = Clock::now();
+    // At most max_probes of them, the largest on screen (the others show the sky): each probe
+    // costs six draws of the scene and its memory.
+    std::vector<uint32_t> area(scene.objects.size(), 0);
+    for (size_t i = 0; i < objectId.pixelCount(); ++i) {
+      const float id = objectId.data[i];
+      if (id < 0) continue;
+      const float *op = &optical.data[3 * i], *m = &mask.data[size_t(kEffectCount) * i];
+      if ((op[0] > 0 && m[kReflection] < 0.5f) || (op[2] < 1 && m[kRefraction] < 0.5f))
+        ++area[size_t(id)];
+    }
+    std::vector<uint32_t> order;
+    for (size_t o = 0; o < area.size(); ++o)
+      if (area[o] > 0) order.push_back(uint32_t(o));
+    const size_t keep = std::min(order.size(), size_t(param("max_probes")));
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
+                      [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
+    std::vector<uint8_t> wanted(scene.objects.size(), 0);
+    for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
+    ctx.counters["ss_fallback/probes_drawn"] =
+        probes_.update(ctx.frame, shading, wanted, int(param("probe_size")),
+                       int(param("probe_refresh")), 2 * size_t(param("max_probes")));
+    ctx.passParts.push_back({"probes", msSince(t0), 0});
+  }
+  const Bounds3 b = scene.bounds(ctx.frame.time);
+  const Frame f{hdr, position, objectId, optical, scene, std::max(length(b.hi - b.lo), 0.1f)};
+  const int steps = int(param("steps"));
+  const float thickness = float(param("thickness"));
+  const size_t lights = scene.lights.size();
+  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
+    // The tile's shadow pixels are gathered first and looked up light by light (one map's texels
+    // stay in cache across the tile), then shaded in batches: per light and channel a row of
+    // lanes holding the occluded fraction (rt_secondary's Listing 8a sum, 16 pixels at a time).
+    struct ShadowPixel {
+      int x, y;
+      Vec3 d;
+    };
+    std::vector<ShadowPixel> shadowed;
+    shadowed.reserve(size_t(x1 - x0) * size_t(y1 - y0));
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const int id = int(objectId.at(x, y)[0]);
+        if (id < 0) continue;
+        const float* op = optical.at(x, y);
+        const float* m = mask.at(x, y);
+        const bool reflect = mode != FallbackMode::Off && op[0] > 0 && m[kReflection] < 0.5f;
+        const bool refract = mode != FallbackMode::Off && op[2] < 1 && m[kRefraction] < 0.5f;
+        const bool shadow = shadows && m[kShadow] < 0.5f;
+        if (!reflect && !refract && !shadow) continue;
+        Vec3 o, d;
+        v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+        if (shadow) shadowed.push_back({x, y, d});
+        if (!reflect && !refract) continue;
+        const Vec3 p = position.rgb(x, y);
+        Vec3 n = normal.rgb(x, y);
+        if (dot(n, d) > 0) n = -n;
+        auto look = [&](Vec3 r, int self) {
+          if (mode == FallbackMode::Probe) {  // refraction: out through the object first
+            Vec3 from = p;
+            const Vec3 dir = self < 0 ? r : probes_.exitDirection(id, p, r, op[1], from);
+            return probes_.lookupFrom(scene, id, from, dir, b);
+          }
+          return mode == FallbackMode::Environment
+                     ? scene.skyRadiance(r)
+                     : marchScreen(f, v, p, r, steps, thickness, self);
+        };
+        float* px = out.at(x, y);
+        if (reflect) {
+          const Vec3 c = look(normalize(reflectDir(d, n)), -1);
+          px[0] = c.x, px[1] = c.y, px[2] = c.z;
+        }
+        if (refract) {
+          // Entering the object (the G-buffer holds front faces): the refracted direction, the
+          // object itself not counted as what lies behind it.
+          Vec3 t;
+          if (!refractDir(d, n, 1.0f / std::max(op[1], 1e-3f), t)) t = reflectDir(d, n);
+          const Vec3 c = look(t, id);
+          px[3] = c.x, px[4] = c.y, px[5] = c.z;
+        }
+        px[9] = 1.0f;
+      }
+    if (shadowed.empty()) return;
+    // Occluded fraction per light and pixel. A light the surface faces away from, or that does
+    // not reach it, adds nothing whatever its map says: no lookup.
+    const size_t count = shadowed.size();
+    std::vector<float> occluded(lights * count);
+    // Looked up 16 points at a time (the SIMD kernel), light by light; only the position and
+    // the two normals are read here.
+    constexpr size_t W = 16;
+    for (size_t k0 = 0; k0 < count; k0 += W) {
+      const size_t n = std::min(W, count - k0);
+      float px[W] = {}, py[W] = {}, pz[W] = {}, nx[W] = {}, ny[W] = {}, nz[W] = {};
+      Vec3 shadingNormal[W];
+      for (size_t k = 0; k < n; ++k) {
+        const int x = shadowed[k0 + k].x, y = shadowed[k0 + k].y;
+        const float *p = position.at(x, y), *gn = geoNormal.at(x, y);
+        px[k] = p[0], py[k] = p[1], pz[k] = p[2];
+        nx[k] = gn[0], ny[k] = gn[1], nz[k] = gn[2];
+        shadingNormal[k] = normal.rgb(x, y);
+      }
+      for (size_t i = 0; i < lights; ++i) {
+        float lit[W] = {}, vis[W] = {};
+        for (size_t k = 0; k < n; ++k) {
+          const LightSample ls = sampleLight(shading.lights[i], {px[k], py[k], pz[k]});
+          lit[k] = dot(shadingNormal[k], ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f;
+        }
+        shadowMaps->visibilityBatch(i, px, py, pz, nx, ny, nz, lit, int(n), vis);
+        for (size_t k = 0; k < n; ++k)
+          occluded[i * count + k0 + k] = lit[k] > 0 ? 1.0f - vis[k] : 0.0f;
+      }
+    }
+    // As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one shading call
+    // weighted by each light's occluded fraction. Pixels no map shadows keep S = 1 unshaded, and
+    // a batch evaluates only the lights that shadow one of its lanes (the others add exactly 0).
+    using F = ShadeBatch;
+    ShadeBatch batch;
+    std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
+    std::vector<uint32_t> batchLights;
+    batchLights.reserve(lights);
+    size_t lane[ShadeBatch::kMax];
+    auto flush = [&] {
+      batchLights.clear();
+      for (size_t i = 0; i < lights; ++i)
+        for (int j = 0; j < batch.count; ++j)
+          if (occluded[i * count + lane[j]] > 0.0f) {
+            batchLights.push_back(uint32_t(i));
+            break;
+          }
+      for (uint32_t i : batchLights)
+        for (int j = 0; j < batch.count; ++j)
+          for (size_t c = 0; c < 3; ++c)
+            blocked[(3 * i + c) * ShadeBatch::kMax + size_t(j)] = occluded[i * count + lane[j]];
+      batch.lights = batchLights.data();
+      batch.lightCount = batchLights.size();
+      shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
+      for (int j = 0; j < batch.count; ++j) {
+        const Vec3 s = shadowFromBlocked(batch, j, shading.ambient);
+        float* px = out.at(shadowed[lane[j]].x, shadowed[lane[j]].y);
+        px[6] = s.x, px[7] = s.y, px[8] = s.z;
+      }
+      batch.count = 0;
+    };
+    batch.count = 0;
+    for (size_t k = 0; k < count; ++k) {
+      float* px = out.at(shadowed[k].x, shadowed[k].y);
+      px[10] = 1.0f;
+      bool any = false;
+      for (size_t i = 0; i < lights; ++i) any |= occluded[i * count + k] > 0.0f;
+      if (!any) {
+        px[6] = px[7] = px[8] = 1.0f;
+        continue;
+      }
+      // The G-buffer straight into the lane (as deferred shading reads it); the viewer is -d.
+      const int l = batch.count;
+      g.read(shadowed[k].x, shadowed[k].y, batch, l);
+      const Vec3 wo = -shadowed[k].d;
+      batch.f[F::WX][l] = wo.x, batch.f[F::WY][l] = wo.y, batch.f[F::WZ][l] = wo.z;
+      lane[batch.count++] = k;
+      if (batch.count == ShadeBatch::kMax) flush();
+    }
+    if (batch.count) flush();
+  });
+  if (shadowMaps) ctx.counters["ss_fallback/shadow_map_redraws"] = shadowMaps->redraws();
+}
+
+}  // namespace tandem

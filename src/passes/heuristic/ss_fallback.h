@@ -1,0 +1,38 @@
+// ss_fallback: what production hybrids draw for the effects the heuristic did not select (seed
+// 002 draws them black, Listing 8a). For each pixel of a reflective or transparent object whose
+// reflection or refraction was not traced, it looks along the reflected (refracted) direction
+// through the frame itself: a world-space march projected on the screen, hitting where it
+// passes just behind the depth of the G-buffer, takes the shaded colour there (screen-space
+// reflection / refraction); a march that leaves the screen or finds nothing takes the sky.
+// Mode "environment" skips the march and takes the sky; mode "probe" (the default: it measures
+// best) looks up a small cube map drawn from the object's centre (reflection_probes.h). Unselected
+// shadows come from the frame's raster shadow maps (raster/shadow_maps.h, shared with classified
+// shadows at the same size) through the same shading call rt_secondary
+// uses. Both "off" is the paper's rule, for its tables. Inputs: the G-buffer sample slots, hdr,
+// heuristic_mask. Output: fallback = reflection RGB, refraction RGB, shadow RGB (eq. 4's S), then
+// flags: 1 where reflection/refraction were written, 1 where the shadow was.
+#pragma once
+#include "passes/heuristic/reflection_probes.h"
+#include "pipeline/pass.h"
+#include "raster/shadow_maps.h"
+
+namespace tandem {
+
+class ScreenSpaceFallbackPass : public Pass {
+ public:
+  std::string type() const override { return "ss_fallback"; }
+  std::string description() const override {
+    return "Screen-space reflection/refraction (or sky) where no ray was traced";
+  }
+  std::vector<ParamDesc> params() const override;
+  std::vector<BufferSlot> inputs() const override;
+  std::vector<BufferSlot> outputs() const override { return {{"fallback", kChannels}}; }
+  void execute(FrameContext& ctx) override;
+  void resetHistory() override { probes_ = {}; }
+  static constexpr int kChannels = 11;
+
+ private:
+  ReflectionProbes probes_;
+};
+
+}  // namespace tandem

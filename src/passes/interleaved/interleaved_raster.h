@@ -1,0 +1,27 @@
+// interleaved_raster: the visibility of interleaved sampling by rasterization, one pass per (time,
+// lens) pair of T into the samples that carry it (interleaved.h: what the samples are).
+#pragma once
+#include "passes/interleaved/interleaved.h"
+#include "raster/rasterizer.h"
+
+namespace tandem {
+
+class InterleavedRasterPass : public InterleavedPass {
+ public:
+  std::string type() const override { return "interleaved_raster"; }
+  std::string description() const override {
+    return "Interleaved rasterization: one pass per (time, lens) pair of T into the samples "
+           "whose tile slot carries it (seed 003)";
+  }
+
+ protected:
+  void visibility(FrameContext& ctx, const SampleLayout& layout, const std::vector<Camera>& cams,
+                  const std::vector<float>& taus, const uint8_t* active,
+                  VisibilityBuffer& vis) override;
+
+ private:
+  Rasterizer rasterizer_;
+  std::vector<uint8_t> cellActive_;  // masked passes: cells holding a needed sample
+};
+
+}  // namespace tandem

@@ -1,0 +1,199 @@
+#include "passes/interleaved/postfx_motion_blur.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "pipeline/frame_context.h"
+
+namespace tandem {
+
+std::vector<ParamDesc> PostfxMotionBlurPass::params() const {
+  return {
+      {"tile_size", ParamType::Int, 20, 2, 128, "K: tile size and largest blur radius (px)", {}},
+      {"samples", ParamType::Int, 15, 3, 101, "S: gather samples per pixel (odd)", {}},
+      {"soft_z", ParamType::Float, 0.1, 0.001, 100, "soft depth comparison extent (m)", {}},
+      {"mask_threshold",
+       ParamType::Float,
+       1.0,
+       0,
+       100,
+       "mask tiles whose neighbourhood's blur radii differ by more than this (px)",
+       {}},
+      {"mask",
+       ParamType::Enum,
+       0,
+       0,
+       1,
+       "spread: radii anywhere in the 3 x 3 tiles differ; edges: adjacent pixels' radii jump (a "
+       "motion boundary) somewhere in them, so smooth motion (a camera pan's parallax) stays out",
+       {"spread", "edges"}}};
+}
+
+namespace {
+
+float lengthOf(Vec2 v) {
+  return std::sqrt(v.x * v.x + v.y * v.y);
+}
+
+float cone(float dist, float speed) {
+  return speed <= 0 ? 0.0f : std::clamp(1.0f - dist / speed, 0.0f, 1.0f);
+}
+float smoothstep(float a, float b, float x) {
+  const float t = std::clamp((x - a) / (b - a), 0.0f, 1.0f);
+  return t * t * (3 - 2 * t);
+}
+float cylinder(float dist, float speed) {
+  if (speed <= 0) return dist <= 0 ? 1.0f : 0.0f;  // a still pixel covers only itself
+  return 1.0f - smoothstep(0.95f * speed, 1.05f * speed, dist);
+}
+// 1 where depth a is (softly) in front of depth b (distances along the view axis).
+float softFront(float a, float b, float extent) {
+  return std::clamp(1.0f - (a - b) / extent, 0.0f, 1.0f);
+}
+
+}  // namespace
+
+void PostfxMotionBlurPass::execute(FrameContext& ctx) {
+  const Buffer& C = ctx.input(*this, "hdr");
+  const Buffer& V = ctx.input(*this, "velocity");
+  const Buffer& Z = ctx.input(*this, "view_depth");
+  Buffer& out = ctx.output(*this, "mb_postfx");
+  Buffer& maskOut = ctx.output(*this, "mb_mask");
+  const int K = int(param("tile_size")), S = int(param("samples")) | 1;
+  const float softZ = float(param("soft_z")), threshold = float(param("mask_threshold"));
+  const bool edgesOnly = param("mask") == 1;
+  size_t masked = 0, pixels = 0;
+  for (const View& view : ctx.views) {
+    const int W = view.width(), H = view.height(), ox = view.x, oy = view.y;
+    // Blur radius: half the displacement over the shutter, at most K.
+    auto radiusAt = [&](int x, int y) {
+      const float* v = V.at(x + ox, y + oy);
+      Vec2 r{0.5f * v[0], 0.5f * v[1]};
+      const float l = lengthOf(r);
+      if (l > float(K)) r = r * (float(K) / l);
+      return r;
+    };
+    const int TX = (W + K - 1) / K, TY = (H + K - 1) / K;
+    std::vector<Vec2> tileMax(size_t(TX) * TY), neighborMax(tileMax.size());
+    std::vector<float> tileMinSpeed(tileMax.size());
+    std::vector<uint8_t> tileEdge(tileMax.size(), 0);  // a jump of > threshold between neighbours
+    for (int ty = 0; ty < TY; ++ty)
+      for (int tx = 0; tx < TX; ++tx) {
+        Vec2 best{0, 0};
+        float bestL = -1, minL = 1e30f;
+        for (int y = ty * K; y < std::min(H, ty * K + K); ++y)
+          for (int x = tx * K; x < std::min(W, tx * K + K); ++x) {
+            const Vec2 r = radiusAt(x, y);
+            const float l = lengthOf(r);
+            if (l > bestL) bestL = l, best = r;
+            minL = std::min(minL, l);
+            if (edgesOnly && ((x + 1 < W && lengthOf(radiusAt(x + 1, y) - r) > threshold) ||
+                              (y + 1 < H && lengthOf(radiusAt(x, y + 1) - r) > threshold)))
+              tileEdge[size_t(ty) * TX + size_t(tx)] = 1;
+          }
+        tileMax[size_t(ty) * TX + size_t(tx)] = best;
+        tileMinSpeed[size_t(ty) * TX + size_t(tx)] = minL;
+      }
+    // NeighborMax and the mask of mixed motion: the neighbourhood's largest radius against the
+    // velocities in it (the spread between its tiles' largest and smallest radii, and between
+    // their largest velocities' directions).
+    std::vector<float> tileMask(tileMax.size(), 0.0f);
+    for (int ty = 0; ty < TY; ++ty)
+      for (int tx = 0; tx < TX; ++tx) {
+        Vec2 best{0, 0};
+        float bestL = -1, minL = 1e30f;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = tx + dx, y = ty + dy;
+            if (x < 0 || y < 0 || x >= TX || y >= TY) continue;
+            const Vec2 r = tileMax[size_t(y) * TX + size_t(x)];
+            if (lengthOf(r) > bestL) bestL = lengthOf(r), best = r;
+            minL = std::min(minL, tileMinSpeed[size_t(y) * TX + size_t(x)]);
+          }
+        float spread = bestL - minL;
+        bool edge = false;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = tx + dx, y = ty + dy;
+            if (x < 0 || y < 0 || x >= TX || y >= TY) continue;
+            spread = std::max(spread, lengthOf(tileMax[size_t(y) * TX + size_t(x)] - best));
+            edge = edge || tileEdge[size_t(y) * TX + size_t(x)];
+          }
+        neighborMax[size_t(ty) * TX + size_t(tx)] = best;
+        const bool mixed = edgesOnly ? edge : spread > threshold;
+        tileMask[size_t(ty) * TX + size_t(tx)] = bestL > 0.5f && mixed ? 1.0f : 0.0f;
+      }
+
+    parallelTiles(W, H, [&](int x0, int y0, int x1, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          // The mask: tile values bilinearly between tile centres, 1 wherever a masked tile is.
+          {
+            const float fx = (float(x) + 0.5f) / float(K) - 0.5f,
+                        fy = (float(y) + 0.5f) / float(K) - 0.5f;
+            const int ix = int(std::floor(fx)), iy = int(std::floor(fy));
+            const float ax = fx - float(ix), ay = fy - float(iy);
+            auto at = [&](int tx, int ty) {
+              tx = std::clamp(tx, 0, TX - 1);
+              ty = std::clamp(ty, 0, TY - 1);
+              return tileMask[size_t(ty) * TX + size_t(tx)];
+            };
+            float m = (1 - ay) * ((1 - ax) * at(ix, iy) + ax * at(ix + 1, iy)) +
+                      ay * ((1 - ax) * at(ix, iy + 1) + ax * at(ix + 1, iy + 1));
+            if (at(x / K, y / K) > 0) m = 1.0f;
+            maskOut.at(x + ox, y + oy)[0] = m;
+          }
+          const Vec2 vn = neighborMax[size_t(y / K) * TX + size_t(x / K)];
+          const Vec3 cx = C.rgb(x + ox, y + oy);
+          if (lengthOf(vn) <= 0.5f) {
+            out.setRgb(x + ox, y + oy, cx);
+            continue;
+          }
+          const Vec2 vx = radiusAt(x, y);
+          const float sx = std::max(lengthOf(vx), 0.5f), zx = Z.at(x + ox, y + oy)[0];
+          float weight = 1.0f / sx;
+          Vec3 sum = cx * weight;
+          // Per-pixel jitter in [-0.5, 0.5] (a hash: deterministic, no pattern).
+          uint32_t h = uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u;
+          h = (h ^ (h >> 13)) * 0x5bd1e995u;
+          const float j = float(h >> 8) / float(1 << 24) - 0.5f;
+          for (int i = 0; i < S; ++i) {
+            if (i == (S - 1) / 2) continue;
+            const float t = -1.0f + 2.0f * (float(i) + j + 1.0f) / float(S + 1);
+            const int yx = std::clamp(int(std::lround(float(x) + vn.x * t)), 0, W - 1);
+            const int yy = std::clamp(int(std::lround(float(y) + vn.y * t)), 0, H - 1);
+            const float dist = std::sqrt(float((yx - x) * (yx - x) + (yy - y) * (yy - y)));
+            const Vec2 vy = radiusAt(yx, yy);
+            const float sy = lengthOf(vy), zy = Z.at(yx + ox, yy + oy)[0];
+            const float f = softFront(zy, zx, softZ), b = softFront(zx, zy, softZ);
+            const float a = f * cone(dist, sy) + b * cone(dist, sx) +
+                            cylinder(dist, sy) * cylinder(dist, sx) * 2.0f;
+            weight += a;
+            sum = sum + C.rgb(yx + ox, yy + oy) * a;
+          }
+          out.setRgb(x + ox, y + oy, sum * (1.0f / weight));
+        }
+    });
+    for (float m : tileMask) masked += m > 0;
+    pixels += tileMask.size();
+  }
+  ctx.counters["postfx_motion_blur/masked_tiles_percent"] =
+      pixels ? 100.0 * double(masked) / double(pixels) : 0.0;
+}
+
+void MotionBlurCompositePass::execute(FrameContext& ctx) {
+  const Buffer& post = ctx.input(*this, "mb_postfx");
+  const Buffer& il = ctx.input(*this, "mb_interleaved");
+  const Buffer& mask = ctx.input(*this, "mb_mask");
+  Buffer& out = ctx.output(*this, "hdr");
+  parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const float m = std::clamp(mask.at(x, y)[0], 0.0f, 1.0f);
+        out.setRgb(x, y, post.rgb(x, y) * (1.0f - m) + il.rgb(x, y) * m);
+      }
+  });
+}
+
+}  // namespace tandem
