@@ -59,6 +59,10 @@ struct Vec4 {
   constexpr Vec4 operator*(Vec4 o) const { return {x * o.x, y * o.y, z * o.z, w * o.w}; }
 };
 
+// Three consecutive floats (a channel triple of a buffer pixel) as a vector.
+inline constexpr Vec3 loadVec3(const float* p) {
+  return {p[0], p[1], p[2]};
+}
 inline constexpr float dot(Vec3 a, Vec3 b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }

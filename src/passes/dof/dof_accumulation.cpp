@@ -10,11 +10,12 @@
 namespace tandem {
 
 std::vector<BufferSlot> DofAccumulationPass::inputs() const {
-  std::vector<BufferSlot> in = {{"rt_near", 4, BufferKind::Color, Extent::any()},
-                                {"rt_far", 4, BufferKind::Color, Extent::any()},
-                                {"rt_hit", 2, BufferKind::Mask, Extent::any()},
-                                {"rt_far_position", 4, BufferKind::Position, Extent::any()},
-                                {"motion", 2, BufferKind::Motion}};
+  std::vector<BufferSlot> in = {
+      {"rt_near", dof::kLayerChannels, BufferKind::Color, Extent::any()},
+      {"rt_far", dof::kLayerChannels, BufferKind::Color, Extent::any()},
+      {"rt_hit", dof::kHitChannels, BufferKind::Mask, Extent::any()},
+      {"rt_far_position", dof::kFarPositionChannels, BufferKind::Position, Extent::any()},
+      {"motion", 2, BufferKind::Motion}};
   for (const char* h : {"acc_near", "acc_far"}) {
     BufferSlot s{h, 5, BufferKind::Color, Extent::any()};
     s.history = true;
@@ -68,6 +69,32 @@ bool history(const Buffer* b, float x, float y, float* out) {
   return true;
 }
 
+// Where the far field of mask pixel (x, y) was last frame: its rays' mean far hit (else its 3x3
+// neighbourhood's) seen by the previous camera; (fxp, fyp) unchanged when there is none.
+void reprojectFar(const Buffer& farPosIn, int x, int y, const View& view, float scale, float& fxp,
+                  float& fyp) {
+  const int w = farPosIn.width, h = farPosIn.height;
+  Vec3 farP(0.0f);
+  float farW = 0.0f;
+  if (farPosIn.at(x, y)[dof::kFarPositionValid] > 0) {
+    const float* p = farPosIn.at(x, y);
+    farP = Vec3(p[0], p[1], p[2]);
+    farW = 1.0f;
+  } else {
+    for (int j = std::max(y - 1, 0); j <= std::min(y + 1, h - 1); ++j)
+      for (int i = std::max(x - 1, 0); i <= std::min(x + 1, w - 1); ++i) {
+        const float* p = farPosIn.at(i, j);
+        if (p[dof::kFarPositionValid] > 0) farP = farP + Vec3(p[0], p[1], p[2]), farW += 1.0f;
+      }
+    if (farW > 0) farP = farP * (1.0f / farW);
+  }
+  Vec2 prevPixel;
+  if (farW > 0 && view.prevCamera.project(farP, prevPixel)) {
+    fxp = (prevPixel.x + float(view.x)) / scale;  // the view's pixel -> the frame's
+    fyp = (prevPixel.y + float(view.y)) / scale;
+  }
+}
+
 }  // namespace
 
 void DofAccumulationPass::execute(FrameContext& ctx) {
@@ -103,31 +130,13 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       const float nx = (fx - mv[0]) / scale, ny = (fy - mv[1]) / scale;  // near: motion vector
       // Far: the mean far-field hit of the pixel's rays, else of its 3x3 neighbourhood's.
       float fxp = nx, fyp = ny;
-      Vec3 farP(0.0f);
-      float farW = 0.0f;
-      if (farPosIn.at(x, y)[3] > 0) {
-        const float* p = farPosIn.at(x, y);
-        farP = Vec3(p[0], p[1], p[2]);
-        farW = 1.0f;
-      } else {
-        for (int j = std::max(y - 1, 0); j <= std::min(y + 1, h - 1); ++j)
-          for (int i = std::max(x - 1, 0); i <= std::min(x + 1, w - 1); ++i) {
-            const float* p = farPosIn.at(i, j);
-            if (p[3] > 0) farP = farP + Vec3(p[0], p[1], p[2]), farW += 1.0f;
-          }
-        if (farW > 0) farP = farP * (1.0f / farW);
-      }
-      Vec2 prevPixel;
-      if (farW > 0 && view.prevCamera.project(farP, prevPixel)) {
-        fxp = (prevPixel.x + float(view.x)) / scale;  // the view's pixel -> the frame's
-        fyp = (prevPixel.y + float(view.y)) / scale;
-      }
+      reprojectFar(farPosIn, x, y, view, scale, fxp, fyp);
       float hn[5] = {}, hf[5] = {}, hm[3] = {};
       const bool haveNear = history(prevNear, nx, ny, hn) && history(prevMoments, nx, ny, hm);
       const bool haveFar = history(prevFar, fxp, fyp, hf);
       const bool haveHistory = haveNear && haveFar;
 
-      const float rays = hitIn.at(x, y)[1], hc = hitIn.at(x, y)[0];
+      const float rays = hitIn.at(x, y)[dof::kHitRays], hc = hitIn.at(x, y)[dof::kHitNearShare];
       const float* cn = nearIn.at(x, y);
       const float* cf = farIn.at(x, y);
       // This frame's merged sample (the mean of its rays).
@@ -151,9 +160,10 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
                                            std::max({lum, histLum, 1e-3f}));
         alpha = alpha + (1.0f - alpha) * lambda;
       }
-      const float curNear[5] = {hc * cn[0], hc * cn[1], hc * cn[2], hc, hc * cn[3]};
+      const float curNear[5] = {hc * cn[0], hc * cn[1], hc * cn[2], hc, hc * cn[dof::kLayerCoc]};
       const float hf1 = 1.0f - hc;
-      const float curFar[5] = {hf1 * cf[0], hf1 * cf[1], hf1 * cf[2], hf1, hf1 * cf[3]};
+      const float curFar[5] = {hf1 * cf[0], hf1 * cf[1], hf1 * cf[2], hf1,
+                               hf1 * cf[dof::kLayerCoc]};
       float* an = accNear.at(x, y);
       float* af = accFar.at(x, y);
       for (int c = 0; c < 5; ++c) {
@@ -194,10 +204,11 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       }
       const float frames = std::min(std::max(am[2], 1.0f), (2.0f - minAlpha) / minAlpha);
       variance.at(x, y)[0] = std::max(am[1] - am[0] * am[0], 0.0f) / frames;
-      o[3] = farCoc + (nearCoc - farCoc) * hr;
-      o[4] = hr;
-      o[5] = 1.0f;
-      o[6] = nearC.x, o[7] = nearC.y, o[8] = nearC.z;
+      using C = dof::RtChannels;
+      o[C::kCoc] = farCoc + (nearCoc - farCoc) * hr;
+      o[C::kHit] = hr;
+      o[C::kCoverage] = 1.0f;
+      o[C::kNear] = nearC.x, o[C::kNear + 1] = nearC.y, o[C::kNear + 2] = nearC.z;
     }
   });
   double mean = 0, above = 0;

@@ -18,6 +18,13 @@ struct RtChannels {
   static constexpr int kRgb = 0, kCoc = 3, kHit = 4, kCoverage = 5, kNear = 6, kCount = 9;
 };
 
+// The channels rt_dof writes and dof_accumulation reads: rt_near and rt_far hold a layer's mean
+// colour and CoC; rt_hit the near share of the pixel's rays and how many there were;
+// rt_far_position the mean far hit and whether any ray hit the far field.
+constexpr int kLayerCoc = 3, kLayerChannels = 4;
+constexpr int kHitNearShare = 0, kHitRays = 1, kHitChannels = 2;
+constexpr int kFarPositionValid = 3, kFarPositionChannels = 4;
+
 // A hit ratio or foreground share below this is no silhouette (the noise floor of a few rays).
 constexpr float kSilhouette = 0.02f;
 

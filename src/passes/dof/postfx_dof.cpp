@@ -78,33 +78,29 @@ std::array<Tap, 81> ringTaps(float rotation) {
   return t;
 }
 
-}  // namespace
-
-void PostfxDofPass::execute(FrameContext& ctx) {
-  const Buffer& hdr = ctx.input(*this, "hdr");
-  const Buffer& cocIn = ctx.input(*this, "coc");
-  const Buffer& specIn = ctx.input(*this, "specular");
-  Buffer& out = ctx.output(*this, "postfx");
-  Buffer& bokehOut = ctx.output(*this, "bokeh");
-  const ThinLens lens = ThinLens::of(ctx.camera());
-  if (!lens.active()) {  // a pinhole: nothing to blur
-    out.data = hdr.data;
-    bokehOut.fill(0.0f);
-    return;
+// The half-resolution grid the filter runs on, with its tiles' neighbourhood max |CoC|.
+struct HalfGrid {
+  int W, H, hw, hh, tw, th;
+  std::vector<HalfSample> half;
+  std::vector<float> neighbourMax;
+  float maxCocAt(int x, int y) const {
+    return neighbourMax[size_t(y / kTile) * tw + size_t(x / kTile)];
   }
+  const HalfSample& at(int x, int y) const {
+    return half[size_t(std::clamp(y, 0, hh - 1)) * hw + size_t(std::clamp(x, 0, hw - 1))];
+  }
+};
+
+HalfGrid downsample(const Buffer& hdr, const Buffer& cocIn, const Buffer& specIn,
+                    const ThinLens& lens, float specThreshold, float bokehLuminance) {
   const int W = hdr.width, H = hdr.height, hw = (W + 1) / 2, hh = (H + 1) / 2;
-  const float depthRange = float(param("depth_range"));
-  const float specThreshold = float(param("specular_threshold"));
-  const float bokehLuminance = float(param("bokeh_luminance"));
-  const bool polygon = param("polygon") != 0 && lens.blades >= 3;
   // CoC -> view depth (the inverse of ThinLens::coc; depth is what separates fg from bg).
   const float k = lens.aperture * lens.pixelsPerSlope;
   auto depthOf = [&](float cocFrame) {
     const float den = k - cocFrame * lens.focus;
     return den > 1e-9f ? k * lens.focus / den : 1e30f;  // the sky: far, finite (no inf - inf)
   };
-
-  // 1. Downsample CoC, depth and the high-specular flag (colour: the prefilter below).
+  // Downsample CoC, depth and the high-specular flag (colour: the prefilter below).
   std::vector<HalfSample> half(size_t(hw) * hh);
   parallelRows(hh, [&](int y) {
     for (int x = 0; x < hw; ++x) {
@@ -131,7 +127,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
     }
   });
 
-  // 2. Tile max |CoC| and its 3x3 neighbourhood max (half-res pixels, diameter).
+  // Tile max |CoC| and its 3x3 neighbourhood max (half-res pixels, diameter).
   const int tw = (hw + kTile - 1) / kTile, th = (hh + kTile - 1) / kTile;
   std::vector<float> tileMax(size_t(tw) * th, 0.0f), neighbourMax(size_t(tw) * th, 0.0f);
   for (int y = 0; y < hh; ++y)
@@ -147,19 +143,20 @@ void PostfxDofPass::execute(FrameContext& ctx) {
           m = std::max(m, tileMax[size_t(j) * tw + i]);
       neighbourMax[size_t(ty) * tw + tx] = m;
     }
-  auto at = [&](int x, int y) -> const HalfSample& {
-    return half[size_t(std::clamp(y, 0, hh - 1)) * hw + size_t(std::clamp(x, 0, hw - 1))];
-  };
+  return {W, H, hw, hh, tw, th, std::move(half), std::move(neighbourMax)};
+}
 
-  // 3. The 9-tap bilateral prefilter is the downsampling filter (Jimenez): bilinear taps of the
+HalfGrid prefilter(HalfGrid grid, const Buffer& hdr, const Buffer& cocIn) {
+  const int W = grid.W, H = grid.H, hw = grid.hw, hh = grid.hh;
+  // The 9-tap bilateral prefilter is the downsampling filter (Jimenez): bilinear taps of the
   // frame around each half-res pixel's centre, diameter 1/8 of the neighbourhood's max CoC but
   // at least √2 frame pixels (then it is a 2x2 average, no pixel sampled twice); taps of a very
   // different CoC (another surface) count less. CoC, depth and flags stay the downsample's.
-  std::vector<HalfSample> pre(half.size());
+  std::vector<HalfSample> pre(grid.half.size());
   parallelRows(hh, [&](int y) {
     for (int x = 0; x < hw; ++x) {
-      const HalfSample& c0 = at(x, y);
-      const float maxCoc = neighbourMax[size_t(y / kTile) * tw + size_t(x / kTile)];
+      const HalfSample& c0 = grid.at(x, y);
+      const float maxCoc = grid.maxCocAt(x, y);
       const float radius = 0.5f * std::max(2.0f * maxCoc / 8.0f, dof::kZoneOfFocusCoc);
       const float cx = 2.0f * float(x) + 1.0f, cy = 2.0f * float(y) + 1.0f;  // frame coordinates
       float r = 0, g = 0, b = 0, wsum = 0;
@@ -185,10 +182,26 @@ void PostfxDofPass::execute(FrameContext& ctx) {
     }
   });
 
-  // 4. 81-tap gather, eq. 1.
+  grid.half = std::move(pre);
+  return grid;
+}
+
+struct GatherSettings {
+  float depthRange;
+  bool polygon;
+  int64_t serial;  // the executed frame (the rings' rotation)
+};
+
+// Eq. 1: the 81-tap gather, colour and (bokeh) the specular share and blurred foreground.
+void gather(const HalfGrid& grid, const ThinLens& lens, const GatherSettings& gs, Buffer& gathered,
+            Buffer& bokeh) {
+  const int hw = grid.hw, hh = grid.hh;
+  const std::vector<HalfSample>& pre = grid.half;
+  const float depthRange = gs.depthRange;
+  const bool polygon = gs.polygon;
   // A new ring rotation every executed frame (a static shot repeats its frame index).
   const float rotation =
-      2.0f * kPi * float((uint32_t(ctx.serial) * 2654435769u) >> 8) / float(1u << 24) / 81.0f;
+      2.0f * kPi * float((uint32_t(gs.serial) * 2654435769u) >> 8) / float(1u << 24) / 81.0f;
   const std::array<Tap, 81> taps = ringTaps(rotation);
   // The polygon's extent along each tap's direction, for far- and near-field spots.
   std::array<float, 81> extentFar{}, extentNear{};
@@ -201,7 +214,6 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   }
   const float invRange = depthRange > 0 ? 1.0f / depthRange : 0.0f;
   const float nearFieldCoc = -0.5f * dof::kZoneOfFocusCoc;  // half-res pixels
-  Buffer gathered(hw, hh, 3), bokeh(hw, hh, 2);
   parallelRows(hh, [&](int y) {
     // Tap offsets for the current tile's kernel radius (recomputed when it changes).
     int dx[81], dy[81];
@@ -210,7 +222,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
     int reachX = 0, reachY = 0;
     for (int x = 0; x < hw; ++x) {
       const HalfSample& c0 = pre[size_t(y) * hw + x];
-      const float R = 0.5f * neighbourMax[size_t(y / kTile) * tw + size_t(x / kTile)];
+      const float R = 0.5f * grid.maxCocAt(x, y);
       if (R < 0.5f) {  // the whole neighbourhood is sharp
         gathered.setRgb(x, y, Vec3(c0.r, c0.g, c0.b));
         continue;
@@ -258,11 +270,37 @@ void PostfxDofPass::execute(FrameContext& ctx) {
       bokeh.at(x, y)[1] = wsum > 0 ? wfSum / wsum : 0.0f;
     }
   });
+}
 
+}  // namespace
+
+void PostfxDofPass::execute(FrameContext& ctx) {
+  const Buffer& hdr = ctx.input(*this, "hdr");
+  const Buffer& cocIn = ctx.input(*this, "coc");
+  const Buffer& specIn = ctx.input(*this, "specular");
+  Buffer& out = ctx.output(*this, "postfx");
+  Buffer& bokehOut = ctx.output(*this, "bokeh");
+  const ThinLens lens = ThinLens::of(ctx.camera());
+  if (!lens.active()) {  // a pinhole: nothing to blur
+    out.data = hdr.data;
+    bokehOut.fill(0.0f);
+    return;
+  }
+  // 1. Downsample CoC, depth and the high-specular flag; 2. tile max |CoC| and its 3x3
+  // neighbourhood max; 3. the colour prefiltered.
+  const HalfGrid grid =
+      prefilter(downsample(hdr, cocIn, specIn, lens, float(param("specular_threshold")),
+                           float(param("bokeh_luminance"))),
+                hdr, cocIn);
+  // 4. The gather.
+  Buffer gathered(grid.hw, grid.hh, 3), bokeh(grid.hw, grid.hh, 2);
+  gather(grid, lens,
+         {float(param("depth_range")), param("polygon") != 0 && lens.blades >= 3, ctx.serial},
+         gathered, bokeh);
   // 5. Median, upscale.
   const Buffer filtered = param("median") != 0 ? median3x3(gathered) : gathered;
-  out.data = resizeBilinear(filtered, W, H).data;
-  bokehOut.data = resizeBilinear(bokeh, W, H).data;
+  out.data = resizeBilinear(filtered, hdr.width, hdr.height).data;
+  bokehOut.data = resizeBilinear(bokeh, hdr.width, hdr.height).data;
 }
 
 }  // namespace tandem

@@ -11,6 +11,7 @@
 // |CoC| in frame pixels), rt_hit (hit ratio, rays), rt_far_position (mean far hit, 1 where there is
 // one).
 #pragma once
+#include "passes/dof/dof_common.h"
 #include "pipeline/pass.h"
 
 namespace tandem {
@@ -28,10 +29,10 @@ class RTDofPass : public Pass {
     return {{"ray_mask", 1, BufferKind::Count, Extent::any()}, sharp, depth};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"rt_near", 4, BufferKind::Color, Extent::any()},
-            {"rt_far", 4, BufferKind::Color, Extent::any()},
-            {"rt_hit", 2, BufferKind::Mask, Extent::any()},
-            {"rt_far_position", 4, BufferKind::Position, Extent::any()}};
+    return {{"rt_near", dof::kLayerChannels, BufferKind::Color, Extent::any()},
+            {"rt_far", dof::kLayerChannels, BufferKind::Color, Extent::any()},
+            {"rt_hit", dof::kHitChannels, BufferKind::Mask, Extent::any()},
+            {"rt_far_position", dof::kFarPositionChannels, BufferKind::Position, Extent::any()}};
   }
   std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;

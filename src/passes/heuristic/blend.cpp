@@ -1,7 +1,6 @@
 #include "passes/heuristic/blend.h"
 
 #include "core/parallel.h"
-#include "passes/heuristic/rt_stats.h"
 #include "pipeline/frame_context.h"
 #include "rt/whitted.h"
 
@@ -21,7 +20,8 @@ void BlendPass::execute(FrameContext& ctx) {
       for (int x = x0; x < x1; ++x) {
         const float* m = mask.at(x, y);
         const float* fb = fallback ? fallback->at(x, y) : nullptr;
-        const bool hasFallback = fb && fb[9] > 0.5f, hasShadowFallback = fb && fb[10] > 0.5f;
+        const bool hasFallback = fb && fb[fallback::kCoversEffect] > 0.5f,
+                   hasShadowFallback = fb && fb[fallback::kCoversShadow] > 0.5f;
         if (m[kShadow] < 0.5f && m[kReflection] < 0.5f && m[kRefraction] < 0.5f && !hasFallback &&
             !hasShadowFallback) {
           out.setRgb(x, y, L.rgb(x, y));
@@ -34,16 +34,16 @@ void BlendPass::execute(FrameContext& ctx) {
         const float om = traceM || hasFallback ? op[0] : 0.0f;
         const float orr = traceR || hasFallback ? 1.0f - op[2] : 0.0f;
         const Vec3 refl = traceM        ? M.rgb(x, y)
-                          : hasFallback ? Vec3(fb[0], fb[1], fb[2])
+                          : hasFallback ? loadVec3(fb + fallback::kReflection)
                                         : Vec3(0.0f);
         const Vec3 refr = traceR        ? R.rgb(x, y)
-                          : hasFallback ? Vec3(fb[3], fb[4], fb[5])
+                          : hasFallback ? loadVec3(fb + fallback::kRefraction)
                                         : Vec3(0.0f);
         Vec3 c = L.rgb(x, y);
         if (m[kShadow] > 0.5f)
           c = c - (Vec3(1.0f) - S.rgb(x, y));  // eq. 4
         else if (hasShadowFallback)
-          c = c - (Vec3(1.0f) - Vec3(fb[6], fb[7], fb[8]));
+          c = c - (Vec3(1.0f) - loadVec3(fb + fallback::kShadow));
         out.setRgb(x, y, combineEffects(om, orr, refl, refr, c));
       }
   });

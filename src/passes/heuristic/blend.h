@@ -5,6 +5,7 @@
 // Inputs: hdr (L), shadow, reflection, refraction, optical, heuristic_mask, fallback (optional).
 // Output: composite.
 #pragma once
+#include "passes/heuristic/effect_channels.h"
 #include "pipeline/pass.h"
 
 namespace tandem {
@@ -21,8 +22,8 @@ class BlendPass : public Pass {
             {"reflection", 3},
             {"refraction", 3},
             {"optical", 3, BufferKind::Material},
-            {"heuristic_mask", 3, BufferKind::Mask},
-            {"fallback", 11, BufferKind::Color, Extent::frame(), false, true}};
+            {"heuristic_mask", kEffectCount, BufferKind::Mask},
+            {"fallback", fallback::kChannels, BufferKind::Color, Extent::frame(), false, true}};
   }
   std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
   void execute(FrameContext& ctx) override;

@@ -182,73 +182,52 @@ double BudgetCalibration::unitsPerMs() const {
   return s[1];
 }
 
-std::vector<ParamDesc> HeuristicPass::params() const {
-  return {
-      {"budget",
-       ParamType::Float,
-       2e6,
-       0,
-       1e15,
-       "T: ray-tracing budget in cost units (visible pixels x rays x E)",
-       {}},
-      {"importance",
-       ParamType::Float,
-       1000,
-       0,
-       1e12,
-       "I: relevancy bonus for objects selected last frame (stability)",
-       {}},
-      {"select_all", ParamType::Bool, 0, 0, 1, "select every visible object (no heuristic)", {}},
-      {"shadows",
-       ParamType::Enum,
-       0,
-       0,
-       1,
-       "shadows: selected with their object within the budget (seed 002), or every visible "
-       "object's traced (classified shadows), the budget left to reflections and refractions",
-       {"budget", "all"}},
-      {"budget_ms",
-       ParamType::Float,
-       0,
-       0,
-       1e6,
-       "RT budget in ms; T is calibrated from measured RT time (0 = use budget)",
-       {}},
-      {"per_effect",
-       ParamType::Bool,
-       0,
-       0,
-       1,
-       "select shadows, reflections, refractions separately per object",
-       {}},
-      {"partial_objects",
-       ParamType::Bool,
-       0,
-       0,
-       1,
-       "ms budget: spend what is left on the central part of the next object that does not fit",
-       {}},
-      {"count_recursion",
-       ParamType::Bool,
-       0,
-       0,
-       1,
-       "cost from the rays actually traced per pixel, recursion included",
-       {}},
-      {"deadline",
-       ParamType::Bool,
-       0,
-       0,
-       1,
-       "ms budget: rt_secondary stops at the budget, most relevant pixels first",
-       {}},
-      {"overcommit",
-       ParamType::Float,
-       1.6,
-       1,
-       4,
-       "deadline: select this many times the budget (the deadline cuts the least relevant)",
-       {}}};
+const ParamTable<HeuristicSettings>& HeuristicPass::tableFor() const {
+  using S = HeuristicSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::budget, {.name = "budget",
+                       .min = 0,
+                       .max = 1e15,
+                       .doc = "T: ray-tracing budget in cost units (visible pixels x rays x E)"})
+        .add(&S::importance,
+             {.name = "importance",
+              .min = 0,
+              .max = 1e12,
+              .doc = "I: relevancy bonus for objects selected last frame (stability)"})
+        .add(&S::selectAll,
+             {.name = "select_all", .doc = "select every visible object (no heuristic)"})
+        .add(&S::shadows,
+             {.name = "shadows",
+              .doc = "shadows: selected with their object within the budget (seed 002), or every "
+                     "visible object's traced (classified shadows), the budget left to "
+                     "reflections and refractions",
+              .choices = {"budget", "all"}})
+        .add(&S::budgetMs,
+             {.name = "budget_ms",
+              .min = 0,
+              .max = 1e6,
+              .doc = "RT budget in ms; T is calibrated from measured RT time (0 = use budget)"})
+        .add(&S::perEffect,
+             {.name = "per_effect",
+              .doc = "select shadows, reflections, refractions separately per object"})
+        .add(&S::partialObjects, {.name = "partial_objects",
+                                  .doc = "ms budget: spend what is left on the central part of "
+                                         "the next object that does not fit"})
+        .add(&S::countRecursion,
+             {.name = "count_recursion",
+              .doc = "cost from the rays actually traced per pixel, recursion included"})
+        .add(&S::deadline,
+             {.name = "deadline",
+              .doc = "ms budget: rt_secondary stops at the budget, most relevant pixels first"})
+        .add(&S::overcommit, {.name = "overcommit",
+                              .min = 1,
+                              .max = 4,
+                              .doc = "deadline: select this many times the budget (the deadline "
+                                     "cuts the least relevant)"});
+    return t;
+  }();
+  return table;
 }
 
 double HeuristicPass::tracedCost(const RtStats& stats) const {
@@ -312,76 +291,58 @@ Vec2 viewCentre(const FrameContext& ctx, int x) {
 }
 }  // namespace
 
-void HeuristicPass::execute(FrameContext& ctx) {
-  const Scene& scene = *ctx.scene;
-  const size_t n = scene.objects.size();
+void HeuristicPass::refreshBounds(const FrameContext& ctx) {
+  const size_t n = ctx.scene->objects.size();
   if (boundsVersion_ != ctx.frame.geometryVersion || bounds_.size() != n) {
     bounds_.assign(n, Bounds3{});
     for (size_t o = 0; o < n; ++o)
       for (const Vec3& p : ctx.frame.objects[o].positions) bounds_[o].extend(p);
     boundsVersion_ = ctx.frame.geometryVersion;
   }
-  // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
-  const Buffer* prevStats = ctx.previous(*this, "rt_stats");
-  const RtStats rtStats = prevStats ? readRtStats(*prevStats) : RtStats{};
-  const bool deadline = param("budget_ms") > 0 && param("deadline") != 0;
-  if (rtStats.ms > 0 && selectedFrame_ >= 0 && selectedFrame_ == ctx.serial - 1)
-    calibration_.observe(deadline ? tracedCost(rtStats) : selectedCost_, rtStats.ms);
-  updateMeasurements(rtStats);
-  measuredRays_.resize(n);
+}
 
-  const Buffer& ids = ctx.input(*this, "object_id");
-  std::vector<uint32_t> pixels = countObjectPixels(ids, n);
-  selectedLast_.resize(n, 0);
-  const bool perEffect = param("per_effect") != 0;
-  const bool shadowsApart = param("shadows") == 1;
-  evaluated_ =
-      evaluateObjects(scene, bounds_, ctx.camera(), pixels, selectedLast_, param("importance"),
-                      param("count_recursion") != 0 ? &measuredRays_ : nullptr);
-  // With a ms budget, costs are predicted CPU ms and T is in CPU ms (the calibration's rate is
-  // CPU ms per wall ms of the RT pass; its prior, the worker count).
-  const bool msBudget = param("budget_ms") > 0;
-  // This frame's RT pass times each object and effect.
-  Buffer& request = ctx.output(*this, "rt_request");
-  request.data[0] = msBudget ? 1.0f : 0.0f;
-  request.data[1] = deadline ? float(param("budget_ms")) : 0.0f;
-  if (!calibrationPrior_) {
-    calibration_ = BudgetCalibration(double(tbb::this_task_arena::max_concurrency()));
-    calibrationPrior_ = true;
-  }
-  std::vector<HeuristicNode> nodes;
-  if (msBudget) {
-    // Objects and effects not measured yet are priced at the mean measured cost per pixel of
-    // that effect over the visible objects (weighted by area), or at the prior ray rate.
-    msPerPixel_.resize(n);
-    std::array<double, kEffectCount> sum{}, area{};
-    for (size_t o = 0; o < n; ++o)
-      for (size_t e = 0; e < size_t(kEffectCount); ++e)
-        if (msPerPixel_[o][e] > 0) {
-          sum[e] += msPerPixel_[o][e] * pixels[o];
-          area[e] += pixels[o];
-        }
-    std::vector<std::array<double, kEffectCount>> perPixel = msPerPixel_;
-    for (const ObjectHeuristic& h : evaluated_)
-      for (size_t e = 0; e < size_t(kEffectCount); ++e) {
-        double& p = perPixel[size_t(h.object)][e];
-        if (p <= 0)
-          p = area[e] > 0 ? sum[e] / area[e] : h.q[e] / BudgetCalibration::kPriorRaysPerMs;
+std::vector<HeuristicNode> HeuristicPass::priceNodes(const Scene& scene,
+                                                     const std::vector<uint32_t>& pixels) {
+  const HeuristicSettings& s = settings();
+  const bool shadowsApart = s.shadows == HeuristicSettings::Shadows::All;
+  if (s.budgetMs <= 0)
+    return heuristicNodes(scene, evaluated_, s.perEffect, s.importance, nullptr, shadowsApart);
+  // Objects and effects not measured yet are priced at the mean measured cost per pixel of that
+  // effect over the visible objects (weighted by area), or at the prior ray rate.
+  const size_t n = scene.objects.size();
+  msPerPixel_.resize(n);
+  std::array<double, kEffectCount> sum{}, area{};
+  for (size_t o = 0; o < n; ++o)
+    for (size_t e = 0; e < size_t(kEffectCount); ++e)
+      if (msPerPixel_[o][e] > 0) {
+        sum[e] += msPerPixel_[o][e] * pixels[o];
+        area[e] += pixels[o];
       }
-    nodes =
-        heuristicNodes(scene, evaluated_, perEffect, param("importance"), &perPixel, shadowsApart);
-    pricePerPixel_.assign(n, {});
-    for (const ObjectHeuristic& h : evaluated_)
-      for (size_t e = 0; e < size_t(kEffectCount); ++e)
-        pricePerPixel_[size_t(h.object)][e] =
-            perPixel[size_t(h.object)][e] * scene.objects[size_t(h.object)].heuristic.E;
-  } else {
-    nodes =
-        heuristicNodes(scene, evaluated_, perEffect, param("importance"), nullptr, shadowsApart);
-  }
-  budget_ = msBudget ? calibration_.unitsFor(param("budget_ms")) : param("budget");
-  if (deadline) budget_ *= param("overcommit");
-  if (param("select_all") != 0) {
+  std::vector<std::array<double, kEffectCount>> perPixel = msPerPixel_;
+  for (const ObjectHeuristic& h : evaluated_)
+    for (size_t e = 0; e < size_t(kEffectCount); ++e) {
+      double& p = perPixel[size_t(h.object)][e];
+      if (p <= 0) p = area[e] > 0 ? sum[e] / area[e] : h.q[e] / BudgetCalibration::kPriorRaysPerMs;
+    }
+  std::vector<HeuristicNode> nodes =
+      heuristicNodes(scene, evaluated_, s.perEffect, s.importance, &perPixel, shadowsApart);
+  pricePerPixel_.assign(n, {});
+  for (const ObjectHeuristic& h : evaluated_)
+    for (size_t e = 0; e < size_t(kEffectCount); ++e)
+      pricePerPixel_[size_t(h.object)][e] =
+          perPixel[size_t(h.object)][e] * scene.objects[size_t(h.object)].heuristic.E;
+  return nodes;
+}
+
+std::vector<uint8_t> HeuristicPass::select(const FrameContext& ctx,
+                                           const std::vector<HeuristicNode>& nodes,
+                                           const Buffer& ids, double& partialR2) {
+  const HeuristicSettings& s = settings();
+  const size_t n = ctx.scene->objects.size();
+  const bool perEffect = s.perEffect, msBudget = s.budgetMs > 0;
+  budget_ = msBudget ? calibration_.unitsFor(s.budgetMs) : s.budget;
+  if (msBudget && s.deadline) budget_ *= s.overcommit;
+  if (s.selectAll) {
     selected_.clear();
     for (const HeuristicNode& node : nodes) selected_.push_back(node.id);
   } else {
@@ -390,43 +351,31 @@ void HeuristicPass::execute(FrameContext& ctx) {
   std::vector<double> costOf(perEffect ? n * kEffectCount : n, 0.0);
   for (const HeuristicNode& node : nodes) costOf[size_t(node.id)] = node.cost;
   std::vector<uint8_t> selected(n, 0);  // effect bits per object
-  auto bitsOf = [&](int id) {
-    return perEffect ? uint8_t(1u << (id % kEffectCount)) : uint8_t((1u << kEffectCount) - 1);
-  };
-  auto objectOf = [&](int id) { return size_t(perEffect ? id / kEffectCount : id); };
   selectedCost_ = 0;
   for (int id : selected_) {
     selectedCost_ += costOf[size_t(id)];
-    selected[objectOf(id)] |= bitsOf(id);
+    selected[nodeObject(id)] |= nodeBits(id);
   }
   partial_ = {};
-  double partialR2 = -1;
-  if (msBudget && param("partial_objects") != 0 && param("select_all") == 0) {
+  partialR2 = -1;
+  if (msBudget && s.partialObjects && !s.selectAll) {
     partial_ = partialNode(nodes, selected_, budget_ - selectedCost_);
     if (partial_.id >= 0) {
       selectedCost_ += partial_.fraction * costOf[size_t(partial_.id)];
-      partialR2 = centralRadius2(ids, int(objectOf(partial_.id)), partial_.fraction,
+      partialR2 = centralRadius2(ids, int(nodeObject(partial_.id)), partial_.fraction,
                                  [&](int x) { return viewCentre(ctx, x); });
     }
   }
-  if (shadowsApart)
+  if (s.shadows == HeuristicSettings::Shadows::All)
     for (const ObjectHeuristic& h : evaluated_) selected[size_t(h.object)] |= 1u << kShadow;
-  selectedFrame_ = ctx.serial;
-  selectedLast_ = selected;
-  // The partial node counts as selected for stability (I): it stays the one part-traced.
-  if (partial_.id >= 0) selectedLast_[objectOf(partial_.id)] |= bitsOf(partial_.id);
-  // For experiments and the viewer: what was selected out of what (nodes: objects, or
-  // object-effect pairs with per_effect).
-  ctx.counters["heuristic/selected"] = double(selected_.size());
-  ctx.counters["heuristic/nodes"] = double(nodes.size());
-  ctx.counters["heuristic/visible_objects"] = double(evaluated_.size());
-  ctx.counters["heuristic/budget"] = budget_;
-  ctx.counters["heuristic/selected_cost"] = selectedCost_;
-  ctx.counters["heuristic/partial_fraction"] = partial_.id >= 0 ? partial_.fraction : 0.0;
-  writeOrder(nodes, perEffect, ctx.output(*this, "heuristic_order", int(n), 1));
-  Buffer& mask = ctx.output(*this, "heuristic_mask");
-  const float partialObject = partial_.id >= 0 ? float(objectOf(partial_.id)) : -2.0f;
-  const uint8_t partialBits = partial_.id >= 0 ? bitsOf(partial_.id) : 0;
+  return selected;
+}
+
+void HeuristicPass::writeMask(const FrameContext& ctx, const Buffer& ids,
+                              const std::vector<uint8_t>& selected, double partialR2,
+                              Buffer& mask) const {
+  const float partialObject = partial_.id >= 0 ? float(nodeObject(partial_.id)) : -2.0f;
+  const uint8_t partialBits = partial_.id >= 0 ? nodeBits(partial_.id) : 0;
   parallelRange(
       mask.pixelCount(),
       [&](size_t b, size_t e) {
@@ -444,6 +393,55 @@ void HeuristicPass::execute(FrameContext& ctx) {
         }
       },
       1 << 14);
+}
+
+void HeuristicPass::execute(FrameContext& ctx) {
+  const HeuristicSettings& s = settings();
+  const Scene& scene = *ctx.scene;
+  const size_t n = scene.objects.size();
+  refreshBounds(ctx);
+  // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
+  const Buffer* prevStats = ctx.previous(*this, "rt_stats");
+  const RtStats rtStats = prevStats ? readRtStats(*prevStats) : RtStats{};
+  // With a ms budget, costs are predicted CPU ms and T is in CPU ms (the calibration's rate is
+  // CPU ms per wall ms of the RT pass; its prior, the worker count).
+  const bool msBudget = s.budgetMs > 0;
+  const bool deadline = msBudget && s.deadline;
+  if (rtStats.ms > 0 && selectedFrame_ >= 0 && selectedFrame_ == ctx.serial - 1)
+    calibration_.observe(deadline ? tracedCost(rtStats) : selectedCost_, rtStats.ms);
+  updateMeasurements(rtStats);
+  measuredRays_.resize(n);
+
+  const Buffer& ids = ctx.input(*this, "object_id");
+  std::vector<uint32_t> pixels = countObjectPixels(ids, n);
+  selectedLast_.resize(n, 0);
+  evaluated_ = evaluateObjects(scene, bounds_, ctx.camera(), pixels, selectedLast_, s.importance,
+                               s.countRecursion ? &measuredRays_ : nullptr);
+  // This frame's RT pass times each object and effect.
+  Buffer& request = ctx.output(*this, "rt_request");
+  request.data[0] = msBudget ? 1.0f : 0.0f;
+  request.data[1] = deadline ? float(s.budgetMs) : 0.0f;
+  if (!calibrationPrior_) {
+    calibration_ = BudgetCalibration(double(tbb::this_task_arena::max_concurrency()));
+    calibrationPrior_ = true;
+  }
+  const std::vector<HeuristicNode> nodes = priceNodes(scene, pixels);
+  double partialR2 = -1;
+  const std::vector<uint8_t> selected = select(ctx, nodes, ids, partialR2);
+  selectedFrame_ = ctx.serial;
+  selectedLast_ = selected;
+  // The partial node counts as selected for stability (I): it stays the one part-traced.
+  if (partial_.id >= 0) selectedLast_[nodeObject(partial_.id)] |= nodeBits(partial_.id);
+  // For experiments and the viewer: what was selected out of what (nodes: objects, or
+  // object-effect pairs with per_effect).
+  ctx.counters["heuristic/selected"] = double(selected_.size());
+  ctx.counters["heuristic/nodes"] = double(nodes.size());
+  ctx.counters["heuristic/visible_objects"] = double(evaluated_.size());
+  ctx.counters["heuristic/budget"] = budget_;
+  ctx.counters["heuristic/selected_cost"] = selectedCost_;
+  ctx.counters["heuristic/partial_fraction"] = partial_.id >= 0 ? partial_.fraction : 0.0;
+  writeOrder(nodes, s.perEffect, ctx.output(*this, "heuristic_order", int(n), 1));
+  writeMask(ctx, ids, selected, partialR2, ctx.output(*this, "heuristic_mask"));
 }
 
 }  // namespace tandem

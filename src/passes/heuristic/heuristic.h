@@ -33,7 +33,7 @@
 
 #include "core/buffer.h"
 #include "passes/heuristic/rt_stats.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 #include "scene/camera.h"
 #include "scene/frame_scene.h"
 
@@ -121,7 +121,21 @@ class BudgetCalibration {
   int count_ = 0;  // samples observed (the ring holds the last three)
 };
 
-class HeuristicPass : public Pass {
+struct HeuristicSettings {
+  enum class Shadows { Budget, All };
+  double budget = 2e6;       // T (cost units)
+  double importance = 1000;  // I
+  bool selectAll = false;
+  Shadows shadows = Shadows::Budget;
+  double budgetMs = 0;
+  bool perEffect = false;
+  bool partialObjects = false;
+  bool countRecursion = false;
+  bool deadline = false;
+  double overcommit = 1.6;
+};
+
+class HeuristicPass : public SettingsPass<HeuristicSettings> {
  public:
   std::string type() const override { return "heuristic"; }
   std::string description() const override {
@@ -131,11 +145,10 @@ class HeuristicPass : public Pass {
     return {{"object_id", 1, BufferKind::Id}, rtStatsSlot(true)};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"heuristic_mask", 3, BufferKind::Mask},
+    return {{"heuristic_mask", kEffectCount, BufferKind::Mask},
             {"rt_request", 2, BufferKind::Mask, Extent::fixed(1, 1)},
             {"heuristic_order", kEffectCount, BufferKind::List, Extent::any()}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
   void resetHistory() override;
 
@@ -146,8 +159,26 @@ class HeuristicPass : public Pass {
   double lastSelectedCost() const { return selectedCost_; }    // sum of the selected costs
   const PartialNode& lastPartial() const { return partial_; }  // partial_objects: the part
 
+ protected:
+  const ParamTable<HeuristicSettings>& tableFor() const override;
+
  private:
+  void refreshBounds(const FrameContext& ctx);
+  // The nodes to choose from; with a ms budget priced in predicted CPU ms.
+  std::vector<HeuristicNode> priceNodes(const Scene& scene, const std::vector<uint32_t>& pixels);
+  // Chooses within budget_ (and the partial node); returns the effect bits per object.
+  std::vector<uint8_t> select(const FrameContext& ctx, const std::vector<HeuristicNode>& nodes,
+                              const Buffer& ids, double& partialR2);
+  void writeMask(const FrameContext& ctx, const Buffer& ids, const std::vector<uint8_t>& selected,
+                 double partialR2, Buffer& mask) const;
   void updateMeasurements(const RtStats& stats);
+  // A node's object and effect bits (a node is an object, or object * 3 + effect with
+  // per_effect).
+  size_t nodeObject(int id) const { return size_t(settings().perEffect ? id / kEffectCount : id); }
+  uint8_t nodeBits(int id) const {
+    return settings().perEffect ? uint8_t(1u << (id % kEffectCount))
+                                : uint8_t((1u << kEffectCount) - 1);
+  }
   double tracedCost(const RtStats& stats) const;
   void writeOrder(const std::vector<HeuristicNode>& nodes, bool perEffect, Buffer& order) const;
 

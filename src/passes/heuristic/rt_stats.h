@@ -8,12 +8,9 @@
 #include <vector>
 
 #include "core/buffer.h"
+#include "passes/heuristic/effect_channels.h"
 
 namespace tandem {
-
-// Secondary effects the hybrid pipeline can ray trace per object (the heuristic mask's channels).
-enum Effect : int { kShadow = 0, kReflection = 1, kRefraction = 2 };
-constexpr int kEffectCount = 3;
 
 struct RtStats {
   bool timeEffects = false;  // cpuMs was measured (the heuristic asked for it)

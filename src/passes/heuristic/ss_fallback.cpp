@@ -75,6 +75,12 @@ struct Frame {
   float reach;  // longest march: the scene's diagonal
 };
 
+// A pixel the shadow maps stand in for, and its view direction.
+struct ShadowPixel {
+  int x, y;
+  Vec3 d;
+};
+
 // Colour seen from p along unit direction r in view v: the first frame pixel whose surface the
 // march passes just behind (skipping `self` for refraction), else the sky.
 // A refraction march (self >= 0) takes the first surface it passes behind, however far: the
@@ -113,17 +119,203 @@ Vec3 marchScreen(const Frame& f, const View& v, Vec3 p, Vec3 r, int steps, float
 
 }  // namespace
 
+void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingContext& shading) {
+  // A probe for every reflective or transparent object that shows an untraced effect.
+  const auto t0 = Clock::now();
+  const Scene& scene = *ctx.scene;
+  const Buffer& optical = ctx.input(*this, "optical");
+  const Buffer& objectId = ctx.input(*this, "object_id");
+  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  // At most max_probes of them, the largest on screen (the others show the sky): each probe
+  // costs six draws of the scene and its memory.
+  std::vector<uint32_t> area(scene.objects.size(), 0);
+  for (size_t i = 0; i < objectId.pixelCount(); ++i) {
+    const float id = objectId.data[i];
+    if (id < 0) continue;
+    const float *op = &optical.data[3 * i], *m = &mask.data[size_t(kEffectCount) * i];
+    if ((op[0] > 0 && m[kReflection] < 0.5f) || (op[2] < 1 && m[kRefraction] < 0.5f))
+      ++area[size_t(id)];
+  }
+  std::vector<uint32_t> order;
+  for (size_t o = 0; o < area.size(); ++o)
+    if (area[o] > 0) order.push_back(uint32_t(o));
+  const size_t keep = std::min(order.size(), size_t(param("max_probes")));
+  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
+                    [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
+  std::vector<uint8_t> wanted(scene.objects.size(), 0);
+  for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
+  ctx.counters["ss_fallback/probes_drawn"] =
+      probes_.update(ctx.frame, shading, wanted, int(param("probe_size")),
+                     int(param("probe_refresh")), 2 * size_t(param("max_probes")));
+  ctx.passParts.push_back({"probes", msSince(t0), 0});
+}
+
+namespace {
+
+// The occluded fraction of each light at each pixel (occluded[light * count + pixel]). A light
+// the surface faces away from, or that does not reach it, adds nothing whatever its map says: no
+// lookup. Looked up 16 points at a time (the SIMD kernel), light by light; only the position and
+// the two normals are read.
+std::vector<float> occludedFractions(const std::vector<ShadowPixel>& shadowed,
+                                     const Buffer& position, const Buffer& normal,
+                                     const Buffer& geoNormal, const ShadingContext& shading,
+                                     const ShadowMaps& maps, size_t lights) {
+  const size_t count = shadowed.size();
+  std::vector<float> occluded(lights * count);
+  constexpr size_t W = 16;
+  for (size_t k0 = 0; k0 < count; k0 += W) {
+    const size_t n = std::min(W, count - k0);
+    float px[W] = {}, py[W] = {}, pz[W] = {}, nx[W] = {}, ny[W] = {}, nz[W] = {};
+    Vec3 shadingNormal[W];
+    for (size_t k = 0; k < n; ++k) {
+      const int x = shadowed[k0 + k].x, y = shadowed[k0 + k].y;
+      const float *p = position.at(x, y), *gn = geoNormal.at(x, y);
+      px[k] = p[0], py[k] = p[1], pz[k] = p[2];
+      nx[k] = gn[0], ny[k] = gn[1], nz[k] = gn[2];
+      shadingNormal[k] = normal.rgb(x, y);
+    }
+    for (size_t i = 0; i < lights; ++i) {
+      float lit[W] = {}, vis[W] = {};
+      for (size_t k = 0; k < n; ++k) {
+        const LightSample ls = sampleLight(shading.lights[i], {px[k], py[k], pz[k]});
+        lit[k] = dot(shadingNormal[k], ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f;
+      }
+      maps.visibilityBatch(i, px, py, pz, nx, ny, nz, lit, int(n), vis);
+      for (size_t k = 0; k < n; ++k)
+        occluded[i * count + k0 + k] = lit[k] > 0 ? 1.0f - vis[k] : 0.0f;
+    }
+  }
+  return occluded;
+}
+
+// As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one shading call
+// weighted by each light's occluded fraction. Pixels no map shadows keep S = 1 unshaded, and a
+// batch evaluates only the lights that shadow one of its lanes (the others add exactly 0).
+void shadeShadows(const std::vector<ShadowPixel>& shadowed, const std::vector<float>& occluded,
+                  const GBufferReader& g, const ShadingContext& shading, size_t lights,
+                  Buffer& out) {
+  using F = ShadeBatch;
+  const size_t count = shadowed.size();
+  ShadeBatch batch;
+  std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
+  std::vector<uint32_t> batchLights;
+  batchLights.reserve(lights);
+  size_t lane[ShadeBatch::kMax];
+  auto flush = [&] {
+    batchLights.clear();
+    for (size_t i = 0; i < lights; ++i)
+      for (int j = 0; j < batch.count; ++j)
+        if (occluded[i * count + lane[j]] > 0.0f) {
+          batchLights.push_back(uint32_t(i));
+          break;
+        }
+    for (uint32_t i : batchLights)
+      for (int j = 0; j < batch.count; ++j)
+        for (size_t c = 0; c < 3; ++c)
+          blocked[(3 * i + c) * ShadeBatch::kMax + size_t(j)] = occluded[i * count + lane[j]];
+    batch.lights = batchLights.data();
+    batch.lightCount = batchLights.size();
+    shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
+    for (int j = 0; j < batch.count; ++j) {
+      const Vec3 s = shadowFromBlocked(batch, j, shading.ambient);
+      float* px = out.at(shadowed[lane[j]].x, shadowed[lane[j]].y) + fallback::kShadow;
+      px[0] = s.x, px[1] = s.y, px[2] = s.z;
+    }
+    batch.count = 0;
+  };
+  batch.count = 0;
+  for (size_t k = 0; k < count; ++k) {
+    float* px = out.at(shadowed[k].x, shadowed[k].y);
+    px[fallback::kCoversShadow] = 1.0f;
+    bool any = false;
+    for (size_t i = 0; i < lights; ++i) any |= occluded[i * count + k] > 0.0f;
+    if (!any) {
+      px[fallback::kShadow] = px[fallback::kShadow + 1] = px[fallback::kShadow + 2] = 1.0f;
+      continue;
+    }
+    // The G-buffer straight into the lane (as deferred shading reads it); the viewer is -d.
+    const int l = batch.count;
+    g.read(shadowed[k].x, shadowed[k].y, batch, l);
+    const Vec3 wo = -shadowed[k].d;
+    batch.f[F::WX][l] = wo.x, batch.f[F::WY][l] = wo.y, batch.f[F::WZ][l] = wo.z;
+    lane[batch.count++] = k;
+    if (batch.count == ShadeBatch::kMax) flush();
+  }
+  if (batch.count) flush();
+}
+
+struct EffectsJob {
+  const Frame& f;
+  const Buffer &normal, &mask;
+  FallbackMode mode;
+  bool shadows;
+  const ReflectionProbes& probes;
+  Bounds3 bounds;
+  int steps;
+  float thickness;
+};
+
+// Writes what stands in for the tile's untraced reflections and refractions, and lists the
+// pixels whose untraced shadow the maps stand in for.
+void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, int y1, Buffer& out,
+                 std::vector<ShadowPixel>& shadowed) {
+  const Frame& f = job.f;
+  const FallbackMode mode = job.mode;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const int id = int(f.objectId.at(x, y)[0]);
+      if (id < 0) continue;
+      const float* op = f.optical.at(x, y);
+      const float* m = job.mask.at(x, y);
+      const bool reflect = mode != FallbackMode::Off && op[0] > 0 && m[kReflection] < 0.5f;
+      const bool refract = mode != FallbackMode::Off && op[2] < 1 && m[kRefraction] < 0.5f;
+      const bool shadow = job.shadows && m[kShadow] < 0.5f;
+      if (!reflect && !refract && !shadow) continue;
+      Vec3 o, d;
+      v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+      if (shadow) shadowed.push_back({x, y, d});
+      if (!reflect && !refract) continue;
+      const Vec3 p = f.position.rgb(x, y);
+      Vec3 n = job.normal.rgb(x, y);
+      if (dot(n, d) > 0) n = -n;
+      auto look = [&](Vec3 r, int self) {
+        if (mode == FallbackMode::Probe) {  // refraction: out through the object first
+          Vec3 from = p;
+          const Vec3 dir = self < 0 ? r : job.probes.exitDirection(id, p, r, op[1], from);
+          return job.probes.lookupFrom(f.scene, id, from, dir, job.bounds);
+        }
+        return mode == FallbackMode::Environment
+                   ? f.scene.skyRadiance(r)
+                   : marchScreen(f, v, p, r, job.steps, job.thickness, self);
+      };
+      float* px = out.at(x, y);
+      if (reflect) {
+        const Vec3 c = look(normalize(reflectDir(d, n)), -1);
+        px[fallback::kReflection] = c.x, px[fallback::kReflection + 1] = c.y,
+        px[fallback::kReflection + 2] = c.z;
+      }
+      if (refract) {
+        // Entering the object (the G-buffer holds front faces): the refracted direction, the
+        // object itself not counted as what lies behind it.
+        Vec3 t;
+        if (!refractDir(d, n, 1.0f / std::max(op[1], 1e-3f), t)) t = reflectDir(d, n);
+        const Vec3 c = look(t, id);
+        px[fallback::kRefraction] = c.x, px[fallback::kRefraction + 1] = c.y,
+        px[fallback::kRefraction + 2] = c.z;
+      }
+      px[fallback::kCoversEffect] = 1.0f;
+    }
+}
+
+}  // namespace
+
 void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const auto mode = FallbackMode(int(param("mode")));
   const bool shadows = param("shadows") != 0;
   const GBufferReader g = gbufferSource(ctx, *this);
-  const Buffer& hdr = ctx.input(*this, "hdr");
   const Buffer& position = ctx.input(*this, "position");
   const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer& optical = ctx.input(*this, "optical");
-  const Buffer& objectId = ctx.input(*this, "object_id");
   const Buffer& geoNormal = ctx.input(*this, "geo_normal");
-  const Buffer& mask = ctx.input(*this, "heuristic_mask");
   Buffer& out = ctx.output(*this, "fallback");
   std::fill(out.data.begin(), out.data.end(), 0.0f);
   if (mode == FallbackMode::Off && !shadows) return;
@@ -137,169 +329,31 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
     ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   }
   const ShadingContext shading = ShadingContext::from(scene);
-  if (mode == FallbackMode::Probe) {
-    // A probe for every reflective or transparent object that shows an untraced effect.
-    const auto t0 = Clock::now();
-    // At most max_probes of them, the largest on screen (the others show the sky): each probe
-    // costs six draws of the scene and its memory.
-    std::vector<uint32_t> area(scene.objects.size(), 0);
-    for (size_t i = 0; i < objectId.pixelCount(); ++i) {
-      const float id = objectId.data[i];
-      if (id < 0) continue;
-      const float *op = &optical.data[3 * i], *m = &mask.data[size_t(kEffectCount) * i];
-      if ((op[0] > 0 && m[kReflection] < 0.5f) || (op[2] < 1 && m[kRefraction] < 0.5f))
-        ++area[size_t(id)];
-    }
-    std::vector<uint32_t> order;
-    for (size_t o = 0; o < area.size(); ++o)
-      if (area[o] > 0) order.push_back(uint32_t(o));
-    const size_t keep = std::min(order.size(), size_t(param("max_probes")));
-    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
-                      [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
-    std::vector<uint8_t> wanted(scene.objects.size(), 0);
-    for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
-    ctx.counters["ss_fallback/probes_drawn"] =
-        probes_.update(ctx.frame, shading, wanted, int(param("probe_size")),
-                       int(param("probe_refresh")), 2 * size_t(param("max_probes")));
-    ctx.passParts.push_back({"probes", msSince(t0), 0});
-  }
+  if (mode == FallbackMode::Probe) updateProbes(ctx, shading);
   const Bounds3 b = scene.bounds(ctx.frame.time);
-  const Frame f{hdr, position, objectId, optical, scene, std::max(length(b.hi - b.lo), 0.1f)};
-  const int steps = int(param("steps"));
-  const float thickness = float(param("thickness"));
+  const Frame f{ctx.input(*this, "hdr"),     position, ctx.input(*this, "object_id"),
+                ctx.input(*this, "optical"), scene,    std::max(length(b.hi - b.lo), 0.1f)};
+  const EffectsJob job{f,
+                       normal,
+                       ctx.input(*this, "heuristic_mask"),
+                       mode,
+                       shadows,
+                       probes_,
+                       b,
+                       int(param("steps")),
+                       float(param("thickness"))};
   const size_t lights = scene.lights.size();
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     // The tile's shadow pixels are gathered first and looked up light by light (one map's texels
     // stay in cache across the tile), then shaded in batches: per light and channel a row of
     // lanes holding the occluded fraction (rt_secondary's Listing 8a sum, 16 pixels at a time).
-    struct ShadowPixel {
-      int x, y;
-      Vec3 d;
-    };
     std::vector<ShadowPixel> shadowed;
     shadowed.reserve(size_t(x1 - x0) * size_t(y1 - y0));
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        const int id = int(objectId.at(x, y)[0]);
-        if (id < 0) continue;
-        const float* op = optical.at(x, y);
-        const float* m = mask.at(x, y);
-        const bool reflect = mode != FallbackMode::Off && op[0] > 0 && m[kReflection] < 0.5f;
-        const bool refract = mode != FallbackMode::Off && op[2] < 1 && m[kRefraction] < 0.5f;
-        const bool shadow = shadows && m[kShadow] < 0.5f;
-        if (!reflect && !refract && !shadow) continue;
-        Vec3 o, d;
-        v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
-        if (shadow) shadowed.push_back({x, y, d});
-        if (!reflect && !refract) continue;
-        const Vec3 p = position.rgb(x, y);
-        Vec3 n = normal.rgb(x, y);
-        if (dot(n, d) > 0) n = -n;
-        auto look = [&](Vec3 r, int self) {
-          if (mode == FallbackMode::Probe) {  // refraction: out through the object first
-            Vec3 from = p;
-            const Vec3 dir = self < 0 ? r : probes_.exitDirection(id, p, r, op[1], from);
-            return probes_.lookupFrom(scene, id, from, dir, b);
-          }
-          return mode == FallbackMode::Environment
-                     ? scene.skyRadiance(r)
-                     : marchScreen(f, v, p, r, steps, thickness, self);
-        };
-        float* px = out.at(x, y);
-        if (reflect) {
-          const Vec3 c = look(normalize(reflectDir(d, n)), -1);
-          px[0] = c.x, px[1] = c.y, px[2] = c.z;
-        }
-        if (refract) {
-          // Entering the object (the G-buffer holds front faces): the refracted direction, the
-          // object itself not counted as what lies behind it.
-          Vec3 t;
-          if (!refractDir(d, n, 1.0f / std::max(op[1], 1e-3f), t)) t = reflectDir(d, n);
-          const Vec3 c = look(t, id);
-          px[3] = c.x, px[4] = c.y, px[5] = c.z;
-        }
-        px[9] = 1.0f;
-      }
+    effectsTile(job, v, x0, y0, x1, y1, out, shadowed);
     if (shadowed.empty()) return;
-    // Occluded fraction per light and pixel. A light the surface faces away from, or that does
-    // not reach it, adds nothing whatever its map says: no lookup.
-    const size_t count = shadowed.size();
-    std::vector<float> occluded(lights * count);
-    // Looked up 16 points at a time (the SIMD kernel), light by light; only the position and
-    // the two normals are read here.
-    constexpr size_t W = 16;
-    for (size_t k0 = 0; k0 < count; k0 += W) {
-      const size_t n = std::min(W, count - k0);
-      float px[W] = {}, py[W] = {}, pz[W] = {}, nx[W] = {}, ny[W] = {}, nz[W] = {};
-      Vec3 shadingNormal[W];
-      for (size_t k = 0; k < n; ++k) {
-        const int x = shadowed[k0 + k].x, y = shadowed[k0 + k].y;
-        const float *p = position.at(x, y), *gn = geoNormal.at(x, y);
-        px[k] = p[0], py[k] = p[1], pz[k] = p[2];
-        nx[k] = gn[0], ny[k] = gn[1], nz[k] = gn[2];
-        shadingNormal[k] = normal.rgb(x, y);
-      }
-      for (size_t i = 0; i < lights; ++i) {
-        float lit[W] = {}, vis[W] = {};
-        for (size_t k = 0; k < n; ++k) {
-          const LightSample ls = sampleLight(shading.lights[i], {px[k], py[k], pz[k]});
-          lit[k] = dot(shadingNormal[k], ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f;
-        }
-        shadowMaps->visibilityBatch(i, px, py, pz, nx, ny, nz, lit, int(n), vis);
-        for (size_t k = 0; k < n; ++k)
-          occluded[i * count + k0 + k] = lit[k] > 0 ? 1.0f - vis[k] : 0.0f;
-      }
-    }
-    // As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one shading call
-    // weighted by each light's occluded fraction. Pixels no map shadows keep S = 1 unshaded, and
-    // a batch evaluates only the lights that shadow one of its lanes (the others add exactly 0).
-    using F = ShadeBatch;
-    ShadeBatch batch;
-    std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
-    std::vector<uint32_t> batchLights;
-    batchLights.reserve(lights);
-    size_t lane[ShadeBatch::kMax];
-    auto flush = [&] {
-      batchLights.clear();
-      for (size_t i = 0; i < lights; ++i)
-        for (int j = 0; j < batch.count; ++j)
-          if (occluded[i * count + lane[j]] > 0.0f) {
-            batchLights.push_back(uint32_t(i));
-            break;
-          }
-      for (uint32_t i : batchLights)
-        for (int j = 0; j < batch.count; ++j)
-          for (size_t c = 0; c < 3; ++c)
-            blocked[(3 * i + c) * ShadeBatch::kMax + size_t(j)] = occluded[i * count + lane[j]];
-      batch.lights = batchLights.data();
-      batch.lightCount = batchLights.size();
-      shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
-      for (int j = 0; j < batch.count; ++j) {
-        const Vec3 s = shadowFromBlocked(batch, j, shading.ambient);
-        float* px = out.at(shadowed[lane[j]].x, shadowed[lane[j]].y);
-        px[6] = s.x, px[7] = s.y, px[8] = s.z;
-      }
-      batch.count = 0;
-    };
-    batch.count = 0;
-    for (size_t k = 0; k < count; ++k) {
-      float* px = out.at(shadowed[k].x, shadowed[k].y);
-      px[10] = 1.0f;
-      bool any = false;
-      for (size_t i = 0; i < lights; ++i) any |= occluded[i * count + k] > 0.0f;
-      if (!any) {
-        px[6] = px[7] = px[8] = 1.0f;
-        continue;
-      }
-      // The G-buffer straight into the lane (as deferred shading reads it); the viewer is -d.
-      const int l = batch.count;
-      g.read(shadowed[k].x, shadowed[k].y, batch, l);
-      const Vec3 wo = -shadowed[k].d;
-      batch.f[F::WX][l] = wo.x, batch.f[F::WY][l] = wo.y, batch.f[F::WZ][l] = wo.z;
-      lane[batch.count++] = k;
-      if (batch.count == ShadeBatch::kMax) flush();
-    }
-    if (batch.count) flush();
+    const std::vector<float> occluded =
+        occludedFractions(shadowed, position, normal, geoNormal, shading, *shadowMaps, lights);
+    shadeShadows(shadowed, occluded, g, shading, lights, out);
   });
   if (shadowMaps) ctx.counters["ss_fallback/shadow_map_redraws"] = shadowMaps->redraws();
 }

@@ -12,6 +12,7 @@
 // heuristic_mask. Output: fallback = reflection RGB, refraction RGB, shadow RGB (eq. 4's S), then
 // flags: 1 where reflection/refraction were written, 1 where the shadow was.
 #pragma once
+#include "passes/heuristic/effect_channels.h"
 #include "passes/heuristic/reflection_probes.h"
 #include "pipeline/pass.h"
 #include "raster/shadow_maps.h"
@@ -26,12 +27,13 @@ class ScreenSpaceFallbackPass : public Pass {
   }
   std::vector<ParamDesc> params() const override;
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override { return {{"fallback", kChannels}}; }
+  std::vector<BufferSlot> outputs() const override { return {{"fallback", fallback::kChannels}}; }
   void execute(FrameContext& ctx) override;
   void resetHistory() override { probes_ = {}; }
-  static constexpr int kChannels = 11;
 
  private:
+  // Brings the probes of the objects that show an untraced reflection or refraction up to date.
+  void updateProbes(FrameContext& ctx, const ShadingContext& shading);
   ReflectionProbes probes_;
 };
 
