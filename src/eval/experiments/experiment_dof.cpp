@@ -146,18 +146,13 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& passGroups(
   return g;
 }
 
-}  // namespace
+std::vector<std::string> setM(int m) {
+  return {"ray_mask.m=" + std::to_string(m)};
+}
 
-int runDofExperiment(const DofExperimentOptions& o) {
-  if (o.shots.empty()) throw InputError("experiment", "shots", "no shots");
-  std::vector<Scene> scenes;
-  for (const std::string& s : o.shots) scenes.push_back(loadScene(s));
-  for (const char* p : {"hybrid-dof", "postfx-dof", "rt-dof", "deferred"}) Pipeline::load(p);
-  fs::create_directories(o.out);
-  ExperimentReport report(o.out, "Seed 000: hybrid depth of field");
-  auto setM = [](int m) { return std::vector<std::string>{"ray_mask.m=" + std::to_string(m)}; };
-
-  // Table 2: pass timings per shot and ray budget.
+// Table 2: pass timings per shot and ray budget.
+void table2(const DofExperimentOptions& o, const std::vector<Scene>& scenes,
+            ExperimentReport& report) {
   std::vector<std::vector<std::string>> timingRows;
   std::vector<std::string> header = {"pass"};
   std::vector<StaticRun> runs;
@@ -208,11 +203,27 @@ int runDofExperiment(const DofExperimentOptions& o) {
   report.markdown("### Table 2 shape: pass durations (ms) and frame rates, " +
                   std::to_string(o.width) + "x" + std::to_string(o.height) + "\n\n");
   report.table("table2_pass_ms", header, timingRows);
+}
 
-  // Figures 6 and 7 on one shot, against the same-shading reference.
-  const size_t fs_ = o.figureShot >= 0 ? size_t(o.figureShot) : scenes.size() - 1;
-  const Scene& fig = scenes[fs_];
-  const std::string figLabel = o.shotLabels[fs_];
+struct SweepPoint {
+  int m;
+  double ssim, ms;
+};
+
+// What Figure 7's sweep leaves for the equal-quality table and Figure 6.
+struct Figure7 {
+  Buffer ref, refPt;  // the same-shading and the path-traced reference
+  StaticRun postfx;
+  double postfxSsim = 0;
+  Buffer hybrid10, rt10;  // at m = 10 (or the first budget)
+  double hybridSsim10 = -1, hybridMs10 = 0;
+  std::vector<SweepPoint> rtPoints, hybridPoints, fullPoints;
+};
+
+// Figure 7 on one shot: quality against the ray budget m, against the same-shading reference.
+Figure7 figure7(const DofExperimentOptions& o, const Scene& fig, const std::string& figLabel,
+                ExperimentReport& report) {
+  Figure7 out;
   const int sw = o.sweepWidth, sh = o.sweepHeight;
   std::printf("experiment hybrid-dof: Figure 7, shot %s, references\n", figLabel.c_str());
   std::fflush(stdout);
@@ -233,10 +244,6 @@ int runDofExperiment(const DofExperimentOptions& o) {
   std::vector<std::vector<std::string>> sweepRows;
   Buffer hybrid10, rt10;
   double hybridSsim10 = -1, hybridMs10 = 0;
-  struct SweepPoint {
-    int m;
-    double ssim, ms;
-  };
   std::vector<SweepPoint> rtPoints, hybridPoints, fullPoints;
   for (int m : o.sweepBudgets) {
     std::printf("experiment hybrid-dof: Figure 7, m = %d\n", m);
@@ -287,6 +294,25 @@ int runDofExperiment(const DofExperimentOptions& o) {
               {fH, fR, fP}, true);
   report.plot("figure7_ms", "Frame and ray-trace time", "ray budget m", "ms", {tH, tR, tT, tF},
               true);
+  out.ref = ref;
+  out.refPt = refPt;
+  out.postfx = postfx;
+  out.postfxSsim = postfxSsim;
+  out.hybrid10 = hybrid10;
+  out.rt10 = rt10;
+  out.hybridSsim10 = hybridSsim10;
+  out.hybridMs10 = hybridMs10;
+  out.rtPoints = rtPoints;
+  out.hybridPoints = hybridPoints;
+  out.fullPoints = fullPoints;
+  return out;
+}
+
+// Speed at equal quality: where the hybrid stands on rt-dof's curve.
+void equalQualityTable(const DofExperimentOptions& o, const Figure7& f7, ExperimentReport& report) {
+  const std::vector<SweepPoint>& rtPoints = f7.rtPoints;
+  const double hybridSsim10 = f7.hybridSsim10, hybridMs10 = f7.hybridMs10,
+               postfxSsim = f7.postfxSsim;
   // Speed at equal quality: the cheapest rt-dof point of the sweep at least as good as `ssim`
   // (null if none is), first for hybrid-dof at m = 10.
   auto cheapestRtAtLeast = [&](double ssimAtLeast) -> const SweepPoint* {
@@ -316,8 +342,8 @@ int runDofExperiment(const DofExperimentOptions& o) {
          rp ? fmt(rp->ms, 1) : "> " + fmt(rtBest->ms, 1),
          rp ? fmt(rp->ms / hp.ms, 2) + "x" : "> " + fmt(rtBest->ms / hp.ms, 2) + "x"});
   };
-  for (const SweepPoint& hp : hybridPoints) equalPoint("half (paper)", hp);
-  for (const SweepPoint& hp : fullPoints) equalPoint("full", hp);
+  for (const SweepPoint& hp : f7.hybridPoints) equalPoint("half (paper)", hp);
+  for (const SweepPoint& hp : f7.fullPoints) equalPoint("full", hp);
   speed += "\n";
   report.markdown(speed);
   speed.clear();
@@ -327,15 +353,21 @@ int runDofExperiment(const DofExperimentOptions& o) {
                equalRows);
   speed += "\n- against the path-traced reference (" + std::to_string(o.pathReferenceSpp) +
            " spp; includes global illumination, which none of the three models): SSIM hybrid " +
-           fmt(ssim(hybrid10, refPt), 4) + ", postfx " + fmt(ssim(postfx.image, refPt), 4) +
-           ", rt-dof " + fmt(ssim(rt10, refPt), 4) + "\n\n";
+           fmt(ssim(f7.hybrid10, f7.refPt), 4) + ", postfx " +
+           fmt(ssim(f7.postfx.image, f7.refPt), 4) + ", rt-dof " + fmt(ssim(f7.rt10, f7.refPt), 4) +
+           "\n\n";
   report.markdown(speed);
+}
 
-  // Figure 6: crops and FLIP maps.
-  const std::vector<std::pair<std::string, const Buffer*>> crops = {{"reference", &ref},
-                                                                    {"postfx-dof", &postfx.image},
-                                                                    {"hybrid-dof", &hybrid10},
-                                                                    {"rt-dof", &rt10}};
+// Figure 6: crops and FLIP maps.
+void figure6(const DofExperimentOptions& o, const Figure7& f7, const std::string& figLabel,
+             ExperimentReport& report) {
+  const Buffer& ref = f7.ref;
+  const std::vector<std::pair<std::string, const Buffer*>> crops = {
+      {"reference", &ref},
+      {"postfx-dof", &f7.postfx.image},
+      {"hybrid-dof", &f7.hybrid10},
+      {"rt-dof", &f7.rt10}};
   for (const auto& [name, img] : crops) {
     const std::string file = "figure6_" + name + ".png";
     writePng((fs::path(o.out) / file).string(), cropOf(*img, o.crop));
@@ -348,8 +380,11 @@ int runDofExperiment(const DofExperimentOptions& o) {
       report.image(mf, figLabel + ": FLIP of " + name + " against the reference");
     }
   }
+}
 
-  // Temporal: along each shot's camera path, per-frame references at a small size.
+// Temporal: along each shot's camera path, per-frame references at a small size.
+void temporalTable(const DofExperimentOptions& o, const std::vector<Scene>& scenes,
+                   ExperimentReport& report) {
   std::vector<std::vector<std::string>> temporalRows;
   for (size_t s = 0; s < scenes.size() && o.temporalFrames > 0; ++s) {
     const Scene& scene = scenes[s];
@@ -392,6 +427,25 @@ int runDofExperiment(const DofExperimentOptions& o) {
                  {"shot", "per-pixel blend factors", "mean SSIM", "worst-frame SSIM", "frames"},
                  temporalRows);
   }
+}
+
+}  // namespace
+
+int runDofExperiment(const DofExperimentOptions& o) {
+  if (o.shots.empty()) throw InputError("experiment", "shots", "no shots");
+  std::vector<Scene> scenes;
+  for (const std::string& s : o.shots) scenes.push_back(loadScene(s));
+  for (const char* p : {"hybrid-dof", "postfx-dof", "rt-dof", "deferred"}) Pipeline::load(p);
+  fs::create_directories(o.out);
+  ExperimentReport report(o.out, "Seed 000: hybrid depth of field");
+  table2(o, scenes, report);
+  // Figures 6 and 7 on one shot, against the same-shading reference.
+  const size_t figShot = o.figureShot >= 0 ? size_t(o.figureShot) : scenes.size() - 1;
+  const Figure7 f7 = figure7(o, scenes[figShot], o.shotLabels[figShot], report);
+  equalQualityTable(o, f7, report);
+  figure6(o, f7, o.shotLabels[figShot], report);
+  temporalTable(o, scenes, report);
+  const int sw = o.sweepWidth, sh = o.sweepHeight;
   char settings[256];
   std::snprintf(settings, sizeof settings,
                 "timings %dx%d (%d warm-up + %d timed frames), quality %dx%d (%d warm-up + %d "

@@ -188,18 +188,8 @@ Buffer squaredError(const Buffer& a, const Buffer& b) {
   return e;
 }
 
-}  // namespace
-
-int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
-  std::vector<Scene> scenes;
-  for (const std::string& s : o.scenes) scenes.push_back(loadScene(s));
-  for (const Config& c : configs()) Pipeline::load(c.pipeline);
-  const int kConfigCount = int(configs().size());
-  fs::create_directories(o.out);
-  ExperimentReport report(o.out,
-                          "Seed 004: foveated stereo path tracing, non-homogeneous denoising");
-
-  // Table 2: the distribution of each resolution (the pipelines' defaults: p = 0.5, 4/3/2 spp).
+// Table 2: the distribution of each resolution (the pipelines' defaults: p = 0.5, 4/3/2 spp).
+void table2(const FoveatedExperimentOptions& o, ExperimentReport& report) {
   std::vector<std::vector<std::string>> t2;
   for (const std::string& rn : o.resolutions) {
     const Resolution r = resolutionNamed(rn);
@@ -225,11 +215,14 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
                {"resolution", "region", "radius (px)", "area (px)", "samples (area x spp)", "spp",
                 "listed pixels", "traced samples"},
                t2);
+}
 
-  // Table 4: mean ms per frame along the camera path.
-  std::vector<std::vector<std::string>> t4;
-  std::string summary;
+// Table 4: mean ms per frame along the camera path; returns NH3LD's speed-ups over Base.
+std::vector<double> table4(const FoveatedExperimentOptions& o, const std::vector<Scene>& scenes,
+                           ExperimentReport& report) {
+  const int kConfigCount = int(configs().size());
   std::vector<double> speedups;
+  std::vector<std::vector<std::string>> t4;
   for (const std::string& rn : o.resolutions) {
     const Resolution r = resolutionNamed(rn);
     const int frames = rn == "quest2" ? o.quest2Frames : o.fhdFrames;
@@ -276,71 +269,91 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
                 "speed-up over its Base", "frames"},
                t4);
 
-  // Table 5 and Figures 17-18: quality at the quality size against the converged reference.
+  return speedups;
+}
+
+// Figure 17: the same crop of the left eye; Figure 18: FLIP maps side by side.
+void figures17And18(const FoveatedExperimentOptions& o, size_t s, const Buffer& ref,
+                    const std::vector<Buffer>& images, ExperimentReport& report) {
+  const int qw = o.qualityWidth, qh = o.qualityHeight, kConfigCount = int(configs().size());
+  const std::string label = sceneLabel(o.scenes[s]);
+  const int crop[4] = {o.crop[0], o.crop[1], o.crop[2] ? o.crop[2] : qw / 2,
+                       o.crop[3] ? o.crop[3] : qh / 3};
+  const int cx = o.crop[2] ? crop[0] : qw / 4, cy = o.crop[3] ? crop[1] : qh / 3;
+  const int box[4] = {cx, cy, crop[2], crop[3]};
+  Buffer strip(box[2] * (kConfigCount + 1), box[3], 3), maps(qw * 2 * kConfigCount, qh, 3);
+  paste(strip, cropOf(ref, box), 0);
+  for (int c = 0; c < kConfigCount; ++c) {
+    paste(strip, cropOf(images[size_t(c)], box), box[2] * (c + 1));
+    Buffer map;
+    flip(ref, images[size_t(c)], &map);
+    paste(maps, flipColorMap(map), qw * 2 * c);
+  }
+  writePng((fs::path(o.out) / ("figure17_" + label + ".png")).string(), strip);
+  report.image("figure17_" + label + ".png",
+               o.sceneLabels[s] + ": reference, " + configLabels(", ") + " (same crop, left eye)");
+  writePng((fs::path(o.out) / ("figure18_" + label + ".png")).string(), maps);
+  report.image("figure18_" + label + ".png",
+               o.sceneLabels[s] + ": FLIP against the reference, " + configLabels(" | "));
+}
+
+// Table 5's rows of scene s: every configuration against the converged reference (and its
+// images, for Figures 17 and 18); the differences to each Base go to `summary`.
+void table5Scene(const FoveatedExperimentOptions& o, const Scene& scene, size_t s,
+                 const FoveationMap& qm, std::vector<std::vector<std::string>>& t5,
+                 std::string& summary, ExperimentReport& report) {
+  const int qw = o.qualityWidth, qh = o.qualityHeight, kConfigCount = int(configs().size());
+  std::printf("experiment foveated: Table 5, %s, reference (%d spp)\n", o.sceneLabels[s].c_str(),
+              o.referenceSpp);
+  std::fflush(stdout);
+  const CameraDesc cam = defaultCamera(scene);
+  const Buffer ref = convergedDualImage(scene, cam, qw, qh, o.referenceSpp, o.cache);
+  const std::string label = sceneLabel(o.scenes[s]);
+  writePng((fs::path(o.out) / ("reference_" + label + ".png")).string(), ref);
+  report.image("reference_" + label + ".png",
+               o.sceneLabels[s] + ": reference (" + std::to_string(o.referenceSpp) + " spp)");
+  std::vector<Buffer> images;
+  std::vector<double> ssims(size_t(kConfigCount), 0.0), foveas(size_t(kConfigCount), 0.0);
+  for (int c = 0; c < kConfigCount; ++c) {
+    const Config& cf = configs()[size_t(c)];
+    Renderer rd = makeRenderer(scene, cf.pipeline, qw, qh, cf.sets);
+    // The thesis' configurations from one frame; the accumulating one after temporalFrames
+    // frames of the still camera.
+    const int frames = cf.temporal ? o.temporalFrames : 1;
+    for (int f = 0; f < frames; ++f) rd.renderFrame(0, cam);
+    const Buffer img = rd.output();
+    images.push_back(img);
+    Buffer ssimMap;
+    const ImageMetrics m = compareImages(img, ref, &ssimMap);
+    const Buffer err = squaredError(img, ref);
+    const double fovea = meanOverLayer(ssimMap, qm, 0), periphery = meanOverLayer(ssimMap, qm, 2);
+    ssims[size_t(c)] = m.ssim;
+    foveas[size_t(c)] = fovea;
+    const int b = cf.base;
+    t5.push_back({o.sceneLabels[s], cf.label, fmt(100.0 * m.rmse, 4), fmt(m.ssim, 6),
+                  fmt(m.psnr, 4), fmt(fovea, 4),
+                  fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 0)), 3), fmt(periphery, 4),
+                  fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 2)), 3), fmt(flip(ref, img), 4)});
+    if (c >= 2 && b != c)
+      summary += "- " + o.sceneLabels[s] + ": " + cf.label + " SSIM − " +
+                 configs()[size_t(b)].label + " = " + fmt(m.ssim - ssims[size_t(b)], 4) +
+                 " (fovea " + fmt(fovea - foveas[size_t(b)], 4) + ")\n";
+    const std::string file = "image_" + label + "_" + cf.file + ".png";
+    writePng((fs::path(o.out) / file).string(), img);
+    report.image(file, o.sceneLabels[s] + ": " + cf.label);
+  }
+  figures17And18(o, s, ref, images, report);
+}
+
+// Table 5 and Figures 17-18: quality at the quality size against the converged reference.
+std::string table5(const FoveatedExperimentOptions& o, const std::vector<Scene>& scenes,
+                   ExperimentReport& report) {
+  std::string summary;
   const int qw = o.qualityWidth, qh = o.qualityHeight;
   std::vector<std::vector<std::string>> t5;
   const FoveationDesc qd = scaledLayers(qh);
   const FoveationMap qm = computeFoveation(qw, qh, qd);
-  for (size_t s = 0; s < scenes.size(); ++s) {
-    std::printf("experiment foveated: Table 5, %s, reference (%d spp)\n", o.sceneLabels[s].c_str(),
-                o.referenceSpp);
-    std::fflush(stdout);
-    const CameraDesc cam = defaultCamera(scenes[s]);
-    const Buffer ref = convergedDualImage(scenes[s], cam, qw, qh, o.referenceSpp, o.cache);
-    const std::string label = sceneLabel(o.scenes[s]);
-    writePng((fs::path(o.out) / ("reference_" + label + ".png")).string(), ref);
-    report.image("reference_" + label + ".png",
-                 o.sceneLabels[s] + ": reference (" + std::to_string(o.referenceSpp) + " spp)");
-    std::vector<Buffer> images;
-    std::vector<double> ssims(size_t(kConfigCount), 0.0), foveas(size_t(kConfigCount), 0.0);
-    for (int c = 0; c < kConfigCount; ++c) {
-      const Config& cf = configs()[size_t(c)];
-      Renderer rd = makeRenderer(scenes[s], cf.pipeline, qw, qh, cf.sets);
-      // The thesis' configurations from one frame; the accumulating one after temporalFrames
-      // frames of the still camera.
-      const int frames = cf.temporal ? o.temporalFrames : 1;
-      for (int f = 0; f < frames; ++f) rd.renderFrame(0, cam);
-      const Buffer img = rd.output();
-      images.push_back(img);
-      Buffer ssimMap;
-      const ImageMetrics m = compareImages(img, ref, &ssimMap);
-      const Buffer err = squaredError(img, ref);
-      const double fovea = meanOverLayer(ssimMap, qm, 0), periphery = meanOverLayer(ssimMap, qm, 2);
-      ssims[size_t(c)] = m.ssim;
-      foveas[size_t(c)] = fovea;
-      const int b = cf.base;
-      t5.push_back({o.sceneLabels[s], cf.label, fmt(100.0 * m.rmse, 4), fmt(m.ssim, 6),
-                    fmt(m.psnr, 4), fmt(fovea, 4),
-                    fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 0)), 3), fmt(periphery, 4),
-                    fmt(100.0 * std::sqrt(meanOverLayer(err, qm, 2)), 3), fmt(flip(ref, img), 4)});
-      if (c >= 2 && b != c)
-        summary += "- " + o.sceneLabels[s] + ": " + cf.label + " SSIM − " +
-                   configs()[size_t(b)].label + " = " + fmt(m.ssim - ssims[size_t(b)], 4) +
-                   " (fovea " + fmt(fovea - foveas[size_t(b)], 4) + ")\n";
-      const std::string file = "image_" + label + "_" + cf.file + ".png";
-      writePng((fs::path(o.out) / file).string(), img);
-      report.image(file, o.sceneLabels[s] + ": " + cf.label);
-    }
-    // Figure 17: the same crop of the left eye; Figure 18: FLIP maps side by side.
-    const int crop[4] = {o.crop[0], o.crop[1], o.crop[2] ? o.crop[2] : qw / 2,
-                         o.crop[3] ? o.crop[3] : qh / 3};
-    const int cx = o.crop[2] ? crop[0] : qw / 4, cy = o.crop[3] ? crop[1] : qh / 3;
-    const int box[4] = {cx, cy, crop[2], crop[3]};
-    Buffer strip(box[2] * (kConfigCount + 1), box[3], 3), maps(qw * 2 * kConfigCount, qh, 3);
-    paste(strip, cropOf(ref, box), 0);
-    for (int c = 0; c < kConfigCount; ++c) {
-      paste(strip, cropOf(images[size_t(c)], box), box[2] * (c + 1));
-      Buffer map;
-      flip(ref, images[size_t(c)], &map);
-      paste(maps, flipColorMap(map), qw * 2 * c);
-    }
-    writePng((fs::path(o.out) / ("figure17_" + label + ".png")).string(), strip);
-    report.image("figure17_" + label + ".png", o.sceneLabels[s] + ": reference, " +
-                                                   configLabels(", ") + " (same crop, left eye)");
-    writePng((fs::path(o.out) / ("figure18_" + label + ".png")).string(), maps);
-    report.image("figure18_" + label + ".png",
-                 o.sceneLabels[s] + ": FLIP against the reference, " + configLabels(" | "));
-  }
+  for (size_t s = 0; s < scenes.size(); ++s) table5Scene(o, scenes[s], s, qm, t5, summary, report);
   report.markdown("### Table 5 shape: quality against the same path tracer converged (" +
                   std::to_string(o.referenceSpp) + " spp, no foveation, no denoising), " +
                   std::to_string(qw) + "x" + std::to_string(qh) + " per eye (radii " +
@@ -350,8 +363,14 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
                {"scene", "renderer", "RMSE (%)", "SSIM", "PSNR (dB)", "fovea SSIM",
                 "fovea RMSE (%)", "periphery SSIM", "periphery RMSE (%)", "FLIP"},
                t5);
-  // Moving camera: the accumulating configuration is fair only if it also holds up while the
-  // camera moves; the first temporalFrames frames of each path at 30 fps, the last one measured.
+  return summary;
+}
+
+// Moving camera: the accumulating configuration is fair only if it also holds up while the
+// camera moves; the first temporalFrames frames of each path at 30 fps, the last one measured.
+void movingCamera(const FoveatedExperimentOptions& o, const std::vector<Scene>& scenes,
+                  ExperimentReport& report) {
+  const int kConfigCount = int(configs().size());
   std::vector<std::vector<std::string>> moving;
   std::vector<std::pair<std::string, std::string>> movingImages;  // file, caption
   std::string movingSummary;
@@ -407,6 +426,22 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
     report.markdown(movingSummary + "\n");
     for (const auto& [file, caption] : movingImages) report.image(file, caption);
   }
+}
+
+}  // namespace
+
+int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
+  std::vector<Scene> scenes;
+  for (const std::string& s : o.scenes) scenes.push_back(loadScene(s));
+  for (const Config& c : configs()) Pipeline::load(c.pipeline);
+  fs::create_directories(o.out);
+  ExperimentReport report(o.out,
+                          "Seed 004: foveated stereo path tracing, non-homogeneous denoising");
+  table2(o, report);
+  const std::vector<double> speedups = table4(o, scenes, report);
+  const std::string summary = table5(o, scenes, report);
+  movingCamera(o, scenes, report);
+  const int qw = o.qualityWidth, qh = o.qualityHeight;
   report.markdown("The NH3LD + temporal rows (beyond the thesis) are measured after " +
                   std::to_string(o.temporalFrames) +
                   " frames of the still camera (its periphery averages them); the others from "

@@ -139,9 +139,7 @@ struct SceneResult {
   std::vector<double> budgetRtMs;
 };
 
-}  // namespace
-
-int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
+void validate(const HeuristicExperimentOptions& o) {
   const char* cl = "command line";
   if (o.width < 8 || o.width > 16384) throw InputError(cl, "--width", "must be in [8, 16384]");
   if (o.height < 8 || o.height > 16384) throw InputError(cl, "--height", "must be in [8, 16384]");
@@ -152,108 +150,93 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
     throw InputError(cl, "--path-frames", "must be in [1, 100000]");
   if (!(o.budget >= 0)) throw InputError(cl, "--budget", "must be >= 0");
   if (!(o.budgetMs > 0)) throw InputError(cl, "--budget-ms", "must be > 0");
-  std::vector<std::string> specs = o.scenes.empty() ? defaultHeuristicScenes() : o.scenes;
-  // Load every scene before rendering anything, so a bad one fails fast and writes nothing.
-  std::vector<Scene> scenes;
-  for (const std::string& spec : specs) {
-    scenes.push_back(loadScene(spec));
-  }
-  if (!o.out.empty() && !fs::exists(o.out)) fs::create_directories(o.out);
-  const fs::path dir(o.out);
-  const std::string T = "heuristic.budget=" + fmt(o.budget, 0);
-  const std::string budgetMs = "heuristic.budget_ms=" + fmt(o.budgetMs, 3);
-  // The paper's rule for its tables: unselected effects are absent (no fallbacks).
-  const std::string noFallback = "ss_fallback.mode=off", noShadowMaps = "ss_fallback.shadows=off";
-  // The paper's rule: shadows selected with their object (the pipeline traces them all).
-  const std::string paperShadows = "heuristic.shadows=budget";
+}
 
-  std::vector<SceneResult> results;
-  for (size_t si = 0; si < scenes.size(); ++si) {
-    const Scene& scene = scenes[si];
-    SceneResult res;
-    res.name = sceneLabel(specs[si]);
-    std::printf("experiment heuristic: %s (%zu triangles, %zu objects)\n", res.name.c_str(),
-                scene.triangleCount(), scene.objects.size());
-    std::fflush(stdout);
-    const CameraDesc cam = defaultCamera(scene);
+// The settings of the runs: T, the ms budget, and the paper's rules for its tables.
+struct RunSettings {
+  std::string T, budgetMs;
+  // Unselected effects are absent (no fallbacks).
+  std::string noFallback = "ss_fallback.mode=off", noShadowMaps = "ss_fallback.shadows=off";
+  // Shadows selected with their object (the pipeline traces them all).
+  std::string paperShadows = "heuristic.shadows=budget";
+};
 
-    // Table 5: the static shot.
-    {
-      Run heur(scene, "hybrid-heuristic", {T, noFallback, noShadowMaps, paperShadows}, o),
-          all(scene, "hybrid-all", {}, o),
-          budget(scene, "hybrid-budget", {budgetMs, noFallback, noShadowMaps}, o),
-          rt(scene, "rt-only", {}, o), product(scene, "hybrid-heuristic", {T}, o);
-      res.heur = runStatic(heur, cam, o);
-      res.all = runStatic(all, cam, o);
-      res.budget = runStatic(budget, cam, o);
-      res.rtOnly = runStatic(rt, cam, o);
-      res.product = runStatic(product, cam, o);
-    }
-    res.heurVsRtOnly = compareImages(res.heur.image, res.rtOnly.image);
-    res.productVsRtOnly = compareImages(res.product.image, res.rtOnly.image);
-    res.heurVsAll = compareImages(res.heur.image, res.all.image);
-    res.budgetVsAll = compareImages(res.budget.image, res.all.image);
-    res.allVsRtOnly = compareImages(res.all.image, res.rtOnly.image);
-    const std::string stem = (dir / res.name).string();
-    writePng(stem + "_hybrid-heuristic.png", res.heur.image);
-    writePng(stem + "_hybrid-all.png", res.all.image);
-    writePng(stem + "_hybrid-budget.png", res.budget.image);
-    writePng(stem + "_rt-only.png", res.rtOnly.image);
-    writePng(stem + "_hybrid-heuristic-fallbacks.png", res.product.image);
-    writePng(stem + "_heuristic_mask.png", res.heur.mask);
-    writePng(stem + "_budget_mask.png", res.budget.mask);
-
-    // Table 6 and budget tracking: the camera path, the three hybrids frame by frame.
+// Table 5: the static shot, each pipeline, and the images compared.
+void staticShot(const Scene& scene, const CameraDesc& cam, const HeuristicExperimentOptions& o,
+                const RunSettings& rs, const fs::path& dir, SceneResult& res) {
+  const std::string &T = rs.T, &budgetMs = rs.budgetMs, &noFallback = rs.noFallback,
+                    &noShadowMaps = rs.noShadowMaps, &paperShadows = rs.paperShadows;
+  // Table 5: the static shot.
+  {
     Run heur(scene, "hybrid-heuristic", {T, noFallback, noShadowMaps, paperShadows}, o),
         all(scene, "hybrid-all", {}, o),
-        budget(scene, "hybrid-budget", {budgetMs, noFallback, noShadowMaps}, o);
-    const int n = o.pathFrames;
-    for (int i = 0; i < o.warmup; ++i)
-      for (Run* r : {&heur, &all, &budget})
-        r->renderer->renderFrame(0, pathCamera(scene, cam, 0, n));
-    std::vector<double> heurMs, allMs, budgetFrameMs, heurSsim, budgetSsim;
-    for (int f = 0; f < n; ++f) {
-      CameraDesc c = pathCamera(scene, cam, f, n);
-      heurMs.push_back(heur.renderer->renderFrame(f, c).totalMs);
-      allMs.push_back(all.renderer->renderFrame(f, c).totalMs);
-      FrameTimings bt = budget.renderer->renderFrame(f, c);
-      budgetFrameMs.push_back(bt.totalMs);
-      double rtMs = passMs(bt, "rt_secondary");
-      res.budgetRtMs.push_back(rtMs);
-      bool within = std::abs(rtMs - o.budgetMs) <= o.tolerance * o.budgetMs;
-      // The budget binds when something visible was left out (not selected, or cut by the
-      // deadline); otherwise the RT stage simply had less to do than the budget allows.
-      bool binds = budget.counter("heuristic/selected") < budget.counter("heuristic/nodes") ||
-                   budget.counter("rt_secondary/items_cut") > 0;
-      res.withinBand += within;
-      res.binding += binds;
-      res.bindingWithin += binds && within;
-      // Image quality along the path against hybrid-all (every frame up to 50, then sparser).
-      if (f < 50 || f % 5 == 0) {
-        heurSsim.push_back(ssim(heur.renderer->output(), all.renderer->output()));
-        budgetSsim.push_back(ssim(budget.renderer->output(), all.renderer->output()));
-      }
-    }
-    res.pathFrames = n;
-    res.pathHeurMs = mean(heurMs);
-    res.pathAllMs = mean(allMs);
-    res.pathBudgetMs = mean(budgetFrameMs);
-    res.pathHeurSsim = mean(heurSsim);
-    res.pathBudgetSsim = mean(budgetSsim);
-    std::printf(
-        "  static: hybrid-heuristic %.1f ms, rt-only %.1f ms (ratio %.2f), SSIM vs hybrid-all "
-        "%.4f\n  with fallbacks: %.1f ms (ratio %.2f), SSIM vs rt-only %.4f (paper's rule %.4f)\n"
-        "  path: %d frames, with heuristic %.1f ms, without %.1f ms; budget %.0f ms: "
-        "%d/%d frames within ±%.0f%%\n",
-        res.heur.frame, res.rtOnly.frame, res.heur.frame / res.rtOnly.frame, res.heurVsAll.ssim,
-        res.product.frame, res.product.frame / res.rtOnly.frame, res.productVsRtOnly.ssim,
-        res.heurVsRtOnly.ssim, n, res.pathHeurMs, res.pathAllMs, o.budgetMs, res.withinBand, n,
-        o.tolerance * 100);
-    std::fflush(stdout);
-    results.push_back(std::move(res));
+        budget(scene, "hybrid-budget", {budgetMs, noFallback, noShadowMaps}, o),
+        rt(scene, "rt-only", {}, o), product(scene, "hybrid-heuristic", {T}, o);
+    res.heur = runStatic(heur, cam, o);
+    res.all = runStatic(all, cam, o);
+    res.budget = runStatic(budget, cam, o);
+    res.rtOnly = runStatic(rt, cam, o);
+    res.product = runStatic(product, cam, o);
   }
+  res.heurVsRtOnly = compareImages(res.heur.image, res.rtOnly.image);
+  res.productVsRtOnly = compareImages(res.product.image, res.rtOnly.image);
+  res.heurVsAll = compareImages(res.heur.image, res.all.image);
+  res.budgetVsAll = compareImages(res.budget.image, res.all.image);
+  res.allVsRtOnly = compareImages(res.all.image, res.rtOnly.image);
+  const std::string stem = (dir / res.name).string();
+  writePng(stem + "_hybrid-heuristic.png", res.heur.image);
+  writePng(stem + "_hybrid-all.png", res.all.image);
+  writePng(stem + "_hybrid-budget.png", res.budget.image);
+  writePng(stem + "_rt-only.png", res.rtOnly.image);
+  writePng(stem + "_hybrid-heuristic-fallbacks.png", res.product.image);
+  writePng(stem + "_heuristic_mask.png", res.heur.mask);
+  writePng(stem + "_budget_mask.png", res.budget.mask);
+}
 
-  // CSV files.
+// Table 6 and budget tracking: the camera path, the three hybrids frame by frame.
+void cameraPath(const Scene& scene, const CameraDesc& cam, const HeuristicExperimentOptions& o,
+                const RunSettings& rs, SceneResult& res) {
+  const std::string &T = rs.T, &budgetMs = rs.budgetMs, &noFallback = rs.noFallback,
+                    &noShadowMaps = rs.noShadowMaps, &paperShadows = rs.paperShadows;
+  Run heur(scene, "hybrid-heuristic", {T, noFallback, noShadowMaps, paperShadows}, o),
+      all(scene, "hybrid-all", {}, o),
+      budget(scene, "hybrid-budget", {budgetMs, noFallback, noShadowMaps}, o);
+  const int n = o.pathFrames;
+  for (int i = 0; i < o.warmup; ++i)
+    for (Run* r : {&heur, &all, &budget}) r->renderer->renderFrame(0, pathCamera(scene, cam, 0, n));
+  std::vector<double> heurMs, allMs, budgetFrameMs, heurSsim, budgetSsim;
+  for (int f = 0; f < n; ++f) {
+    CameraDesc c = pathCamera(scene, cam, f, n);
+    heurMs.push_back(heur.renderer->renderFrame(f, c).totalMs);
+    allMs.push_back(all.renderer->renderFrame(f, c).totalMs);
+    FrameTimings bt = budget.renderer->renderFrame(f, c);
+    budgetFrameMs.push_back(bt.totalMs);
+    double rtMs = passMs(bt, "rt_secondary");
+    res.budgetRtMs.push_back(rtMs);
+    bool within = std::abs(rtMs - o.budgetMs) <= o.tolerance * o.budgetMs;
+    // The budget binds when something visible was left out (not selected, or cut by the
+    // deadline); otherwise the RT stage simply had less to do than the budget allows.
+    bool binds = budget.counter("heuristic/selected") < budget.counter("heuristic/nodes") ||
+                 budget.counter("rt_secondary/items_cut") > 0;
+    res.withinBand += within;
+    res.binding += binds;
+    res.bindingWithin += binds && within;
+    // Image quality along the path against hybrid-all (every frame up to 50, then sparser).
+    if (f < 50 || f % 5 == 0) {
+      heurSsim.push_back(ssim(heur.renderer->output(), all.renderer->output()));
+      budgetSsim.push_back(ssim(budget.renderer->output(), all.renderer->output()));
+    }
+  }
+  res.pathFrames = n;
+  res.pathHeurMs = mean(heurMs);
+  res.pathAllMs = mean(allMs);
+  res.pathBudgetMs = mean(budgetFrameMs);
+  res.pathHeurSsim = mean(heurSsim);
+  res.pathBudgetSsim = mean(budgetSsim);
+}
+
+void writeCsvs(const std::vector<SceneResult>& results, const HeuristicExperimentOptions& o,
+               const fs::path& dir) {
   std::ostringstream t5, t6, bf;
   t5 << "scene,rast_ms,heur_ms,rayt_ms,frame_ms,rt_only_frame_ms,ratio,heur_share,selected,"
         "visible,ssim_vs_all,psnr_vs_all,hybrid_all_frame_ms,ssim_all_vs_rt_only,"
@@ -281,6 +264,167 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   writeTextFile((dir / "table5.csv").string(), t5.str());
   writeTextFile((dir / "table6.csv").string(), t6.str());
   writeTextFile((dir / "budget_frames.csv").string(), bf.str());
+}
+
+// The paper's table layout (rows = measures, columns = scenes).
+class MeasureTable {
+ public:
+  MeasureTable(std::ostringstream& md, const std::vector<SceneResult>& results)
+      : md_(md), results_(results) {}
+  void header(const char* first) {
+    md_ << "| " << first << " |";
+    for (const SceneResult& r : results_) md_ << " " << r.name << " |";
+    md_ << "\n| --- |";
+    for (size_t i = 0; i < results_.size(); ++i) md_ << " ---: |";
+    md_ << "\n";
+  }
+  template <class Value>
+  void row(const std::string& label, Value value) {
+    md_ << "| " << label << " |";
+    for (const SceneResult& r : results_) md_ << " " << value(r) << " |";
+    md_ << "\n";
+  }
+
+ private:
+  std::ostringstream& md_;
+  const std::vector<SceneResult>& results_;
+};
+
+// Table 5 (the static shot) and the fallbacks beside it.
+void table5(std::ostringstream& md, const std::vector<SceneResult>& results) {
+  MeasureTable m(md, results);
+  md << "## Table 5: static shot (ms, medians)\n\n";
+  m.header("measure");
+  m.row("FRAME (hybrid-heuristic)", [](const SceneResult& r) { return fmt(r.heur.frame); });
+  m.row("RAST (raster_gbuffer + deferred_shading)", [](const SceneResult& r) {
+    return fmt(r.heur.ms.at("raster_gbuffer") + r.heur.ms.at("deferred_shading"));
+  });
+  m.row("HEUR", [](const SceneResult& r) { return fmt(r.heur.ms.at("heuristic")); });
+  m.row("RAYT (rt_secondary)",
+        [](const SceneResult& r) { return fmt(r.heur.ms.at("rt_secondary")); });
+  m.row("RAYT ONLY FRAME (rt-only)", [](const SceneResult& r) { return fmt(r.rtOnly.frame); });
+  m.row("FRAME / RAYT ONLY FRAME",
+        [](const SceneResult& r) { return fmt(r.heur.frame / r.rtOnly.frame, 3); });
+  m.row("HEUR share of FRAME", [](const SceneResult& r) {
+    return fmt(100.0 * r.heur.ms.at("heuristic") / r.heur.frame, 2) + " %";
+  });
+  m.row("objects selected / visible", [](const SceneResult& r) {
+    return std::to_string(r.heur.selected) + " / " + std::to_string(r.heur.visible);
+  });
+  m.row("SSIM vs hybrid-all", [](const SceneResult& r) { return fmt(r.heurVsAll.ssim, 4); });
+  m.row("PSNR vs hybrid-all (dB)", [](const SceneResult& r) { return fmt(r.heurVsAll.psnr, 1); });
+  m.row("FRAME (hybrid-all)", [](const SceneResult& r) { return fmt(r.all.frame); });
+  m.row("SSIM hybrid-all vs rt-only",
+        [](const SceneResult& r) { return fmt(r.allVsRtOnly.ssim, 4); });
+  m.row("FRAME (hybrid-budget)", [](const SceneResult& r) { return fmt(r.budget.frame); });
+  m.row("RAYT (hybrid-budget)",
+        [](const SceneResult& r) { return fmt(r.budget.ms.at("rt_secondary")); });
+  m.row("SSIM hybrid-budget vs hybrid-all",
+        [](const SceneResult& r) { return fmt(r.budgetVsAll.ssim, 4); });
+  md << "\n## Beyond the paper: fallbacks for unselected effects (product default)\n\n"
+        "The rows above follow the paper's rule (`ss_fallback.mode=off`, `shadows=off`): what the "
+        "heuristic leaves out is drawn without shadows and mirrors black. The product "
+        "`hybrid-heuristic` fills those pixels from raster shadow maps and per-object reflection "
+        "probes (`ss_fallback`).\n\n";
+  m.header("measure");
+  m.row("SSIM paper's rule vs rt-only",
+        [](const SceneResult& r) { return fmt(r.heurVsRtOnly.ssim, 4); });
+  m.row("SSIM with fallbacks vs rt-only",
+        [](const SceneResult& r) { return fmt(r.productVsRtOnly.ssim, 4); });
+  m.row("FRAME with fallbacks", [](const SceneResult& r) { return fmt(r.product.frame); });
+  m.row("ss_fallback pass",
+        [](const SceneResult& r) { return fmt(r.product.ms.at("ss_fallback")); });
+  m.row("FRAME with fallbacks / RAYT ONLY FRAME",
+        [](const SceneResult& r) { return fmt(r.product.frame / r.rtOnly.frame, 3); });
+}
+
+// Table 6 (the camera path) and the ms budget's tracking.
+void table6(std::ostringstream& md, const std::vector<SceneResult>& results,
+            const HeuristicExperimentOptions& o) {
+  MeasureTable m(md, results);
+  md << "\n## Table 6: mean frame time along the camera path (ms)\n\n";
+  m.header("measure");
+  m.row("with heuristic (hybrid-heuristic)",
+        [](const SceneResult& r) { return fmt(r.pathHeurMs); });
+  m.row("no heuristic (hybrid-all)", [](const SceneResult& r) { return fmt(r.pathAllMs); });
+  m.row("ms budget (hybrid-budget)", [](const SceneResult& r) { return fmt(r.pathBudgetMs); });
+  m.row("mean SSIM hybrid-heuristic vs hybrid-all",
+        [](const SceneResult& r) { return fmt(r.pathHeurSsim, 4); });
+  m.row("mean SSIM hybrid-budget vs hybrid-all",
+        [](const SceneResult& r) { return fmt(r.pathBudgetSsim, 4); });
+  md << "\n## ms budget tracking along the path (RT stage vs " << fmt(o.budgetMs, 1)
+     << " ms, band ±" << fmt(o.tolerance * 100, 0) << " %)\n\n";
+  m.header("measure");
+  m.row("frames within the band", [](const SceneResult& r) {
+    return fmt(100.0 * r.withinBand / std::max(r.pathFrames, 1), 1) + " %";
+  });
+  m.row("frames where the budget binds", [](const SceneResult& r) {
+    return std::to_string(r.binding) + " / " + std::to_string(r.pathFrames);
+  });
+  m.row("binding frames within the band", [](const SceneResult& r) {
+    return r.binding ? fmt(100.0 * r.bindingWithin / r.binding, 1) + " %" : std::string("-");
+  });
+  m.row("RT stage median (ms)",
+        [](const SceneResult& r) { return fmt(summarize(r.budgetRtMs).median); });
+}
+
+// The budget tracking, frame by frame: the RT stage's time against the budget.
+void budgetTrackingPlot(ExperimentReport& report, const std::vector<SceneResult>& results,
+                        const HeuristicExperimentOptions& o) {
+  std::vector<PlotSeries> tracking;
+  for (const SceneResult& r : results) {
+    PlotSeries ps{r.name, {}, r.budgetRtMs};
+    for (size_t f = 0; f < r.budgetRtMs.size(); ++f) ps.x.push_back(double(f));
+    tracking.push_back(ps);
+  }
+  tracking.push_back(
+      {"budget", {0.0, double(std::max(o.pathFrames - 1, 1))}, {o.budgetMs, o.budgetMs}});
+  report.plot("budget_tracking", "hybrid-budget: RT stage time along the camera path", "path frame",
+              "rt_secondary (ms)", tracking);
+}
+
+}  // namespace
+
+int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
+  validate(o);
+  std::vector<std::string> specs = o.scenes.empty() ? defaultHeuristicScenes() : o.scenes;
+  // Load every scene before rendering anything, so a bad one fails fast and writes nothing.
+  std::vector<Scene> scenes;
+  for (const std::string& spec : specs) {
+    scenes.push_back(loadScene(spec));
+  }
+  if (!o.out.empty() && !fs::exists(o.out)) fs::create_directories(o.out);
+  const fs::path dir(o.out);
+  const RunSettings rs{"heuristic.budget=" + fmt(o.budget, 0),
+                       "heuristic.budget_ms=" + fmt(o.budgetMs, 3)};
+
+  std::vector<SceneResult> results;
+  for (size_t si = 0; si < scenes.size(); ++si) {
+    const Scene& scene = scenes[si];
+    SceneResult res;
+    res.name = sceneLabel(specs[si]);
+    std::printf("experiment heuristic: %s (%zu triangles, %zu objects)\n", res.name.c_str(),
+                scene.triangleCount(), scene.objects.size());
+    std::fflush(stdout);
+    const CameraDesc cam = defaultCamera(scene);
+
+    staticShot(scene, cam, o, rs, dir, res);
+    cameraPath(scene, cam, o, rs, res);
+    const int n = o.pathFrames;
+    std::printf(
+        "  static: hybrid-heuristic %.1f ms, rt-only %.1f ms (ratio %.2f), SSIM vs hybrid-all "
+        "%.4f\n  with fallbacks: %.1f ms (ratio %.2f), SSIM vs rt-only %.4f (paper's rule %.4f)\n"
+        "  path: %d frames, with heuristic %.1f ms, without %.1f ms; budget %.0f ms: "
+        "%d/%d frames within ±%.0f%%\n",
+        res.heur.frame, res.rtOnly.frame, res.heur.frame / res.rtOnly.frame, res.heurVsAll.ssim,
+        res.product.frame, res.product.frame / res.rtOnly.frame, res.productVsRtOnly.ssim,
+        res.heurVsRtOnly.ssim, n, res.pathHeurMs, res.pathAllMs, o.budgetMs, res.withinBand, n,
+        o.tolerance * 100);
+    std::fflush(stdout);
+    results.push_back(std::move(res));
+  }
+
+  writeCsvs(results, o, dir);
 
   // The Markdown report: the paper's table layout (rows = measures, columns = scenes).
   ExperimentReport report(dir, "Heuristic hybrid rendering (seed 002): experiment results");
@@ -293,97 +437,12 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
       " frames. hybrid-heuristic uses T = " + fmt(o.budget, 0) +
       " cost units; hybrid-budget uses " + fmt(o.budgetMs, 1) +
       " ms with per-effect selection and recursion-aware costs.";
-  auto header = [&](const char* first) {
-    md << "| " << first << " |";
-    for (const SceneResult& r : results) md << " " << r.name << " |";
-    md << "\n| --- |";
-    for (size_t i = 0; i < results.size(); ++i) md << " ---: |";
-    md << "\n";
-  };
-  auto row = [&](const std::string& label, auto value) {
-    md << "| " << label << " |";
-    for (const SceneResult& r : results) md << " " << value(r) << " |";
-    md << "\n";
-  };
-  md << "## Table 5: static shot (ms, medians)\n\n";
-  header("measure");
-  row("FRAME (hybrid-heuristic)", [](const SceneResult& r) { return fmt(r.heur.frame); });
-  row("RAST (raster_gbuffer + deferred_shading)", [](const SceneResult& r) {
-    return fmt(r.heur.ms.at("raster_gbuffer") + r.heur.ms.at("deferred_shading"));
-  });
-  row("HEUR", [](const SceneResult& r) { return fmt(r.heur.ms.at("heuristic")); });
-  row("RAYT (rt_secondary)",
-      [](const SceneResult& r) { return fmt(r.heur.ms.at("rt_secondary")); });
-  row("RAYT ONLY FRAME (rt-only)", [](const SceneResult& r) { return fmt(r.rtOnly.frame); });
-  row("FRAME / RAYT ONLY FRAME",
-      [](const SceneResult& r) { return fmt(r.heur.frame / r.rtOnly.frame, 3); });
-  row("HEUR share of FRAME", [](const SceneResult& r) {
-    return fmt(100.0 * r.heur.ms.at("heuristic") / r.heur.frame, 2) + " %";
-  });
-  row("objects selected / visible", [](const SceneResult& r) {
-    return std::to_string(r.heur.selected) + " / " + std::to_string(r.heur.visible);
-  });
-  row("SSIM vs hybrid-all", [](const SceneResult& r) { return fmt(r.heurVsAll.ssim, 4); });
-  row("PSNR vs hybrid-all (dB)", [](const SceneResult& r) { return fmt(r.heurVsAll.psnr, 1); });
-  row("FRAME (hybrid-all)", [](const SceneResult& r) { return fmt(r.all.frame); });
-  row("SSIM hybrid-all vs rt-only",
-      [](const SceneResult& r) { return fmt(r.allVsRtOnly.ssim, 4); });
-  row("FRAME (hybrid-budget)", [](const SceneResult& r) { return fmt(r.budget.frame); });
-  row("RAYT (hybrid-budget)",
-      [](const SceneResult& r) { return fmt(r.budget.ms.at("rt_secondary")); });
-  row("SSIM hybrid-budget vs hybrid-all",
-      [](const SceneResult& r) { return fmt(r.budgetVsAll.ssim, 4); });
-  md << "\n## Beyond the paper: fallbacks for unselected effects (product default)\n\n"
-        "The rows above follow the paper's rule (`ss_fallback.mode=off`, `shadows=off`): what the "
-        "heuristic leaves out is drawn without shadows and mirrors black. The product "
-        "`hybrid-heuristic` fills those pixels from raster shadow maps and per-object reflection "
-        "probes (`ss_fallback`).\n\n";
-  header("measure");
-  row("SSIM paper's rule vs rt-only",
-      [](const SceneResult& r) { return fmt(r.heurVsRtOnly.ssim, 4); });
-  row("SSIM with fallbacks vs rt-only",
-      [](const SceneResult& r) { return fmt(r.productVsRtOnly.ssim, 4); });
-  row("FRAME with fallbacks", [](const SceneResult& r) { return fmt(r.product.frame); });
-  row("ss_fallback pass", [](const SceneResult& r) { return fmt(r.product.ms.at("ss_fallback")); });
-  row("FRAME with fallbacks / RAYT ONLY FRAME",
-      [](const SceneResult& r) { return fmt(r.product.frame / r.rtOnly.frame, 3); });
-  md << "\n## Table 6: mean frame time along the camera path (ms)\n\n";
-  header("measure");
-  row("with heuristic (hybrid-heuristic)", [](const SceneResult& r) { return fmt(r.pathHeurMs); });
-  row("no heuristic (hybrid-all)", [](const SceneResult& r) { return fmt(r.pathAllMs); });
-  row("ms budget (hybrid-budget)", [](const SceneResult& r) { return fmt(r.pathBudgetMs); });
-  row("mean SSIM hybrid-heuristic vs hybrid-all",
-      [](const SceneResult& r) { return fmt(r.pathHeurSsim, 4); });
-  row("mean SSIM hybrid-budget vs hybrid-all",
-      [](const SceneResult& r) { return fmt(r.pathBudgetSsim, 4); });
-  md << "\n## ms budget tracking along the path (RT stage vs " << fmt(o.budgetMs, 1)
-     << " ms, band ±" << fmt(o.tolerance * 100, 0) << " %)\n\n";
-  header("measure");
-  row("frames within the band", [](const SceneResult& r) {
-    return fmt(100.0 * r.withinBand / std::max(r.pathFrames, 1), 1) + " %";
-  });
-  row("frames where the budget binds", [](const SceneResult& r) {
-    return std::to_string(r.binding) + " / " + std::to_string(r.pathFrames);
-  });
-  row("binding frames within the band", [](const SceneResult& r) {
-    return r.binding ? fmt(100.0 * r.bindingWithin / r.binding, 1) + " %" : std::string("-");
-  });
-  row("RT stage median (ms)",
-      [](const SceneResult& r) { return fmt(summarize(r.budgetRtMs).median); });
+  table5(md, results);
+  table6(md, results, o);
   md << "\nImages: `<scene>_<pipeline>.png` (static shot), `<scene>_heuristic_mask.png` "
         "(red = shadows, green = reflections, blue = refractions ray traced).\n\n";
   report.markdown(md.str());
-  // The budget tracking, frame by frame: the RT stage's time against the budget.
-  std::vector<PlotSeries> tracking;
-  for (const SceneResult& r : results) {
-    PlotSeries ps{r.name, {}, r.budgetRtMs};
-    for (size_t f = 0; f < r.budgetRtMs.size(); ++f) ps.x.push_back(double(f));
-    tracking.push_back(ps);
-  }
-  tracking.push_back(
-      {"budget", {0.0, double(std::max(o.pathFrames - 1, 1))}, {o.budgetMs, o.budgetMs}});
-  report.plot("budget_tracking", "hybrid-budget: RT stage time along the camera path", "path frame",
-              "rt_secondary (ms)", tracking);
+  budgetTrackingPlot(report, results, o);
   for (const SceneResult& r : results)
     for (const char* what : {"hybrid-heuristic", "hybrid-all", "hybrid-budget", "rt-only",
                              "heuristic_mask", "budget_mask"})
