@@ -116,14 +116,55 @@ void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffe
   render(fs, cam, out, Subset{}, stats, tau);
 }
 
-int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& subset, float tau,
-                        int binW, int binH, bool anywhere, RasterStats* stats) {
-  const Scene& scene = *fs.scene;
-  const int W = cam.width, H = cam.height;
-  const int tilesX = (W + binW - 1) / binW, tilesY = (H + binH - 1) / binH;
-  const int tileCount = tilesX * tilesY;
-  const Mat4 vp = cam.viewProj;
+namespace {
 
+// One piece of a triangle fan: its corners (a, b, c; positive orientation) in fixed point, its
+// depth plane and the bins it touches. False when it covers no pixel centre (or is degenerate).
+bool setUpPiece(const int32_t* X, const int32_t* Y, const float* Z, const float* SX,
+                const float* SY, int a, int b, int c, int W, int H, int binW, int binH,
+                bool anywhere, Rasterizer::SetupTriangle& st) {
+  st.x[0] = X[a];
+  st.x[1] = X[b];
+  st.x[2] = X[c];
+  st.y[0] = Y[a];
+  st.y[1] = Y[b];
+  st.y[2] = Y[c];
+  // Depth is affine in screen space; derive its plane from the unsnapped positions (in
+  // double) so that sub-pixel snapping of large clipped triangles does not tilt it.
+  {
+    double ux = SX[b] - SX[a], uy = SY[b] - SY[a], vx = SX[c] - SX[a], vy = SY[c] - SY[a];
+    double uz = double(Z[b]) - Z[a], vz = double(Z[c]) - Z[a];
+    double det = ux * vy - uy * vx;
+    if (det == 0) return false;
+    st.dzdx = float((uz * vy - vz * uy) / det);
+    st.dzdy = float((vz * ux - uz * vx) / det);
+    st.zRef = Z[a];
+    st.xRef = SX[a];
+    st.yRef = SY[a];
+  }
+  // Pixel range whose centres (px + 0.5) can be covered; with `anywhere`, every pixel
+  // the triangle's box touches (samples may sit anywhere inside a pixel).
+  int32_t minX = std::min({st.x[0], st.x[1], st.x[2]}),
+          maxX = std::max({st.x[0], st.x[1], st.x[2]});
+  int32_t minY = std::min({st.y[0], st.y[1], st.y[2]}),
+          maxY = std::max({st.y[0], st.y[1], st.y[2]});
+  const int32_t centre = anywhere ? 0 : 128, round = anywhere ? 0 : 255;
+  int px0 = std::max(0, int((minX - centre + round) >> kSubBits));
+  int px1 = std::min(W - 1, int((maxX - centre) >> kSubBits));
+  int py0 = std::max(0, int((minY - centre + round) >> kSubBits));
+  int py1 = std::min(H - 1, int((maxY - centre) >> kSubBits));
+  if (px0 > px1 || py0 > py1) return false;  // covers no pixel centre
+  st.tx0 = int16_t(px0 / binW);
+  st.tx1 = int16_t(px1 / binW);
+  st.ty0 = int16_t(py0 / binH);
+  st.ty1 = int16_t(py1 / binH);
+  return true;
+}
+
+}  // namespace
+
+void Rasterizer::transformVertices(const FrameScene& fs, const Mat4& vp, int W, int H,
+                                   const Subset& subset, float tau) {
   // 1. Vertices to clip space, for objects whose bounds reach into the view frustum, and only
   // when the camera or the geometry changed since they were last transformed.
   clip_.resize(fs.objects.size());
@@ -164,6 +205,19 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
       if (sv[i].outcode == 0) project(c[i], W, H, sv[i]);
     }
   });
+}
+
+int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& subset, float tau,
+                        int binW, int binH, bool anywhere, RasterStats* stats) {
+  const Scene& scene = *fs.scene;
+  const int W = cam.width, H = cam.height;
+  const int tilesX = (W + binW - 1) / binW, tilesY = (H + binH - 1) / binH;
+  const int tileCount = tilesX * tilesY;
+  const Mat4 vp = cam.viewProj;
+
+  // 1. Vertices to clip space, for objects whose bounds reach into the view frustum, and only
+  // when the camera or the geometry changed since they were last transformed.
+  transformVertices(fs, vp, W, H, subset, tau);
 
   // Global triangle numbering: prefix sums over objects.
   std::vector<size_t> firstTri(fs.objects.size() + 1, 0);
@@ -243,44 +297,10 @@ int Rasterizer::prepare(const FrameScene& fs, const Camera& cam, const Subset& s
           std::swap(b, c);
         }
         SetupTriangle st;
-        st.x[0] = X[a];
-        st.x[1] = X[b];
-        st.x[2] = X[c];
-        st.y[0] = Y[a];
-        st.y[1] = Y[b];
-        st.y[2] = Y[c];
-        // Depth is affine in screen space; derive its plane from the unsnapped positions (in
-        // double) so that sub-pixel snapping of large clipped triangles does not tilt it.
-        {
-          double ux = SX[b] - SX[a], uy = SY[b] - SY[a], vx = SX[c] - SX[a], vy = SY[c] - SY[a];
-          double uz = double(Z[b]) - Z[a], vz = double(Z[c]) - Z[a];
-          double det = ux * vy - uy * vx;
-          if (det == 0) continue;
-          st.dzdx = float((uz * vy - vz * uy) / det);
-          st.dzdy = float((vz * ux - uz * vx) / det);
-          st.zRef = Z[a];
-          st.xRef = SX[a];
-          st.yRef = SY[a];
-        }
+        if (!setUpPiece(X, Y, Z, SX, SY, a, b, c, W, H, binW, binH, anywhere, st)) continue;
         st.object = uint32_t(o);
         st.prim = prim;
         st.alphaMask = mat.alphaMode == AlphaMode::Mask;
-        // Pixel range whose centres (px + 0.5) can be covered; with `anywhere`, every pixel
-        // the triangle's box touches (samples may sit anywhere inside a pixel).
-        int32_t minX = std::min({st.x[0], st.x[1], st.x[2]}),
-                maxX = std::max({st.x[0], st.x[1], st.x[2]});
-        int32_t minY = std::min({st.y[0], st.y[1], st.y[2]}),
-                maxY = std::max({st.y[0], st.y[1], st.y[2]});
-        const int32_t centre = anywhere ? 0 : 128, round = anywhere ? 0 : 255;
-        int px0 = std::max(0, int((minX - centre + round) >> kSubBits));
-        int px1 = std::min(W - 1, int((maxX - centre) >> kSubBits));
-        int py0 = std::max(0, int((minY - centre + round) >> kSubBits));
-        int py1 = std::min(H - 1, int((maxY - centre) >> kSubBits));
-        if (px0 > px1 || py0 > py1) continue;  // covers no pixel centre
-        st.tx0 = int16_t(px0 / binW);
-        st.tx1 = int16_t(px1 / binW);
-        st.ty0 = int16_t(py0 / binH);
-        st.ty1 = int16_t(py1 / binH);
         uint32_t id = uint32_t(tris.size());
         tris.push_back(st);
         for (int ty = st.ty0; ty <= st.ty1; ++ty)

@@ -83,6 +83,9 @@ class Rasterizer {
   // ranges by centre coverage, or every pixel touched with `anywhere`). Returns the chunk count.
   int prepare(const FrameScene& fs, const Camera& cam, const Subset& subset, float tau, int binW,
               int binH, bool anywhere, RasterStats* stats);
+  // Step 1: the vertices of the objects that reach into the frustum, to clip space.
+  void transformVertices(const FrameScene& fs, const Mat4& vp, int W, int H, const Subset& subset,
+                         float tau);
   // Alpha-mask test of triangle t at pixel position (px, py).
   static bool alphaKeeps(const FrameScene& fs, const Camera& cam, const SetupTriangle& t, float px,
                          float py);

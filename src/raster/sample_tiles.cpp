@@ -199,6 +199,222 @@ class Arrangement {
 
 }  // namespace
 
+namespace {
+
+// The colored-corner construction: T dealt into pools per border class, then corner blocks,
+// edge strips and the 81 prototypes arranged and optimised in turn (one generator throughout,
+// so a seed gives one set).
+class ColoredCornerBuilder {
+ public:
+  ColoredCornerBuilder(TileSet& set, const std::vector<TimeLensPair>& pairs_in, PairMetric metric,
+                       std::mt19937_64& rng)
+      : set_(set), s(set.shape), pairs(pairs_in), n(int(pairs_in.size())), rng_(rng) {
+    a = s.stridesX(), b = s.stridesY(), qx = borderOf(a), qy = borderOf(b);
+    space.metric = metric;
+    for (const TimeLensPair& p : pairs_in) {
+      space.tau.push_back(p.tau);
+      space.u1.push_back(p.u1);
+      space.u2.push_back(p.u2);
+    }
+  }
+  void build() {
+    dealPools();
+    if (qx > 0 && qy > 0) {
+      cornerBlocks();
+      edgeStrips();
+    }
+    prototypes();
+  }
+
+ private:
+  void dealPools() {
+    // Pools: T dealt, in time order, into one pool per border class (so every region spans the
+    // whole shutter). A border region of one tile never shares a pair with another, and the
+    // interior takes whatever its borders left, so border pools may be larger than their regions:
+    // the interior's strata are spent first on corners (up to three choices per stratum, one per
+    // colour), then on edges, and each colour (pair) picks its region's pairs from the pool.
+    for (int y = 0; y < b; ++y)
+      for (int x = 0; x < a; ++x) ++classSize[strataClass(s, x, y)];
+    int poolSize[9];
+    {
+      int spare = classSize[8];
+      for (int first : {0, 4})  // corners, then edges
+        for (int c = first; c < first + 4; ++c) {
+          const int extra = std::min(2 * classSize[c], spare / (first + 4 - c));
+          poolSize[c] = classSize[c] + extra;
+          spare -= extra;
+        }
+      poolSize[8] = spare;
+    }
+    std::vector<int> byTime(static_cast<size_t>(n));
+    std::iota(byTime.begin(), byTime.end(), 0);
+    std::stable_sort(byTime.begin(), byTime.end(),
+                     [&](int i, int j) { return pairs[size_t(i)].tau < pairs[size_t(j)].tau; });
+    for (int r = 0; r < n; ++r) {
+      int best = -1;
+      double bestDeficit = -1e30;
+      for (int c = 0; c < 9; ++c) {
+        if (int(pool[c].size()) >= poolSize[c]) continue;
+        const double deficit = double(poolSize[c]) * (r + 1) / n - double(pool[c].size());
+        if (deficit > bestDeficit) {
+          bestDeficit = deficit;
+          best = c;
+        }
+      }
+      pool[best].push_back(byTime[size_t(r)]);
+    }
+  }
+  // The pairs of border class c for colour key `key`: one from each of classSize[c] consecutive
+  // time strata of the pool, the choice inside a stratum turning with the key.
+  std::vector<int> subsetFor(int c, int key) const {
+    std::vector<int> out;
+    const int m = classSize[c], p = int(pool[c].size());
+    for (int i = 0; i < m; ++i) {
+      const int lo = i * p / m, hi = (i + 1) * p / m;
+      out.push_back(pool[c][size_t(lo + (key + i) % (hi - lo))]);
+    }
+    return out;
+  }
+  // Fills `cells` of `arr` with a shuffle of `pick`, as swap group g.
+  void seedGroup(Arrangement& arr, const std::vector<int>& cells, std::vector<int> pick, int g) {
+    std::shuffle(pick.begin(), pick.end(), rng_);
+    TANDEM_ASSERT(pick.size() == cells.size());
+    for (size_t i = 0; i < cells.size(); ++i) {
+      arr.cell[size_t(cells[i])] = pick[i];
+      arr.group[size_t(cells[i])] = g;
+    }
+  }
+  void cornerBlocks() {
+    // Corner blocks (2qx x 2qy strata around a vertex): quadrants br | bl over tr | tl.
+    for (int c = 0; c < 3; ++c) {
+      Arrangement arr(2 * qx, 2 * qy, s, space);
+      std::vector<int> cells[4];
+      for (int y = 0; y < 2 * qy; ++y)
+        for (int x = 0; x < 2 * qx; ++x) {
+          const int cls = (y < qy ? 2 : 0) + (x < qx ? 1 : 0);  // which tile's quadrant
+          cells[cls].push_back(y * 2 * qx + x);
+        }
+      for (int cls = 0; cls < 4; ++cls) seedGroup(arr, cells[cls], subsetFor(cls, c), cls);
+      arr.optimise(rng_, rounds);
+      block[size_t(c)] = arr.cell;
+    }
+  }
+  void edgeStrips() {
+    // Edge strips, with the corner blocks of their end colours fixed beside them. Horizontal
+    // (c1 left, c2 right): 2qy rows, the upper tile's bottom strip over the lower tile's top strip.
+    // Vertical (c1 top, c2 bottom): the left tile's right strip beside the right tile's left strip.
+    const int ew = a - 2 * qx, eh = b - 2 * qy;
+    for (int c1 = 0; c1 < 3; ++c1)
+      for (int c2 = 0; c2 < 3; ++c2) {
+        if (ew > 0) {
+          Arrangement arr(a, 2 * qy, s, space);
+          std::vector<int> top, bottom;
+          for (int y = 0; y < 2 * qy; ++y)
+            for (int x = 0; x < a; ++x) {
+              if (x < qx)
+                arr.cell[size_t(y * a + x)] = block[size_t(c1)][size_t(y * 2 * qx + qx + x)];
+              else if (x >= a - qx)
+                arr.cell[size_t(y * a + x)] = block[size_t(c2)][size_t(y * 2 * qx + x - (a - qx))];
+              else
+                (y < qy ? bottom : top).push_back(y * a + x);
+            }
+          seedGroup(arr, bottom, subsetFor(5, c1 + 3 * c2), 5);
+          seedGroup(arr, top, subsetFor(4, c1 + 3 * c2), 4);
+          arr.optimise(rng_, rounds);
+          auto& e = hEdge[size_t(c1 + 3 * c2)];
+          for (int y = 0; y < 2 * qy; ++y)
+            for (int x = qx; x < a - qx; ++x) e.push_back(arr.cell[size_t(y * a + x)]);
+        }
+        if (eh > 0) {
+          Arrangement arr(2 * qx, b, s, space);
+          std::vector<int> left, right;
+          for (int y = 0; y < b; ++y)
+            for (int x = 0; x < 2 * qx; ++x) {
+              if (y < qy)
+                arr.cell[size_t(y * 2 * qx + x)] = block[size_t(c1)][size_t((qy + y) * 2 * qx + x)];
+              else if (y >= b - qy)
+                arr.cell[size_t(y * 2 * qx + x)] =
+                    block[size_t(c2)][size_t((y - (b - qy)) * 2 * qx + x)];
+              else
+                (x < qx ? right : left).push_back(y * 2 * qx + x);
+            }
+          seedGroup(arr, right, subsetFor(7, c1 + 3 * c2), 7);
+          seedGroup(arr, left, subsetFor(6, c1 + 3 * c2), 6);
+          arr.optimise(rng_, rounds);
+          auto& e = vEdge[size_t(c1 + 3 * c2)];
+          for (int y = qy; y < b - qy; ++y)
+            for (int x = 0; x < 2 * qx; ++x) e.push_back(arr.cell[size_t(y * 2 * qx + x)]);
+        }
+      }
+  }
+  void prototypes() {
+    // Prototypes: borders from the patterns of their corner colours, the interior optimised.
+    for (int p = 0; p < TileSet::kPrototypes; ++p) {
+      const int ctl = p % 3, ctr = (p / 3) % 3, cbl = (p / 9) % 3, cbr = (p / 27) % 3;
+      Arrangement arr(a, b, s, space);
+      std::vector<int> interior;
+      const int ew = a - 2 * qx;
+      for (int y = 0; y < b; ++y)
+        for (int x = 0; x < a; ++x) {
+          const int i = y * a + x;
+          int& v = arr.cell[size_t(i)];
+          switch (strataClass(s, x, y)) {
+            case 0:
+              v = block[size_t(ctl)][size_t((qy + y) * 2 * qx + qx + x)];
+              break;
+            case 1:
+              v = block[size_t(ctr)][size_t((qy + y) * 2 * qx + x - (a - qx))];
+              break;
+            case 2:
+              v = block[size_t(cbl)][size_t((y - (b - qy)) * 2 * qx + qx + x)];
+              break;
+            case 3:
+              v = block[size_t(cbr)][size_t((y - (b - qy)) * 2 * qx + x - (a - qx))];
+              break;
+            case 4:  // top strip: the lower rows of the edge between tl and tr
+              v = hEdge[size_t(ctl + 3 * ctr)][size_t((qy + y) * ew + x - qx)];
+              break;
+            case 5:  // bottom strip: the upper rows of the edge between bl and br
+              v = hEdge[size_t(cbl + 3 * cbr)][size_t((y - (b - qy)) * ew + x - qx)];
+              break;
+            case 6:  // left strip: the right-hand columns of the edge between tl and bl
+              v = vEdge[size_t(ctl + 3 * cbl)][size_t((y - qy) * 2 * qx + qx + x)];
+              break;
+            case 7:
+              v = vEdge[size_t(ctr + 3 * cbr)][size_t((y - qy) * 2 * qx + x - (a - qx))];
+              break;
+            default:
+              interior.push_back(i);
+          }
+        }
+      std::vector<char> used(size_t(n), 0);
+      for (int v : arr.cell)
+        if (v >= 0) used[size_t(v)] = 1;
+      std::vector<int> rest;
+      for (int j = 0; j < n; ++j)
+        if (!used[size_t(j)]) rest.push_back(j);
+      seedGroup(arr, interior, rest, 8);
+      arr.optimise(rng_, rounds);
+      for (int i = 0; i < n; ++i)
+        set_.slot[size_t(p) * n + size_t(i)] = uint16_t(arr.cell[size_t(i)]);
+    }
+  }
+
+  static constexpr int rounds = 40;
+  TileSet& set_;
+  const TileShape& s;
+  const std::vector<TimeLensPair>& pairs;
+  int n, a = 0, b = 0, qx = 0, qy = 0;
+  std::mt19937_64& rng_;
+  PairSpace space;
+  int classSize[9] = {};
+  std::vector<int> pool[9];
+  std::vector<std::vector<int>> block = std::vector<std::vector<int>>(3);
+  std::vector<std::vector<int>> hEdge = std::vector<std::vector<int>>(9), vEdge = hEdge;
+};
+
+}  // namespace
+
 TileSet buildTileSet(int n, int k, TileKind kind, PairMetric metric,
                      const std::vector<TimeLensPair>& pairs, uint64_t seed) {
   TANDEM_ASSERT(int(pairs.size()) == n);
@@ -206,8 +422,6 @@ TileSet buildTileSet(int n, int k, TileKind kind, PairMetric metric,
   set.shape = makeTileShape(n, k);
   set.kind = kind;
   set.seed = seed;
-  const TileShape& s = set.shape;
-  const int a = s.stridesX(), b = s.stridesY(), qx = borderOf(a), qy = borderOf(b);
   const int P = TileSet::kPrototypes;
   set.slot.assign(size_t(P) * n, 0);
   set.jitter.resize(size_t(P) * n);
@@ -234,190 +448,7 @@ TileSet buildTileSet(int n, int k, TileKind kind, PairMetric metric,
     return set;
   }
 
-  PairSpace space;
-  space.metric = metric;
-  for (const TimeLensPair& p : pairs) {
-    space.tau.push_back(p.tau);
-    space.u1.push_back(p.u1);
-    space.u2.push_back(p.u2);
-  }
-
-  // Pools: T dealt, in time order, into one pool per border class (so every region spans the
-  // whole shutter). A border region of one tile never shares a pair with another, and the
-  // interior takes whatever its borders left, so border pools may be larger than their regions:
-  // the interior's strata are spent first on corners (up to three choices per stratum, one per
-  // colour), then on edges, and each colour (pair) picks its region's pairs from the pool.
-  int classSize[9] = {};
-  for (int y = 0; y < b; ++y)
-    for (int x = 0; x < a; ++x) ++classSize[strataClass(s, x, y)];
-  int poolSize[9];
-  {
-    int spare = classSize[8];
-    for (int first : {0, 4})  // corners, then edges
-      for (int c = first; c < first + 4; ++c) {
-        const int extra = std::min(2 * classSize[c], spare / (first + 4 - c));
-        poolSize[c] = classSize[c] + extra;
-        spare -= extra;
-      }
-    poolSize[8] = spare;
-  }
-  std::vector<int> byTime(static_cast<size_t>(n));
-  std::iota(byTime.begin(), byTime.end(), 0);
-  std::stable_sort(byTime.begin(), byTime.end(),
-                   [&](int i, int j) { return pairs[size_t(i)].tau < pairs[size_t(j)].tau; });
-  std::vector<int> pool[9];
-  for (int r = 0; r < n; ++r) {
-    int best = -1;
-    double bestDeficit = -1e30;
-    for (int c = 0; c < 9; ++c) {
-      if (int(pool[c].size()) >= poolSize[c]) continue;
-      const double deficit = double(poolSize[c]) * (r + 1) / n - double(pool[c].size());
-      if (deficit > bestDeficit) {
-        bestDeficit = deficit;
-        best = c;
-      }
-    }
-    pool[best].push_back(byTime[size_t(r)]);
-  }
-  // The pairs of border class c for colour key `key`: one from each of classSize[c] consecutive
-  // time strata of the pool, the choice inside a stratum turning with the key.
-  auto subsetFor = [&](int c, int key) {
-    std::vector<int> out;
-    const int m = classSize[c], p = int(pool[c].size());
-    for (int i = 0; i < m; ++i) {
-      const int lo = i * p / m, hi = (i + 1) * p / m;
-      out.push_back(pool[c][size_t(lo + (key + i) % (hi - lo))]);
-    }
-    return out;
-  };
-  // Fills `cells` of `arr` with a shuffle of `pick`, as swap group g.
-  auto seed_group = [&](Arrangement& arr, const std::vector<int>& cells, std::vector<int> pick,
-                        int g) {
-    std::shuffle(pick.begin(), pick.end(), rng);
-    TANDEM_ASSERT(pick.size() == cells.size());
-    for (size_t i = 0; i < cells.size(); ++i) {
-      arr.cell[size_t(cells[i])] = pick[i];
-      arr.group[size_t(cells[i])] = g;
-    }
-  };
-  const int rounds = 40;
-  const bool bordered = qx > 0 && qy > 0;
-
-  // Corner blocks (2qx x 2qy strata around a vertex): quadrants br | bl over tr | tl.
-  std::vector<std::vector<int>> block(3);
-  if (bordered) {
-    for (int c = 0; c < 3; ++c) {
-      Arrangement arr(2 * qx, 2 * qy, s, space);
-      std::vector<int> cells[4];
-      for (int y = 0; y < 2 * qy; ++y)
-        for (int x = 0; x < 2 * qx; ++x) {
-          const int cls = (y < qy ? 2 : 0) + (x < qx ? 1 : 0);  // which tile's quadrant
-          cells[cls].push_back(y * 2 * qx + x);
-        }
-      for (int cls = 0; cls < 4; ++cls) seed_group(arr, cells[cls], subsetFor(cls, c), cls);
-      arr.optimise(rng, rounds);
-      block[size_t(c)] = arr.cell;
-    }
-  }
-  // Edge strips, with the corner blocks of their end colours fixed beside them. Horizontal
-  // (c1 left, c2 right): 2qy rows, the upper tile's bottom strip over the lower tile's top strip.
-  // Vertical (c1 top, c2 bottom): the left tile's right strip beside the right tile's left strip.
-  std::vector<std::vector<int>> hEdge(9), vEdge(9);
-  if (bordered) {
-    const int ew = a - 2 * qx, eh = b - 2 * qy;
-    for (int c1 = 0; c1 < 3; ++c1)
-      for (int c2 = 0; c2 < 3; ++c2) {
-        if (ew > 0) {
-          Arrangement arr(a, 2 * qy, s, space);
-          std::vector<int> top, bottom;
-          for (int y = 0; y < 2 * qy; ++y)
-            for (int x = 0; x < a; ++x) {
-              if (x < qx)
-                arr.cell[size_t(y * a + x)] = block[size_t(c1)][size_t(y * 2 * qx + qx + x)];
-              else if (x >= a - qx)
-                arr.cell[size_t(y * a + x)] = block[size_t(c2)][size_t(y * 2 * qx + x - (a - qx))];
-              else
-                (y < qy ? bottom : top).push_back(y * a + x);
-            }
-          seed_group(arr, bottom, subsetFor(5, c1 + 3 * c2), 5);
-          seed_group(arr, top, subsetFor(4, c1 + 3 * c2), 4);
-          arr.optimise(rng, rounds);
-          auto& e = hEdge[size_t(c1 + 3 * c2)];
-          for (int y = 0; y < 2 * qy; ++y)
-            for (int x = qx; x < a - qx; ++x) e.push_back(arr.cell[size_t(y * a + x)]);
-        }
-        if (eh > 0) {
-          Arrangement arr(2 * qx, b, s, space);
-          std::vector<int> left, right;
-          for (int y = 0; y < b; ++y)
-            for (int x = 0; x < 2 * qx; ++x) {
-              if (y < qy)
-                arr.cell[size_t(y * 2 * qx + x)] = block[size_t(c1)][size_t((qy + y) * 2 * qx + x)];
-              else if (y >= b - qy)
-                arr.cell[size_t(y * 2 * qx + x)] =
-                    block[size_t(c2)][size_t((y - (b - qy)) * 2 * qx + x)];
-              else
-                (x < qx ? right : left).push_back(y * 2 * qx + x);
-            }
-          seed_group(arr, right, subsetFor(7, c1 + 3 * c2), 7);
-          seed_group(arr, left, subsetFor(6, c1 + 3 * c2), 6);
-          arr.optimise(rng, rounds);
-          auto& e = vEdge[size_t(c1 + 3 * c2)];
-          for (int y = qy; y < b - qy; ++y)
-            for (int x = 0; x < 2 * qx; ++x) e.push_back(arr.cell[size_t(y * 2 * qx + x)]);
-        }
-      }
-  }
-
-  // Prototypes: borders from the patterns of their corner colours, the interior optimised.
-  for (int p = 0; p < P; ++p) {
-    const int ctl = p % 3, ctr = (p / 3) % 3, cbl = (p / 9) % 3, cbr = (p / 27) % 3;
-    Arrangement arr(a, b, s, space);
-    std::vector<int> interior;
-    const int ew = a - 2 * qx;
-    for (int y = 0; y < b; ++y)
-      for (int x = 0; x < a; ++x) {
-        const int i = y * a + x;
-        int& v = arr.cell[size_t(i)];
-        switch (strataClass(s, x, y)) {
-          case 0:
-            v = block[size_t(ctl)][size_t((qy + y) * 2 * qx + qx + x)];
-            break;
-          case 1:
-            v = block[size_t(ctr)][size_t((qy + y) * 2 * qx + x - (a - qx))];
-            break;
-          case 2:
-            v = block[size_t(cbl)][size_t((y - (b - qy)) * 2 * qx + qx + x)];
-            break;
-          case 3:
-            v = block[size_t(cbr)][size_t((y - (b - qy)) * 2 * qx + x - (a - qx))];
-            break;
-          case 4:  // top strip: the lower rows of the edge between tl and tr
-            v = hEdge[size_t(ctl + 3 * ctr)][size_t((qy + y) * ew + x - qx)];
-            break;
-          case 5:  // bottom strip: the upper rows of the edge between bl and br
-            v = hEdge[size_t(cbl + 3 * cbr)][size_t((y - (b - qy)) * ew + x - qx)];
-            break;
-          case 6:  // left strip: the right-hand columns of the edge between tl and bl
-            v = vEdge[size_t(ctl + 3 * cbl)][size_t((y - qy) * 2 * qx + qx + x)];
-            break;
-          case 7:
-            v = vEdge[size_t(ctr + 3 * cbr)][size_t((y - qy) * 2 * qx + x - (a - qx))];
-            break;
-          default:
-            interior.push_back(i);
-        }
-      }
-    std::vector<char> used(size_t(n), 0);
-    for (int v : arr.cell)
-      if (v >= 0) used[size_t(v)] = 1;
-    std::vector<int> rest;
-    for (int j = 0; j < n; ++j)
-      if (!used[size_t(j)]) rest.push_back(j);
-    seed_group(arr, interior, rest, 8);
-    arr.optimise(rng, rounds);
-    for (int i = 0; i < n; ++i) set.slot[size_t(p) * n + size_t(i)] = uint16_t(arr.cell[size_t(i)]);
-  }
+  ColoredCornerBuilder(set, pairs, metric, rng).build();
   set.quality = measureTileQuality(set, pairs);
   return set;
 }

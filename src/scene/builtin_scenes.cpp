@@ -184,6 +184,51 @@ Scene makeSpheresScene() {
   return s;
 }
 
+namespace {
+
+// The atrium's sun, four warm lamps under the colonnades, a spot over the courtyard, the sky, and
+// its camera and path.
+void lightAtrium(Scene& s) {
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.name = "sun";
+  sun.direction = normalize(Vec3(-0.3f, -1.0f, -0.4f));
+  sun.intensity = 3.0f;
+  sun.color = {1.0f, 0.93f, 0.8f};
+  s.lights.push_back(sun);
+  const Vec3 lampPos[4] = {{-8, 3, -5}, {8, 3, -5}, {-8, 3, 5}, {8, 3, 5}};
+  for (int k = 0; k < 4; ++k) {
+    Light p;
+    p.type = LightType::Point;
+    p.name = "lamp" + std::to_string(k);
+    p.position = lampPos[k];
+    p.intensity = 15.0f;
+    p.color = {1.0f, 0.7f, 0.4f};
+    s.lights.push_back(p);
+  }
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.name = "spot";
+  spot.position = {0, 9, 0};
+  spot.direction = {0, -1, 0};
+  spot.intensity = 120.0f;
+  spot.innerConeDeg = 15;
+  spot.outerConeDeg = 25;
+  s.lights.push_back(spot);
+  s.ambient = {0.08f, 0.08f, 0.1f};
+  s.skybox.color = {0.45f, 0.6f, 0.85f};
+  s.camera.position = {-11, 2.2f, 9};
+  s.camera.lookAt = {4, 2.5f, -3};
+  s.camera.vfovDeg = 60;
+  s.camera.focusDistance = 10;
+  s.hasCamera = true;
+  s.cameraPath = {{0, {-11, 2.2f, 9}, {4, 2.5f, -3}},
+                  {5, {0, 3.0f, 8}, {0, 2.5f, -6}},
+                  {10, {11, 2.2f, 9}, {-4, 2.5f, -3}}};
+}
+
+}  // namespace
+
 Scene makeAtriumScene() {
   // A two-storey colonnaded courtyard in the spirit of Crytek Sponza: tessellated columns with
   // capitals, arches between them, balcony slabs, a tiled floor, outer walls and hanging cloth.
@@ -281,42 +326,7 @@ Scene makeAtriumScene() {
     Vec3 p{-6.0f + 4.0f * i, 0.8f, (i % 2) ? 2.0f : -2.0f};
     s.addObject("urn" + std::to_string(i), urn, bronzeM, xform(p, {}, {0.8f, 0.8f, 0.8f}));
   }
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.name = "sun";
-  sun.direction = normalize(Vec3(-0.3f, -1.0f, -0.4f));
-  sun.intensity = 3.0f;
-  sun.color = {1.0f, 0.93f, 0.8f};
-  s.lights.push_back(sun);
-  const Vec3 lampPos[4] = {{-8, 3, -5}, {8, 3, -5}, {-8, 3, 5}, {8, 3, 5}};
-  for (int k = 0; k < 4; ++k) {
-    Light p;
-    p.type = LightType::Point;
-    p.name = "lamp" + std::to_string(k);
-    p.position = lampPos[k];
-    p.intensity = 15.0f;
-    p.color = {1.0f, 0.7f, 0.4f};
-    s.lights.push_back(p);
-  }
-  Light spot;
-  spot.type = LightType::Spot;
-  spot.name = "spot";
-  spot.position = {0, 9, 0};
-  spot.direction = {0, -1, 0};
-  spot.intensity = 120.0f;
-  spot.innerConeDeg = 15;
-  spot.outerConeDeg = 25;
-  s.lights.push_back(spot);
-  s.ambient = {0.08f, 0.08f, 0.1f};
-  s.skybox.color = {0.45f, 0.6f, 0.85f};
-  s.camera.position = {-11, 2.2f, 9};
-  s.camera.lookAt = {4, 2.5f, -3};
-  s.camera.vfovDeg = 60;
-  s.camera.focusDistance = 10;
-  s.hasCamera = true;
-  s.cameraPath = {{0, {-11, 2.2f, 9}, {4, 2.5f, -3}},
-                  {5, {0, 3.0f, 8}, {0, 2.5f, -6}},
-                  {10, {11, 2.2f, 9}, {-4, 2.5f, -3}}};
+  lightAtrium(s);
   return s;
 }
 

@@ -135,22 +135,8 @@ struct Row {
   }
 };
 
-}  // namespace
-
-int runSweepExperiment(const Json& j, const std::string& file, const ExperimentOverrides& o) {
-  SweepSpec s = parse(j, file);
-  if (!o.scenes.empty()) s.scenes = o.scenes;
-  if (o.width) s.width = o.width;
-  if (o.height) s.height = o.height;
-  if (o.warmup >= 0) s.warmup = o.warmup;
-  if (o.frames) s.frames = o.frames;
-  if (o.spp) s.reference.spp = o.spp;
-  s.reference.progress = true;
-  // Check every scene and pipeline (and the sweep's parameter) before rendering anything.
-  std::vector<Scene> scenes;
-  for (const std::string& spec : s.scenes) {
-    scenes.push_back(loadScene(spec));
-  }
+// Every `set` and the sweep's parameter must name a pass of some pipeline.
+void checkParams(const SweepSpec& s, const std::string& file) {
   bool sweepApplies = false;
   std::vector<bool> setApplies(s.set.size(), false);
   for (const std::string& name : s.pipelines) {
@@ -170,6 +156,88 @@ int runSweepExperiment(const Json& j, const std::string& file, const ExperimentO
     if (!setApplies[i])
       throw InputError(file, "set[" + std::to_string(i) + "]",
                        "no pipeline has a pass labelled '" + passLabel(s.set[i]) + "'");
+}
+
+// One render of the sweep: pipeline `name` (at value v of the swept parameter), timed and
+// compared with the reference.
+Row renderPoint(const SweepSpec& s, const std::string& file, const Scene& scene,
+                const CameraDesc& cam, const std::string& label, const std::string& name,
+                bool swept, double v, const Buffer& refDisplay, ExperimentReport& report) {
+  Pipeline p = Pipeline::load(name);
+  for (const std::string& a : s.set)
+    if (hasPass(p, a)) p.setParam(a, file + ": set");
+  if (swept) p.setParam(s.param + "=" + valueText(v), file + ": sweep");
+  Renderer r(scene, std::move(p),
+             RenderSettings{.width = s.width, .height = s.height, .seed = s.seed});
+  for (int i = 0; i < s.warmup; ++i) r.renderFrame(0, cam);
+  std::vector<double> ms;
+  for (int i = 0; i < s.frames; ++i) ms.push_back(r.renderFrame(0, cam).totalMs);
+  Row row;
+  row.scene = label;
+  row.pipeline = name;
+  row.value = v;
+  row.ms = summarize(ms).median;
+  const ImageMetrics m = compareImages(refDisplay, r.output());
+  Buffer flipMap;
+  row.rmse = m.rmse, row.psnr = m.psnr, row.ssim = m.ssim;
+  row.flip = flip(refDisplay, r.output(), &flipMap);
+  const std::string tag = label + "_" + name + (swept ? "_" + valueText(v) : "");
+  writePng((report.dir() / (tag + ".png")).string(), r.output());
+  writePng((report.dir() / (tag + "_flip.png")).string(), flipColorMap(flipMap));
+  report.image(tag + ".png", tag + ": " + fmt(row.ms, 1) + " ms, SSIM " + fmt(row.ssim, 4) +
+                                 ", FLIP " + fmt(row.flip, 4));
+  report.image(tag + "_flip.png", tag + ": FLIP error map");
+  std::printf("  %-28s %9.1f ms  ssim %.4f  flip %.4f\n",
+              (name + (swept ? " " + s.param + "=" + valueText(v) : "")).c_str(), row.ms, row.ssim,
+              row.flip);
+  std::fflush(stdout);
+  return row;
+}
+
+// Per scene and metric, the metric against the swept value (unswept pipelines: flat lines).
+void sweepPlots(const SweepSpec& s, const std::vector<Row>& rows, ExperimentReport& report) {
+  if (!s.param.empty()) {
+    const double lo = *std::min_element(s.values.begin(), s.values.end());
+    const double hi = *std::max_element(s.values.begin(), s.values.end());
+    for (size_t si = 0; si < s.scenes.size(); ++si) {
+      const std::string label = sceneLabel(s.scenes[si]);
+      for (const std::string& m : s.plotMetrics) {
+        std::vector<PlotSeries> series;
+        for (const std::string& name : s.pipelines) {
+          PlotSeries ps{name, {}, {}};
+          for (const Row& r : rows)
+            if (r.scene == label && r.pipeline == name) {
+              // An unswept pipeline is a baseline: a flat line over the swept range.
+              ps.x.push_back(std::isnan(r.value) ? lo : r.value);
+              ps.y.push_back(r.metric(m));
+              if (std::isnan(r.value)) ps.x.push_back(hi), ps.y.push_back(r.metric(m));
+            }
+          series.push_back(ps);
+        }
+        report.plot(label + "_" + m, label + ": " + m + " against " + s.param, s.param,
+                    m == "ms" ? "frame time (ms)" : m, series, s.logX, s.logMetrics && m != "ssim");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+int runSweepExperiment(const Json& j, const std::string& file, const ExperimentOverrides& o) {
+  SweepSpec s = parse(j, file);
+  if (!o.scenes.empty()) s.scenes = o.scenes;
+  if (o.width) s.width = o.width;
+  if (o.height) s.height = o.height;
+  if (o.warmup >= 0) s.warmup = o.warmup;
+  if (o.frames) s.frames = o.frames;
+  if (o.spp) s.reference.spp = o.spp;
+  s.reference.progress = true;
+  // Check every scene and pipeline (and the sweep's parameter) before rendering anything.
+  std::vector<Scene> scenes;
+  for (const std::string& spec : s.scenes) {
+    scenes.push_back(loadScene(spec));
+  }
+  checkParams(s, file);
   const std::string stem = fs::path(file).stem().string();
   ExperimentReport report(o.out.empty() ? "out/experiment-" + stem : o.out, s.title);
   if (!s.description.empty()) report.markdown(s.description + "\n\n");
@@ -198,35 +266,7 @@ int runSweepExperiment(const Json& j, const std::string& file, const ExperimentO
       const bool swept = !s.param.empty() && hasPass(Pipeline::load(name), s.param);
       std::vector<double> values = swept ? s.values : std::vector<double>{std::nan("")};
       for (double v : values) {
-        Pipeline p = Pipeline::load(name);
-        for (const std::string& a : s.set)
-          if (hasPass(p, a)) p.setParam(a, file + ": set");
-        if (swept) p.setParam(s.param + "=" + valueText(v), file + ": sweep");
-        Renderer r(scene, std::move(p),
-                   RenderSettings{.width = s.width, .height = s.height, .seed = s.seed});
-        for (int i = 0; i < s.warmup; ++i) r.renderFrame(0, cam);
-        std::vector<double> ms;
-        for (int i = 0; i < s.frames; ++i) ms.push_back(r.renderFrame(0, cam).totalMs);
-        Row row;
-        row.scene = label;
-        row.pipeline = name;
-        row.value = v;
-        row.ms = summarize(ms).median;
-        const ImageMetrics m = compareImages(refDisplay, r.output());
-        Buffer flipMap;
-        row.rmse = m.rmse, row.psnr = m.psnr, row.ssim = m.ssim;
-        row.flip = flip(refDisplay, r.output(), &flipMap);
-        const std::string tag = label + "_" + name + (swept ? "_" + valueText(v) : "");
-        writePng((report.dir() / (tag + ".png")).string(), r.output());
-        writePng((report.dir() / (tag + "_flip.png")).string(), flipColorMap(flipMap));
-        report.image(tag + ".png", tag + ": " + fmt(row.ms, 1) + " ms, SSIM " + fmt(row.ssim, 4) +
-                                       ", FLIP " + fmt(row.flip, 4));
-        report.image(tag + "_flip.png", tag + ": FLIP error map");
-        std::printf("  %-28s %9.1f ms  ssim %.4f  flip %.4f\n",
-                    (name + (swept ? " " + s.param + "=" + valueText(v) : "")).c_str(), row.ms,
-                    row.ssim, row.flip);
-        std::fflush(stdout);
-        rows.push_back(row);
+        rows.push_back(renderPoint(s, file, scene, cam, label, name, swept, v, refDisplay, report));
       }
     }
   }
@@ -239,29 +279,7 @@ int runSweepExperiment(const Json& j, const std::string& file, const ExperimentO
                {"scene", "pipeline", s.param.empty() ? "value" : s.param, "frame_ms", "rmse",
                 "psnr_db", "ssim", "flip"},
                table);
-  if (!s.param.empty()) {
-    const double lo = *std::min_element(s.values.begin(), s.values.end());
-    const double hi = *std::max_element(s.values.begin(), s.values.end());
-    for (size_t si = 0; si < scenes.size(); ++si) {
-      const std::string label = sceneLabel(s.scenes[si]);
-      for (const std::string& m : s.plotMetrics) {
-        std::vector<PlotSeries> series;
-        for (const std::string& name : s.pipelines) {
-          PlotSeries ps{name, {}, {}};
-          for (const Row& r : rows)
-            if (r.scene == label && r.pipeline == name) {
-              // An unswept pipeline is a baseline: a flat line over the swept range.
-              ps.x.push_back(std::isnan(r.value) ? lo : r.value);
-              ps.y.push_back(r.metric(m));
-              if (std::isnan(r.value)) ps.x.push_back(hi), ps.y.push_back(r.metric(m));
-            }
-          series.push_back(ps);
-        }
-        report.plot(label + "_" + m, label + ": " + m + " against " + s.param, s.param,
-                    m == "ms" ? "frame time (ms)" : m, series, s.logX, s.logMetrics && m != "ssim");
-      }
-    }
-  }
+  if (!s.param.empty()) sweepPlots(s, rows, report);
   report.write(std::to_string(s.width) + "x" + std::to_string(s.height) + "; reference " +
                std::to_string(s.reference.spp) + " spp (seed " + std::to_string(s.reference.seed) +
                "), renders seed " + std::to_string(s.seed) + "; frame time = median of " +

@@ -84,6 +84,110 @@ double passMedian(std::vector<double>& v) {
   return v.empty() ? 0.0 : summarize(v).median;
 }
 
+// Static shot: the base pipeline, its TAA twin and the base with the same jitter, against the
+// base supersampled (same shading).
+void staticShot(const TaaExperimentOptions& o, const Scene& scene, const std::string& label,
+                const CameraDesc& cam, const std::string& basePipe, const std::string& taaPipe,
+                ExperimentReport& report, std::vector<std::vector<std::string>>& staticRows) {
+  const RenderSettings rs{.width = o.width, .height = o.height};
+  const int n = o.supersample;
+  const Buffer truth = visualizeBuffer(supersample(scene, basePipe, cam, rs, n));
+  Renderer base(scene, Pipeline::load(basePipe), rs), taa(scene, Pipeline::load(taaPipe), rs),
+      jittered(scene, Pipeline::load(basePipe), rs);
+  base.renderFrame(0, cam);
+  const Buffer aliased = base.output();
+  Buffer lastTaa, lastJit;
+  double taaChange = 0, jitChange = 0;
+  int measured = 0;
+  std::vector<double> taaMs, taaFrameMs, baseFrameMs;
+  for (int i = 0; i < o.staticFrames; ++i) {
+    const FrameTimings ft = taa.renderFrame(0, cam);
+    jittered.renderFrame(0, cam, taa.context().jitter);
+    const Buffer a = taa.output(), b = jittered.output();
+    if (i >= o.staticFrames / 2) {
+      taaChange += meanAbsDiff(a, lastTaa);
+      jitChange += meanAbsDiff(b, lastJit);
+      ++measured;
+      taaFrameMs.push_back(ft.totalMs);
+      for (const PassTiming& p : ft.passes)
+        if (p.name == "taa") taaMs.push_back(p.ms);
+      baseFrameMs.push_back(base.renderFrame(0, cam).totalMs);
+    }
+    lastTaa = a;
+    lastJit = b;
+  }
+  const std::string stem = label + "_" + taa.pipeline().name;
+  writePng((fs::path(o.out) / (stem + "_crop_aliased.png")).string(), cropOf(aliased, o.crop));
+  writePng((fs::path(o.out) / (stem + "_crop_taa.png")).string(), cropOf(lastTaa, o.crop));
+  writePng((fs::path(o.out) / (stem + "_crop_supersampled.png")).string(), cropOf(truth, o.crop));
+  report.image(stem + "_crop_aliased.png", label + ": " + basePipe + " (1 spp)");
+  report.image(stem + "_crop_taa.png",
+               label + ": " + taaPipe + " after " + std::to_string(o.staticFrames) + " frames");
+  report.image(stem + "_crop_supersampled.png",
+               label + ": " + basePipe + " supersampled " + std::to_string(n * n) + " spp");
+  staticRows.push_back({label, basePipe, fmt(ssim(aliased, truth), 4), fmt(psnr(aliased, truth), 2),
+                        "0 (no jitter)", "—", fmt(passMedian(baseFrameMs), 1)});
+  staticRows.push_back({label, taaPipe, fmt(ssim(lastTaa, truth), 4), fmt(psnr(lastTaa, truth), 2),
+                        fmt(taaChange / measured, 5), fmt(passMedian(taaMs), 2),
+                        fmt(passMedian(taaFrameMs), 1)});
+  staticRows.push_back({label, basePipe + " + the same jitter, no TAA", "—", "—",
+                        fmt(jitChange / measured, 5), "—", "—"});
+}
+
+// Along the camera path: each pipeline flies it from a fresh start, in real time (30 fps over
+// the path's duration) unless the file gives a frame count.
+void cameraPath(const TaaExperimentOptions& o, const Scene& scene, const std::string& label,
+                const CameraDesc& cam, const std::string& basePipe, const std::string& taaPipe,
+                ExperimentReport& report, std::vector<std::vector<std::string>>& pathRows) {
+  const RenderSettings rs{.width = o.width, .height = o.height};
+  const int n = o.supersample;
+  // Along the camera path: each pipeline flies it from a fresh start, in real time (30 fps
+  // over the path's duration) unless the file gives a frame count.
+  const int pathFrames =
+      o.pathFrames > 0 ? o.pathFrames
+      : scene.cameraPath.size() > 1
+          ? std::max(2, int(std::lround(30.0f * (scene.cameraPath.back().time -
+                                                 scene.cameraPath.front().time))))
+          : 48;
+  Renderer basePath(scene, Pipeline::load(basePipe), rs),
+      taaPath(scene, Pipeline::load(taaPipe), rs);
+  double baseSsim = 0, taaSsim = 0, baseChange = 0, taaPathChange = 0;
+  int compared = 0;
+  Buffer prevBase, prevTaa;
+  for (int f = 0; f < pathFrames; ++f) {
+    const CameraDesc c = pathCamera(scene, cam, f, pathFrames);
+    basePath.renderFrame(f, c);
+    taaPath.renderFrame(f, c);
+    const Buffer b = basePath.output(), t = taaPath.output();
+    if (f > 0) {
+      baseChange += compensatedChange(b, prevBase, basePath.context().input("motion"));
+      taaPathChange += compensatedChange(t, prevTaa, taaPath.context().input("motion"));
+    }
+    prevBase = b;
+    prevTaa = t;
+    if (f > 0 && f % o.pathEvery == 0) {
+      const Buffer truthF = visualizeBuffer(supersample(scene, basePipe, c, rs, n));
+      baseSsim += ssim(b, truthF);
+      taaSsim += ssim(t, truthF);
+      ++compared;
+      if (compared == 1) {
+        const std::string s = label + "_path" + std::to_string(f) + "_" + taaPath.pipeline().name;
+        writePng((fs::path(o.out) / (s + "_crop_aliased.png")).string(), cropOf(b, o.crop));
+        writePng((fs::path(o.out) / (s + "_crop_taa.png")).string(), cropOf(t, o.crop));
+        report.image(s + "_crop_aliased.png",
+                     label + " path frame " + std::to_string(f) + ": " + basePipe);
+        report.image(s + "_crop_taa.png",
+                     label + " path frame " + std::to_string(f) + ": " + taaPipe);
+      }
+    }
+  }
+  const double steps = double(std::max(pathFrames - 1, 1));
+  pathRows.push_back(
+      {label, basePipe, fmt(compared ? baseSsim / compared : 0, 4), fmt(baseChange / steps, 5)});
+  pathRows.push_back(
+      {label, taaPipe, fmt(compared ? taaSsim / compared : 0, 4), fmt(taaPathChange / steps, 5)});
+}
+
 }  // namespace
 
 int runTaaExperiment(const TaaExperimentOptions& o) {
@@ -95,7 +199,6 @@ int runTaaExperiment(const TaaExperimentOptions& o) {
   }
   fs::create_directories(o.out);
   ExperimentReport report(o.out, "TAA against a supersampled render");
-  const RenderSettings rs{.width = o.width, .height = o.height};
   const int n = o.supersample;
   std::vector<std::vector<std::string>> staticRows, pathRows;
   for (size_t si = 0; si < scenes.size(); ++si) {
@@ -106,97 +209,8 @@ int runTaaExperiment(const TaaExperimentOptions& o) {
       std::printf("experiment taa: %s, %s vs %s\n", label.c_str(), basePipe.c_str(),
                   taaPipe.c_str());
       std::fflush(stdout);
-      // Static shot. The ground truth: the base pipeline supersampled (same shading).
-      const Buffer truth = visualizeBuffer(supersample(scene, basePipe, cam, rs, n));
-      Renderer base(scene, Pipeline::load(basePipe), rs), taa(scene, Pipeline::load(taaPipe), rs),
-          jittered(scene, Pipeline::load(basePipe), rs);
-      base.renderFrame(0, cam);
-      const Buffer aliased = base.output();
-      Buffer lastTaa, lastJit;
-      double taaChange = 0, jitChange = 0;
-      int measured = 0;
-      std::vector<double> taaMs, taaFrameMs, baseFrameMs;
-      for (int i = 0; i < o.staticFrames; ++i) {
-        const FrameTimings ft = taa.renderFrame(0, cam);
-        jittered.renderFrame(0, cam, taa.context().jitter);
-        const Buffer a = taa.output(), b = jittered.output();
-        if (i >= o.staticFrames / 2) {
-          taaChange += meanAbsDiff(a, lastTaa);
-          jitChange += meanAbsDiff(b, lastJit);
-          ++measured;
-          taaFrameMs.push_back(ft.totalMs);
-          for (const PassTiming& p : ft.passes)
-            if (p.name == "taa") taaMs.push_back(p.ms);
-          baseFrameMs.push_back(base.renderFrame(0, cam).totalMs);
-        }
-        lastTaa = a;
-        lastJit = b;
-      }
-      const std::string stem = label + "_" + taa.pipeline().name;
-      writePng((fs::path(o.out) / (stem + "_crop_aliased.png")).string(), cropOf(aliased, o.crop));
-      writePng((fs::path(o.out) / (stem + "_crop_taa.png")).string(), cropOf(lastTaa, o.crop));
-      writePng((fs::path(o.out) / (stem + "_crop_supersampled.png")).string(),
-               cropOf(truth, o.crop));
-      report.image(stem + "_crop_aliased.png", label + ": " + basePipe + " (1 spp)");
-      report.image(stem + "_crop_taa.png",
-                   label + ": " + taaPipe + " after " + std::to_string(o.staticFrames) + " frames");
-      report.image(stem + "_crop_supersampled.png",
-                   label + ": " + basePipe + " supersampled " + std::to_string(n * n) + " spp");
-      staticRows.push_back({label, basePipe, fmt(ssim(aliased, truth), 4),
-                            fmt(psnr(aliased, truth), 2), "0 (no jitter)", "—",
-                            fmt(passMedian(baseFrameMs), 1)});
-      staticRows.push_back({label, taaPipe, fmt(ssim(lastTaa, truth), 4),
-                            fmt(psnr(lastTaa, truth), 2), fmt(taaChange / measured, 5),
-                            fmt(passMedian(taaMs), 2), fmt(passMedian(taaFrameMs), 1)});
-      staticRows.push_back({label, basePipe + " + the same jitter, no TAA", "—", "—",
-                            fmt(jitChange / measured, 5), "—", "—"});
-
-      // Along the camera path: each pipeline flies it from a fresh start, in real time (30 fps
-      // over the path's duration) unless the file gives a frame count.
-      const int pathFrames =
-          o.pathFrames > 0 ? o.pathFrames
-          : scene.cameraPath.size() > 1
-              ? std::max(2, int(std::lround(30.0f * (scene.cameraPath.back().time -
-                                                     scene.cameraPath.front().time))))
-              : 48;
-      Renderer basePath(scene, Pipeline::load(basePipe), rs),
-          taaPath(scene, Pipeline::load(taaPipe), rs);
-      double baseSsim = 0, taaSsim = 0, baseChange = 0, taaPathChange = 0;
-      int compared = 0;
-      Buffer prevBase, prevTaa;
-      for (int f = 0; f < pathFrames; ++f) {
-        const CameraDesc c = pathCamera(scene, cam, f, pathFrames);
-        basePath.renderFrame(f, c);
-        taaPath.renderFrame(f, c);
-        const Buffer b = basePath.output(), t = taaPath.output();
-        if (f > 0) {
-          baseChange += compensatedChange(b, prevBase, basePath.context().input("motion"));
-          taaPathChange += compensatedChange(t, prevTaa, taaPath.context().input("motion"));
-        }
-        prevBase = b;
-        prevTaa = t;
-        if (f > 0 && f % o.pathEvery == 0) {
-          const Buffer truthF = visualizeBuffer(supersample(scene, basePipe, c, rs, n));
-          baseSsim += ssim(b, truthF);
-          taaSsim += ssim(t, truthF);
-          ++compared;
-          if (compared == 1) {
-            const std::string s =
-                label + "_path" + std::to_string(f) + "_" + taaPath.pipeline().name;
-            writePng((fs::path(o.out) / (s + "_crop_aliased.png")).string(), cropOf(b, o.crop));
-            writePng((fs::path(o.out) / (s + "_crop_taa.png")).string(), cropOf(t, o.crop));
-            report.image(s + "_crop_aliased.png",
-                         label + " path frame " + std::to_string(f) + ": " + basePipe);
-            report.image(s + "_crop_taa.png",
-                         label + " path frame " + std::to_string(f) + ": " + taaPipe);
-          }
-        }
-      }
-      const double steps = double(std::max(pathFrames - 1, 1));
-      pathRows.push_back({label, basePipe, fmt(compared ? baseSsim / compared : 0, 4),
-                          fmt(baseChange / steps, 5)});
-      pathRows.push_back({label, taaPipe, fmt(compared ? taaSsim / compared : 0, 4),
-                          fmt(taaPathChange / steps, 5)});
+      staticShot(o, scene, label, cam, basePipe, taaPipe, report, staticRows);
+      cameraPath(o, scene, label, cam, basePipe, taaPipe, report, pathRows);
     }
   }
   report.markdown("Ground truth: the pipeline without TAA supersampled with " +

@@ -95,6 +95,18 @@ void reprojectFar(const Buffer& farPosIn, int x, int y, const View& view, float 
   }
 }
 
+// Temporal gradient: the change of luminance beyond two standard deviations of the samples'
+// noise, relative to the brighter of the two, raises the current weight.
+float adaptiveAlpha(float alpha, float lum, const float* hn, const float* hf, const float* hm) {
+  const float hsum = hn[3] + hf[3];
+  const float histLum =
+      hsum > 0 ? dof::luma(Vec3(hn[0] + hf[0], hn[1] + hf[1], hn[2] + hf[2])) / hsum : lum;
+  const float sigma = std::sqrt(std::max(hm[1] - hm[0] * hm[0], 0.0f));
+  const float lambda =
+      dof::saturate((std::abs(lum - histLum) - 2.0f * sigma) / std::max({lum, histLum, 1e-3f}));
+  return alpha + (1.0f - alpha) * lambda;
+}
+
 }  // namespace
 
 void DofAccumulationPass::execute(FrameContext& ctx) {
@@ -150,15 +162,7 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
         age = 0.0f;
         alpha = rays > 0 ? 1.0f : 0.0f;
       } else if (adaptive && rays > 0) {
-        // Temporal gradient: the change of luminance beyond two standard deviations of the
-        // samples' noise, relative to the brighter of the two, raises the current weight.
-        const float hsum = hn[3] + hf[3];
-        const float histLum =
-            hsum > 0 ? dof::luma(Vec3(hn[0] + hf[0], hn[1] + hf[1], hn[2] + hf[2])) / hsum : lum;
-        const float sigma = std::sqrt(std::max(hm[1] - hm[0] * hm[0], 0.0f));
-        const float lambda = dof::saturate((std::abs(lum - histLum) - 2.0f * sigma) /
-                                           std::max({lum, histLum, 1e-3f}));
-        alpha = alpha + (1.0f - alpha) * lambda;
+        alpha = adaptiveAlpha(alpha, lum, hn, hf, hm);
       }
       const float curNear[5] = {hc * cn[0], hc * cn[1], hc * cn[2], hc, hc * cn[dof::kLayerCoc]};
       const float hf1 = 1.0f - hc;

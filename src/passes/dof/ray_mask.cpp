@@ -1,5 +1,7 @@
 #include "passes/dof/ray_mask.h"
 
+#include <optional>
+
 #include <cmath>
 
 #include "core/image_filters.h"
@@ -64,26 +66,17 @@ std::vector<ParamDesc> RayMaskPass::params() const {
            /*invalidatesHistory=*/true}};
 }
 
-void RayMaskPass::execute(FrameContext& ctx) {
-  const Buffer& position = ctx.input(*this, "position");
-  const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer& depth = ctx.input(*this, "depth");
-  const Buffer& coc = ctx.input(*this, "coc");
-  const int scale = param("resolution") == 0 ? 2 : 1;
-  const int W = ctx.width, H = ctx.height, w = (W + scale - 1) / scale, h = (H + scale - 1) / scale;
-  Buffer& mask = ctx.output(*this, "ray_mask", w, h);
-  const float m = float(param("m"));
-  if (param("mode") == 1) {
-    mask.fill(m);
-    return;
-  }
-  const Camera& cam = ctx.camera();
-  const float focus = cam.desc.focusDistance;
+namespace {
 
-  // Inverse depth relative to the focus distance, d / z (a depth buffer's kind of value: a
-  // slanted floor in the distance has almost no gradient, a near silhouette against what is
-  // behind it a large one; the sky is 0, nearer than d / 8 clamps at 8), and normals,
-  // Gaussian-filtered.
+// Inverse depth relative to the focus distance, d / z (a depth buffer's kind of value: a slanted
+// floor in the distance has almost no gradient, a near silhouette against what is behind it a
+// large one; the sky is 0, nearer than d / 8 clamps at 8), and normals, Gaussian-filtered, at
+// the mask's resolution; their 5x5 Sobel gradients (a unit step gives 48, the kernel's
+// half-sum, so / 48 reads as the step height).
+void gradients(const Buffer& position, const Buffer& normal, const Buffer& depth, const Camera& cam,
+               int scale, Buffer (&out)[4]) {
+  const int W = position.width, H = position.height;
+  const float focus = cam.desc.focusDistance;
   Buffer g(W, H, 4);
   parallelRows(H, [&](int y) {
     for (int x = 0; x < W; ++x) {
@@ -99,9 +92,70 @@ void RayMaskPass::execute(FrameContext& ctx) {
   });
   Buffer low = gaussianBlur(g, 1.0f);
   if (scale == 2) low = downsampleBox(low);
-  // 5x5 Sobel; a unit step gives 48 (the kernel's half-sum), so / 48 reads as the step height.
-  Buffer gradients[4];
-  for (int c = 0; c < 4; ++c) gradients[c] = sobel5x5(low, c);
+  for (int c = 0; c < 4; ++c) out[c] = sobel5x5(low, c);
+}
+
+// Dilation of the near field: a summed-area table of near-field pixels answers "any within
+// radius r?" per pixel; r is the largest near radius in the surrounding 16x16-pixel tiles (3x3
+// of them).
+class NearDilation {
+ public:
+  explicit NearDilation(const Buffer& nearRadius)
+      : w(nearRadius.width), h(nearRadius.height), tw((w + kT - 1) / kT), th((h + kT - 1) / kT) {
+    sat.assign(size_t(w + 1) * (h + 1), 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        sat[size_t(y + 1) * (w + 1) + x + 1] =
+            (nearRadius.at(x, y)[0] > 0 ? 1 : 0) + sat[size_t(y) * (w + 1) + x + 1] +
+            sat[size_t(y + 1) * (w + 1) + x] - sat[size_t(y) * (w + 1) + x];
+    std::vector<float> t(size_t(tw) * th, 0.0f);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        float& r = t[size_t(y / kT) * tw + size_t(x / kT)];
+        r = std::max(r, nearRadius.at(x, y)[0]);
+      }
+    tileR.assign(t.size(), 0.0f);
+    for (int ty = 0; ty < th; ++ty)
+      for (int tx = 0; tx < tw; ++tx)
+        for (int j = std::max(ty - 1, 0); j <= std::min(ty + 1, th - 1); ++j)
+          for (int i = std::max(tx - 1, 0); i <= std::min(tx + 1, tw - 1); ++i)
+            tileR[size_t(ty) * tw + tx] =
+                std::max(tileR[size_t(ty) * tw + tx], t[size_t(j) * tw + i]);
+  }
+  bool nearAt(int x, int y) const {
+    const int r = int(std::ceil(tileR[size_t(y / kT) * tw + size_t(x / kT)]));
+    if (r <= 0) return false;
+    const int x0 = std::max(x - r, 0), x1 = std::min(x + r + 1, w);
+    const int y0 = std::max(y - r, 0), y1 = std::min(y + r + 1, h);
+    return sat[size_t(y1) * (w + 1) + x1] - sat[size_t(y0) * (w + 1) + x1] -
+               sat[size_t(y1) * (w + 1) + x0] + sat[size_t(y0) * (w + 1) + x0] >
+           0;
+  }
+
+ private:
+  static constexpr int kT = 16;
+  int w, h, tw, th;
+  std::vector<int> sat;
+  std::vector<float> tileR;
+};
+
+}  // namespace
+
+void RayMaskPass::execute(FrameContext& ctx) {
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer& depth = ctx.input(*this, "depth");
+  const Buffer& coc = ctx.input(*this, "coc");
+  const int scale = param("resolution") == 0 ? 2 : 1;
+  const int W = ctx.width, H = ctx.height, w = (W + scale - 1) / scale, h = (H + scale - 1) / scale;
+  Buffer& mask = ctx.output(*this, "ray_mask", w, h);
+  const float m = float(param("m"));
+  if (param("mode") == 1) {
+    mask.fill(m);
+    return;
+  }
+  Buffer grads[4];
+  gradients(position, normal, depth, ctx.camera(), scale, grads);
 
   // Near-field pixels (at the mask's resolution) and, for the dilation, their CoC radius; and
   // the pixels whose every frame pixel the composite takes wholly from its full-resolution gather
@@ -126,45 +180,20 @@ void RayMaskPass::execute(FrameContext& ctx) {
       gathered[size_t(y) * size_t(w) + size_t(x)] = fine;
     }
   });
-  // Dilation: a summed-area table of near-field pixels answers "any within radius r?" per pixel;
-  // r is the largest near radius in the surrounding 16x16-pixel tiles (3x3 of them).
   const bool dilate = param("dilate") != 0;
-  std::vector<int> sat;
-  std::vector<float> tileR;
-  constexpr int kT = 16;
-  const int tw = (w + kT - 1) / kT, th = (h + kT - 1) / kT;
-  if (dilate) {
-    sat.assign(size_t(w + 1) * (h + 1), 0);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        sat[size_t(y + 1) * (w + 1) + x + 1] =
-            (nearRadius.at(x, y)[0] > 0 ? 1 : 0) + sat[size_t(y) * (w + 1) + x + 1] +
-            sat[size_t(y + 1) * (w + 1) + x] - sat[size_t(y) * (w + 1) + x];
-    std::vector<float> t(size_t(tw) * th, 0.0f);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        float& r = t[size_t(y / kT) * tw + size_t(x / kT)];
-        r = std::max(r, nearRadius.at(x, y)[0]);
-      }
-    tileR.assign(t.size(), 0.0f);
-    for (int ty = 0; ty < th; ++ty)
-      for (int tx = 0; tx < tw; ++tx)
-        for (int j = std::max(ty - 1, 0); j <= std::min(ty + 1, th - 1); ++j)
-          for (int i = std::max(tx - 1, 0); i <= std::min(tx + 1, tw - 1); ++i)
-            tileR[size_t(ty) * tw + tx] =
-                std::max(tileR[size_t(ty) * tw + tx], t[size_t(j) * tw + i]);
-  }
+  std::optional<NearDilation> dilation;
+  if (dilate) dilation.emplace(nearRadius);
 
   const Buffer* variance = ctx.previous(*this, "dof_variance");
   if (variance && (variance->width != w || variance->height != h)) variance = nullptr;
   const float s = float(param("s")), vw = float(param("variance_weight"));
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
-      const float* gd = gradients[0].at(x, y);
+      const float* gd = grads[0].at(x, y);
       const float dd = std::sqrt(gd[0] * gd[0] + gd[1] * gd[1]) / 48.0f;
       float nn = 0.0f;
       for (int c = 1; c < 4; ++c) {
-        const float* gn = gradients[c].at(x, y);
+        const float* gn = grads[c].at(x, y);
         nn += gn[0] * gn[0] + gn[1] * gn[1];
       }
       const float xe = (dd + std::sqrt(nn) / 48.0f) * s;          // eq. 2
@@ -172,16 +201,7 @@ void RayMaskPass::execute(FrameContext& ctx) {
       const float var = variance ? variance->at(x, y)[0] : 0.0f;
       float rays = std::round(dof::saturate(xn + var * vw) * m);  // eq. 4
       bool near = nearRadius.at(x, y)[0] > 0;
-      if (!near && dilate) {
-        const int r = int(std::ceil(tileR[size_t(y / kT) * tw + size_t(x / kT)]));
-        if (r > 0) {
-          const int x0 = std::max(x - r, 0), x1 = std::min(x + r + 1, w);
-          const int y0 = std::max(y - r, 0), y1 = std::min(y + r + 1, h);
-          near = sat[size_t(y1) * (w + 1) + x1] - sat[size_t(y0) * (w + 1) + x1] -
-                     sat[size_t(y1) * (w + 1) + x0] + sat[size_t(y0) * (w + 1) + x0] >
-                 0;
-        }
-      }
+      if (!near && dilate) near = dilation->nearAt(x, y);
       if (near && m > 0) rays = std::max(rays, 1.0f);
       mask.at(x, y)[0] = gathered[size_t(y) * size_t(w) + size_t(x)] ? 0.0f : rays;
     }
