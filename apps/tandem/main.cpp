@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
       {"compare", tandem::addCompareVerb(app)},       {"bench", tandem::addBenchVerb(app)},
       {"experiment", tandem::addExperimentVerb(app)}, {"reference", tandem::addReferenceVerb(app)},
       {"export", tandem::addExportVerb(app)},         {"view", tandem::addViewVerb(app)},
-      {"pipeline", tandem::addPipelineVerb(app)}};
+      {"pipeline", tandem::addPipelineVerb(app)},     {"passes", tandem::addPassesVerb(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -15,5 +15,6 @@ VerbRunner addReferenceVerb(CLI::App& app);
 VerbRunner addExportVerb(CLI::App& app);
 VerbRunner addViewVerb(CLI::App& app);
 VerbRunner addPipelineVerb(CLI::App& app);
+VerbRunner addPassesVerb(CLI::App& app);
 
 }  // namespace tandem
