@@ -1,4 +1,4 @@
-// Reference path tracing (issue 4, first part): unidirectional paths from the camera with
+// Reference path tracing: unidirectional paths from the camera with
 // next-event estimation to the punctual lights and to emissive triangles (area lights, combined
 // with BSDF sampling by multiple importance sampling, power heuristic); lights standing in for
 // emissive meshes are skipped, so nothing counts twice; the skybox on a miss; Russian roulette

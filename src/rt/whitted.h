@@ -44,7 +44,7 @@ struct WhittedSettings {
   // (textures included); false: the material's base diffuse colour.
   bool texturedShadows = true;
   // Listing 8c at the maximum depth: a fully reflective or refractive surface has no lighting
-  // (0); true: it is shaded with Blinn-Phong instead (Tandem's earlier behaviour).
+  // (0); true: it is shaded with Blinn-Phong instead.
   bool shadeAtMaxDepth = false;
   ShadowMode shadows = ShadowMode::Rays;  // Classified and Maps need shadow maps (useShadowMaps)
   // Culling: a light whose unshadowed contribution to a surface is below this fraction of the

@@ -13,8 +13,8 @@
 // Beyond the paper (`adaptive_alpha`): a per-pixel blend factor from the temporal gradient
 // (Schied et al. 2018): where this frame's 3x3 mean luminance departs from the history's by more
 // than the noise explains, the history weight drops, so moved or changed content does not ghost;
-// on by default: along the camera paths it measured better on BG (mean SSIM 0.823 → 0.830) and
-// equal on M and FG (`tandem experiment hybrid-dof`).
+// on by default: along the camera paths it measures better or equal on every shot (`tandem
+// experiment hybrid-dof`, docs/benchmarks.md).
 // Inputs: rt_near, rt_far, rt_hit, rt_far_position, motion; history: acc_near, acc_far,
 // acc_moments. Outputs: those three, rt_color (rgb, CoC, hit ratio, coverage), dof_variance.
 #pragma once
