@@ -91,9 +91,8 @@ struct RenderVerb {
 
     if (ctx.counters.count("raster/triangles_in"))
       std::printf("  raster: %.0f triangles, %.0f culled, %.0f clipped, %.0f set up and binned\n",
-                  ctx.counters["raster/triangles_in"], ctx.counters["raster/triangles_culled"],
-                  ctx.counters["raster/triangles_clipped"],
-                  ctx.counters["raster/triangles_binned"]);
+                  ctx.counter("raster/triangles_in"), ctx.counter("raster/triangles_culled"),
+                  ctx.counter("raster/triangles_clipped"), ctx.counter("raster/triangles_binned"));
     // Every output is staged first and renamed into place together: all files or none.
     const std::string& outName = renderer.pipeline().output;
     FileCommit files;

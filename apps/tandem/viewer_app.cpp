@@ -124,26 +124,11 @@ void saveScreenshot(ViewerState& s, const std::string& path) {
   std::printf("%s\n", s.message.c_str());
 }
 
-int runViewer(const ViewerOptions& o) {
-  validateRenderOptions(o.render);
-  if (!(o.scale > 0.05f && o.scale <= 2.0f))
-    throw InputError("command line", "--scale", "must be in (0.05, 2]");
-  if (o.frames < 0) throw InputError("command line", "--frames", "must be >= 0");
-  // Scene and pipeline first: bad input fails before any window appears.
-  ViewerState s;
-  s.opts = o;
-  Scene scene = loadSceneFor(o.render);
-  s.scene = &scene;
-  s.baseCamera = s.startCamera = cameraFor(scene, o.render);
-  s.fly = FlyCamera::fromDesc(s.startCamera);
-  s.fly.speed = std::max(0.1f, length(scene.bounds().extent()) * 0.15f);
-  Pipeline pipeline = loadPipelineFor(o.render);
-  s.pipelineName = o.render.pipeline;
-  s.model = PipelineModel::from(pipeline, o.render.pipeline);
-  // Progressive passes keep converging while the camera stands still.
-  for (auto& p : s.model.passes)
-    if (p.values.count("accumulate")) p.values["accumulate"] = 1, p.values["progress"] = 0;
+namespace {
 
+// The window and its OpenGL 3.3 context with Dear ImGui on it; a clear error when there is no
+// display to open it on.
+GLFWwindow* openWindow(const ViewerOptions& o, const Scene& scene) {
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   glfwSetErrorCallback(onGlfwError);
@@ -177,6 +162,115 @@ int runViewer(const ViewerOptions& o) {
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330");
 
+  return window;
+}
+
+// Where the mouse was, and whether the right button is looking around.
+struct Pointer {
+  double lastX = 0, lastY = 0;
+  bool looking = false;
+};
+
+// Keys and mouse: WASD/QE fly the camera, the right button looks around, the middle one puts
+// the fovea under the cursor, F12 saves a screenshot.
+void handleInput(GLFWwindow* window, ViewerState& s, RenderWorker& worker, float dt, int eyes,
+                 Pointer& ptr) {
+  ImGuiIO& io = ImGui::GetIO();
+  // Camera: WASD/QE to move (shift: 4x), right mouse button held to look around.
+  if (!io.WantCaptureKeyboard) {
+    auto down = [&](int k) { return glfwGetKey(window, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+    const float boost = down(GLFW_KEY_LEFT_SHIFT) > 0 ? 4.0f : 1.0f;
+    const float r = down(GLFW_KEY_D) - down(GLFW_KEY_A), u = down(GLFW_KEY_E) - down(GLFW_KEY_Q),
+                f = down(GLFW_KEY_W) - down(GLFW_KEY_S);
+    if (r != 0 || u != 0 || f != 0) s.playing = false, s.fly.move(r, u, f, dt * boost);
+    static bool f12Was = false;
+    const bool f12 = glfwGetKey(window, GLFW_KEY_F12) == GLFW_PRESS;
+    if (f12 && !f12Was) saveScreenshot(s, s.screenshotFile);
+    f12Was = f12;
+  }
+  double mx, my;
+  glfwGetCursorPos(window, &mx, &my);
+  const bool rmb = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  if (rmb && !io.WantCaptureMouse) {
+    if (ptr.looking) s.fly.look(float(mx - ptr.lastX), float(my - ptr.lastY));
+    ptr.looking = true;
+    s.playing = false;
+  } else {
+    ptr.looking = false;
+  }
+  ptr.lastX = mx, ptr.lastY = my;
+
+  // Gaze (seed 004): the middle mouse button held puts the fovea under the cursor, in whichever
+  // eye it points at (the distribution is rebuilt only when the point moves).
+  if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS && !io.WantCaptureMouse) {
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window, &ww, &wh);
+    const double ex = mx / std::max(ww, 1) * eyes;
+    const double gx = std::clamp(ex - std::floor(ex), 0.0, 1.0);
+    const double gy = std::clamp(my / std::max(wh, 1), 0.0, 1.0);
+    for (size_t i = 0; i < s.model.passes.size(); ++i) {
+      auto& pm = s.model.passes[i];
+      if (pm.type != "foveation") continue;
+      if (pm.values["gaze"] != 1) worker.setParam(i, "gaze", pm.values["gaze"] = 1);
+      if (pm.values["gaze_x"] != gx) worker.setParam(i, "gaze_x", pm.values["gaze_x"] = gx);
+      if (pm.values["gaze_y"] != gy) worker.setParam(i, "gaze_y", pm.values["gaze_y"] = gy);
+    }
+  }
+}
+
+// Path playback and recording, in the scene-file path format (seconds).
+void followPath(ViewerState& s, double now) {
+  if (s.playing && s.path.size() >= 2) {
+    const double t = now - s.playStart + s.path.front().time;
+    if (t > s.path.back().time) s.playing = false;
+    const CameraDesc c = sampleCameraPath(s.path, s.baseCamera, float(t));
+    s.fly = FlyCamera::fromDesc(c);
+  }
+  if (s.recording && now - s.lastKey >= 0.25) {
+    const CameraDesc c = s.fly.toDesc(s.baseCamera);
+    s.path.push_back({float(now - s.recordStart), c.position, c.lookAt});
+    s.lastKey = now;
+  }
+}
+
+void printReport(const ViewerState& s, const RenderWorker& worker) {
+  std::printf(
+      "view: %llu frames of %s at %dx%d; %.2f fps (mean frame %.2f ms over the last %zu); "
+      "viewer cost (upload + UI) %.3f ms + present %.3f ms per displayed frame\n",
+      static_cast<unsigned long long>(s.frame.serial), s.pipelineName.c_str(), s.frame.width,
+      s.frame.height, s.history.framesPerSecond(), s.history.averageFrameMs(), s.history.size(),
+      s.viewerFrames ? s.viewerMsSum / s.viewerFrames : 0.0,
+      s.viewerFrames ? s.presentMsSum / s.viewerFrames : 0.0);
+  std::printf("view: mean ms per pass:");
+  for (const FrameHistory::PassRow& r : s.history.rows())
+    std::printf(" %s %.2f", r.name.c_str(), r.averageMs);
+  std::printf("\n");
+  if (!worker.error().empty()) std::printf("view: %s\n", worker.error().c_str());
+}
+
+}  // namespace
+
+int runViewer(const ViewerOptions& o) {
+  validateRenderOptions(o.render);
+  if (!(o.scale > 0.05f && o.scale <= 2.0f))
+    throw InputError("command line", "--scale", "must be in (0.05, 2]");
+  if (o.frames < 0) throw InputError("command line", "--frames", "must be >= 0");
+  // Scene and pipeline first: bad input fails before any window appears.
+  ViewerState s;
+  s.opts = o;
+  Scene scene = loadSceneFor(o.render);
+  s.scene = &scene;
+  s.baseCamera = s.startCamera = cameraFor(scene, o.render);
+  s.fly = FlyCamera::fromDesc(s.startCamera);
+  s.fly.speed = std::max(0.1f, length(scene.bounds().extent()) * 0.15f);
+  Pipeline pipeline = loadPipelineFor(o.render);
+  s.pipelineName = o.render.pipeline;
+  s.model = PipelineModel::from(pipeline, o.render.pipeline);
+  // Progressive passes keep converging while the camera stands still.
+  for (auto& p : s.model.passes)
+    if (p.values.count("accumulate")) p.values["accumulate"] = 1, p.values["progress"] = 0;
+
+  GLFWwindow* window = openWindow(o, scene);
   GLuint tex = 0;
   glGenTextures(1, &tex);
   glBindTexture(GL_TEXTURE_2D, tex);
@@ -194,70 +288,19 @@ int runViewer(const ViewerOptions& o) {
   s.view.height = std::max(1, int(float(fbh) * o.scale));
   RenderWorker worker(scene, s.model, s.view, o.render.seed);
 
-  double last = glfwGetTime(), lastX = 0, lastY = 0;
-  bool looking = false, screenshotsDone = false, reportNow = false;
+  double last = glfwGetTime();
+  Pointer pointer;
+  bool screenshotsDone = false, reportNow = false;
   int texW = 0, texH = 0;
   while (!glfwWindowShouldClose(window)) {
     glfwPollEvents();
     const double now = glfwGetTime();
     const float dt = float(std::min(now - last, 0.1));
     last = now;
-    ImGuiIO& io = ImGui::GetIO();
 
-    // Camera: WASD/QE to move (shift: 4x), right mouse button held to look around.
-    if (!io.WantCaptureKeyboard) {
-      auto down = [&](int k) { return glfwGetKey(window, k) == GLFW_PRESS ? 1.0f : 0.0f; };
-      const float boost = down(GLFW_KEY_LEFT_SHIFT) > 0 ? 4.0f : 1.0f;
-      const float r = down(GLFW_KEY_D) - down(GLFW_KEY_A), u = down(GLFW_KEY_E) - down(GLFW_KEY_Q),
-                  f = down(GLFW_KEY_W) - down(GLFW_KEY_S);
-      if (r != 0 || u != 0 || f != 0) s.playing = false, s.fly.move(r, u, f, dt * boost);
-      static bool f12Was = false;
-      const bool f12 = glfwGetKey(window, GLFW_KEY_F12) == GLFW_PRESS;
-      if (f12 && !f12Was) saveScreenshot(s, s.screenshotFile);
-      f12Was = f12;
-    }
-    double mx, my;
-    glfwGetCursorPos(window, &mx, &my);
-    const bool rmb = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    if (rmb && !io.WantCaptureMouse) {
-      if (looking) s.fly.look(float(mx - lastX), float(my - lastY));
-      looking = true;
-      s.playing = false;
-    } else {
-      looking = false;
-    }
-    lastX = mx, lastY = my;
+    handleInput(window, s, worker, dt, eyes, pointer);
 
-    // Gaze (seed 004): the middle mouse button held puts the fovea under the cursor, in whichever
-    // eye it points at (the distribution is rebuilt only when the point moves).
-    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS &&
-        !io.WantCaptureMouse) {
-      int ww = 1, wh = 1;
-      glfwGetWindowSize(window, &ww, &wh);
-      const double ex = mx / std::max(ww, 1) * eyes;
-      const double gx = std::clamp(ex - std::floor(ex), 0.0, 1.0);
-      const double gy = std::clamp(my / std::max(wh, 1), 0.0, 1.0);
-      for (size_t i = 0; i < s.model.passes.size(); ++i) {
-        auto& pm = s.model.passes[i];
-        if (pm.type != "foveation") continue;
-        if (pm.values["gaze"] != 1) worker.setParam(i, "gaze", pm.values["gaze"] = 1);
-        if (pm.values["gaze_x"] != gx) worker.setParam(i, "gaze_x", pm.values["gaze_x"] = gx);
-        if (pm.values["gaze_y"] != gy) worker.setParam(i, "gaze_y", pm.values["gaze_y"] = gy);
-      }
-    }
-
-    // Path playback and recording, in the scene-file path format (seconds).
-    if (s.playing && s.path.size() >= 2) {
-      const double t = now - s.playStart + s.path.front().time;
-      if (t > s.path.back().time) s.playing = false;
-      const CameraDesc c = sampleCameraPath(s.path, s.baseCamera, float(t));
-      s.fly = FlyCamera::fromDesc(c);
-    }
-    if (s.recording && now - s.lastKey >= 0.25) {
-      const CameraDesc c = s.fly.toDesc(s.baseCamera);
-      s.path.push_back({float(now - s.recordStart), c.position, c.lookAt});
-      s.lastKey = now;
-    }
+    followPath(s, now);
 
     glfwGetFramebufferSize(window, &fbw, &fbh);
     ViewState v = s.view;
@@ -325,18 +368,7 @@ int runViewer(const ViewerOptions& o) {
     if (s.frame.serial > 0) s.presentMsSum += s.presentMs;
     if (reportNow) {  // after the swap, so the frame's present time is in the average
       reportNow = false;
-      std::printf(
-          "view: %llu frames of %s at %dx%d; %.2f fps (mean frame %.2f ms over the last %zu); "
-          "viewer cost (upload + UI) %.3f ms + present %.3f ms per displayed frame\n",
-          static_cast<unsigned long long>(s.frame.serial), s.pipelineName.c_str(), s.frame.width,
-          s.frame.height, s.history.framesPerSecond(), s.history.averageFrameMs(), s.history.size(),
-          s.viewerFrames ? s.viewerMsSum / s.viewerFrames : 0.0,
-          s.viewerFrames ? s.presentMsSum / s.viewerFrames : 0.0);
-      std::printf("view: mean ms per pass:");
-      for (const FrameHistory::PassRow& r : s.history.rows())
-        std::printf(" %s %.2f", r.name.c_str(), r.averageMs);
-      std::printf("\n");
-      if (!worker.error().empty()) std::printf("view: %s\n", worker.error().c_str());
+      printReport(s, worker);
       if (o.exitAfter) glfwSetWindowShouldClose(window, GLFW_TRUE);
     }
     waitForNextRefresh(now);

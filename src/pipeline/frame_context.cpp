@@ -35,6 +35,17 @@ Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, i
   return b;
 }
 
+double FrameContext::counter(const std::string& name, double fallback) const {
+  auto it = counters.find(name);
+  return it == counters.end() ? fallback : it->second;
+}
+
+double FrameContext::counter(const std::string& name) const {
+  auto it = counters.find(name);
+  TANDEM_ASSERT(it != counters.end());  // the pass that reports it did not run
+  return it->second;
+}
+
 bool FrameContext::isConsumed(const Pass& pass, const std::string& slot) const {
   const std::string& name = pass.bufferName(slot);
   return keepAllOutputs || consumed.count(name) || wanted.count(name);

@@ -37,6 +37,7 @@ struct FrameContext {
   double passRays = 0;                    // a pass adds the rays it traced; the pipeline records it
   std::vector<PassTiming> passParts;      // optional sub-timings a pass reports ("pass/part")
   // Figures passes report for the frame ("spp", "raster/triangles_in", ...); cleared each frame.
+  // Passes write them; readers use counter() (reading with operator[] would insert the name).
   std::map<std::string, double> counters;
   SampleCluster* cluster = nullptr;  // distributed (MPI) reference rendering; null: one process
   // Outputs nothing reads may be skipped: with keepAllOutputs off, a pass may leave out an
@@ -47,6 +48,10 @@ struct FrameContext {
   std::set<std::string> consumed;  // what the passes read, set by Pipeline::execute
 
   const Camera& camera() const { return views.front().camera; }
+  // A counter this frame reported; `fallback` where no pass reported it.
+  double counter(const std::string& name, double fallback) const;
+  // A counter the caller knows a pass reports (a bug when it is missing).
+  double counter(const std::string& name) const;
   // The angle a pixel of `view` subtends, times textureFootprint: primary hits' texture LOD.
   float pixelSpread(const View& view) const;
   bool anyCameraMoved() const;

@@ -58,6 +58,7 @@ void Renderer::makeViews(const CameraDesc& camera, const CameraDesc& shutterClos
     View& v = ctx_.views[size_t(e)];
     const StereoDesc& st = settings_.stereo;
     v.camera = Camera::make(eyeCamera(camera, st, e), w, h, jitter);
+    v.unjitteredCamera = Camera::make(v.camera.desc, w, h);
     v.prevCamera = Camera::make(eyeCamera(prevDesc, st, e), w, h);
     v.shutterCamera = Camera::make(eyeCamera(shutterClose, st, e), w, h, jitter);
     v.x = e * w;

@@ -10,7 +10,12 @@
 namespace tandem {
 
 struct View {
+  // This frame's camera, with the frame's sub-pixel jitter (camera.jitter) when a pass asked for
+  // it: what rasterized G-buffers and their pixels' rays see.
   Camera camera, prevCamera;
+  // The same camera without the jitter, for passes that sample the pixel area themselves (lens
+  // rays) and accumulate by jitter-free motion vectors.
+  Camera unjitteredCamera;
   Camera shutterCamera;      // when the shutter closes (== camera without motion blur)
   int x = 0, y = 0;          // viewport origin; its size is the camera's
   bool cameraMoved = false;  // unjittered view-projection differs from last frame's

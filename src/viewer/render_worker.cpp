@@ -170,7 +170,7 @@ void RenderWorker::loop() {
       f.timings = renderer->renderFrameAt(frameIndex, view.time, view.camera, view.camera);
       ++frameIndex;
       FrameContext& ctx = renderer->context();
-      f.samplesPerPixel = ctx.counters.count("spp") ? int(ctx.counters.at("spp")) : 0;
+      f.samplesPerPixel = int(ctx.counter("spp", 0));
       f.buffers = renderer->pipeline().producedBuffers();
       const std::string& outName = renderer->pipeline().output;
       f.shown = view.shownBuffer.empty() || !ctx.buffers.count(view.shownBuffer) ? outName

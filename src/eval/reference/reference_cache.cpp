@@ -90,7 +90,7 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   for (const PassTiming& t : ft.passes)
     if (t.name == "pt_reference/sampling")
       img.rays = uint64_t(t.rays), img.samplingSeconds = t.ms * 1e-3;
-  img.spp = int(r.context().counters["spp"]);
+  img.spp = int(r.context().counter("spp"));
   img.hdr = r.context().input("hdr");
   img.variance = r.context().input("variance");
   img.relativeError = relativeNoise(img.hdr, img.variance);
