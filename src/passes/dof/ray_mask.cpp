@@ -24,46 +24,39 @@ std::vector<BufferSlot> RayMaskPass::inputs() const {
           bokeh};
 }
 
-std::vector<ParamDesc> RayMaskPass::params() const {
-  return {{"m", ParamType::Int, 10, 0, 1024, "ray budget: most lens rays per pixel", {}},
-          {"s", ParamType::Float, 0.8, 0, 1, "eq. 2: scale of the depth + normal gradient", {}},
-          {"variance_weight",
-           ParamType::Float,
-           100000,
-           0,
-           1e9,
-           "eq. 4: weight of the accumulated luminance variance",
-           {}},
-          {"dilate",
-           ParamType::Bool,
-           0,
-           0,
-           1,
-           "one ray within the near field's CoC radius around it (beyond the paper, Fig. 8b)",
-           {}},
-          {"mode",
-           ParamType::Enum,
-           0,
-           0,
-           1,
-           "adaptive: eq. 2-4; all: m rays in every pixel (rt-dof)",
-           {"adaptive", "all"}},
-          {"fine_coc",
-           ParamType::Float,
-           12,
-           0,
-           64,
-           "no rays where dof_composite gathers the sharp image instead (|CoC| below half of "
-           "this, no foreground over the pixel: keep equal to dof_composite.fine_coc; 0 = off)",
-           {}},
-          {"resolution",
-           ParamType::Enum,
-           0,
-           0,
-           1,
-           "of the mask and the ray-traced DoF (the paper: half)",
-           {"half", "full"},
-           /*invalidatesHistory=*/true}};
+const ParamTable<RayMaskSettings>& RayMaskPass::tableFor() const {
+  using S = RayMaskSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::m,
+          {.name = "m", .min = 0, .max = 1024, .doc = "ray budget: most lens rays per pixel"})
+        .add(
+            &S::s,
+            {.name = "s", .min = 0, .max = 1, .doc = "eq. 2: scale of the depth + normal gradient"})
+        .add(&S::varianceWeight, {.name = "variance_weight",
+                                  .min = 0,
+                                  .max = 1e9,
+                                  .doc = "eq. 4: weight of the accumulated luminance variance"})
+        .add(&S::dilate, {.name = "dilate",
+                          .doc = "one ray within the near field's CoC radius around it (beyond "
+                                 "the paper, Fig. 8b)"})
+        .add(&S::mode, {.name = "mode",
+                        .doc = "adaptive: eq. 2-4; all: m rays in every pixel (rt-dof)",
+                        .choices = {"adaptive", "all"}})
+        .add(&S::fineCoc,
+             {.name = "fine_coc",
+              .min = 0,
+              .max = 64,
+              .doc = "no rays where dof_composite gathers the sharp image instead (|CoC| below "
+                     "half of this, no foreground over the pixel: keep equal to "
+                     "dof_composite.fine_coc; 0 = off)"})
+        .add(&S::resolution, {.name = "resolution",
+                              .doc = "of the mask and the ray-traced DoF (the paper: half)",
+                              .choices = {"half", "full"},
+                              .invalidatesHistory = true});
+    return t;
+  }();
+  return table;
 }
 
 namespace {
@@ -146,11 +139,12 @@ void RayMaskPass::execute(FrameContext& ctx) {
   const Buffer& normal = ctx.input(*this, "normal");
   const Buffer& depth = ctx.input(*this, "depth");
   const Buffer& coc = ctx.input(*this, "coc");
-  const int scale = param("resolution") == 0 ? 2 : 1;
+  const RayMaskSettings& cfg = settings();
+  const int scale = cfg.resolution == RayMaskSettings::Resolution::Half ? 2 : 1;
   const int W = ctx.width, H = ctx.height, w = (W + scale - 1) / scale, h = (H + scale - 1) / scale;
   Buffer& mask = ctx.output(*this, "ray_mask", w, h);
-  const float m = float(param("m"));
-  if (param("mode") == 1) {
+  const float m = float(cfg.m);
+  if (cfg.mode == RayMaskSettings::Mode::All) {
     mask.fill(m);
     return;
   }
@@ -162,7 +156,7 @@ void RayMaskPass::execute(FrameContext& ctx) {
   // of the sharp image (|CoC| below half of fine_coc, no foreground share in the post-process
   // gather): rays there would not be seen (beyond the paper).
   const Buffer* bokeh = ctx.optionalInput(*this, "bokeh");
-  const float fineCoc = bokeh ? 0.5f * float(param("fine_coc")) : 0.0f;
+  const float fineCoc = bokeh ? 0.5f * cfg.fineCoc : 0.0f;
   Buffer nearRadius(w, h, 1);
   std::vector<unsigned char> gathered(size_t(w) * size_t(h), 0);
   parallelRows(h, [&](int y) {
@@ -180,13 +174,13 @@ void RayMaskPass::execute(FrameContext& ctx) {
       gathered[size_t(y) * size_t(w) + size_t(x)] = fine;
     }
   });
-  const bool dilate = param("dilate") != 0;
+  const bool dilate = cfg.dilate;
   std::optional<NearDilation> dilation;
   if (dilate) dilation.emplace(nearRadius);
 
   const Buffer* variance = ctx.previous(*this, "dof_variance");
   if (variance && (variance->width != w || variance->height != h)) variance = nullptr;
-  const float s = float(param("s")), vw = float(param("variance_weight"));
+  const float s = cfg.s, vw = cfg.varianceWeight;
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const float* gd = grads[0].at(x, y);

@@ -16,11 +16,23 @@
 // dof_variance. Output: ray_mask (rays per pixel, at half the frame's resolution or the frame's:
 // `resolution`).
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class RayMaskPass : public Pass {
+struct RayMaskSettings {
+  enum class Mode { Adaptive, All };
+  enum class Resolution { Half, Full };
+  int m = 10;  // the ray budget
+  float s = 0.8f;
+  float varianceWeight = 100000;
+  bool dilate = false;
+  Mode mode = Mode::Adaptive;
+  float fineCoc = 12;
+  Resolution resolution = Resolution::Half;
+};
+
+class RayMaskPass : public SettingsPass<RayMaskSettings> {
  public:
   std::string type() const override { return "ray_mask"; }
   std::string description() const override {
@@ -31,8 +43,10 @@ class RayMaskPass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"ray_mask", 1, BufferKind::Count, Extent::any()}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<RayMaskSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

@@ -12,52 +12,48 @@
 namespace tandem {
 
 namespace {
-enum class FallbackMode { Off = 0, Environment = 1, ScreenSpace = 2, Probe = 3 };
+using FallbackMode = FallbackSettings::Mode;
 }
 
-std::vector<ParamDesc> ScreenSpaceFallbackPass::params() const {
-  // Defaults measured (docs/benchmarks.md): probes score best against rt-only on the heuristic
-  // scenes (SSIM and FLIP; the sky and the screen-space march tie below them); 1024 maps as well
-  // as 2048 within 0.01.
-  return {{"mode",
-           ParamType::Enum,
-           3,
-           0,
-           3,
-           "unselected reflections/refractions: off (seed 002: black), sky, screen space, "
-           "per-object reflection probes",
-           {"off", "environment", "screen_space", "probe"}},
-          {"shadows",
-           ParamType::Enum,
-           1,
-           0,
-           1,
-           "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
-           {"off", "shadow_map"}},
-          {"shadow_map_size", ParamType::Int, 1024, 64, 8192, "shadow map resolution", {}},
-          {"probe_size", ParamType::Int, 128, 8, 1024, "reflection probe face resolution", {}},
-          {"max_probes",
-           ParamType::Int,
-           32,
-           0,
-           4096,
-           "most objects with a probe (the largest on screen; others show the sky)",
-           {}},
-          {"probe_refresh",
-           ParamType::Int,
-           2,
-           0,
-           1024,
-           "probes redrawn per frame when geometry moved (oldest first; new ones always)",
-           {}},
-          {"steps", ParamType::Int, 32, 1, 512, "march steps along the reflected ray", {}},
-          {"thickness",
-           ParamType::Float,
-           0.05,
-           0,
-           100,
-           "depth a surface is taken to have, as a fraction of the distance marched",
-           {}}};
+const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
+  using S = FallbackSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::mode, {.name = "mode",
+                     .doc = "unselected reflections/refractions: off (seed 002: black), sky, "
+                            "screen space, per-object reflection probes",
+                     .choices = {"off", "environment", "screen_space", "probe"}})
+        .add(&S::shadows,
+             {.name = "shadows",
+              .doc = "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
+              .choices = {"off", "shadow_map"}})
+        .add(&S::shadowMapSize,
+             {.name = "shadow_map_size", .min = 64, .max = 8192, .doc = "shadow map resolution"})
+        .add(&S::probeSize, {.name = "probe_size",
+                             .min = 8,
+                             .max = 1024,
+                             .doc = "reflection probe face resolution"})
+        .add(&S::maxProbes,
+             {.name = "max_probes",
+              .min = 0,
+              .max = 4096,
+              .doc = "most objects with a probe (the largest on screen; others show the sky)"})
+        .add(
+            &S::probeRefresh,
+            {.name = "probe_refresh",
+             .min = 0,
+             .max = 1024,
+             .doc = "probes redrawn per frame when geometry moved (oldest first; new ones always)"})
+        .add(&S::steps,
+             {.name = "steps", .min = 1, .max = 512, .doc = "march steps along the reflected ray"})
+        .add(&S::thickness,
+             {.name = "thickness",
+              .min = 0,
+              .max = 100,
+              .doc = "depth a surface is taken to have, as a fraction of the distance marched"});
+    return t;
+  }();
+  return table;
 }
 
 std::vector<BufferSlot> ScreenSpaceFallbackPass::inputs() const {
@@ -139,14 +135,14 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
   std::vector<uint32_t> order;
   for (size_t o = 0; o < area.size(); ++o)
     if (area[o] > 0) order.push_back(uint32_t(o));
-  const size_t keep = std::min(order.size(), size_t(param("max_probes")));
+  const FallbackSettings& s = settings();
+  const size_t keep = std::min(order.size(), size_t(s.maxProbes));
   std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
                     [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
   std::vector<uint8_t> wanted(scene.objects.size(), 0);
   for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
-  ctx.counters["ss_fallback/probes_drawn"] =
-      probes_.update(ctx.frame, shading, wanted, int(param("probe_size")),
-                     int(param("probe_refresh")), 2 * size_t(param("max_probes")));
+  ctx.counters["ss_fallback/probes_drawn"] = probes_.update(
+      ctx.frame, shading, wanted, s.probeSize, s.probeRefresh, 2 * size_t(s.maxProbes));
   ctx.passParts.push_back({"probes", msSince(t0), 0});
 }
 
@@ -310,8 +306,9 @@ void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, i
 }  // namespace
 
 void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
-  const auto mode = FallbackMode(int(param("mode")));
-  const bool shadows = param("shadows") != 0;
+  const FallbackSettings& s = settings();
+  const FallbackMode mode = s.mode;
+  const bool shadows = s.shadows == FallbackSettings::Shadows::ShadowMap;
   const GBufferReader g = gbufferSource(ctx, *this);
   const Buffer& position = ctx.input(*this, "position");
   const Buffer& normal = ctx.input(*this, "normal");
@@ -325,7 +322,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   ShadowMaps* shadowMaps = nullptr;
   if (shadows) {
     const auto t0 = Clock::now();
-    shadowMaps = &ctx.shadowMaps(int(param("shadow_map_size")));
+    shadowMaps = &ctx.shadowMaps(s.shadowMapSize);
     ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   }
   const ShadingContext shading = ShadingContext::from(scene);
@@ -333,15 +330,9 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const Bounds3 b = scene.bounds(ctx.frame.time);
   const Frame f{ctx.input(*this, "hdr"),     position, ctx.input(*this, "object_id"),
                 ctx.input(*this, "optical"), scene,    std::max(length(b.hi - b.lo), 0.1f)};
-  const EffectsJob job{f,
-                       normal,
-                       ctx.input(*this, "heuristic_mask"),
-                       mode,
-                       shadows,
-                       probes_,
-                       b,
-                       int(param("steps")),
-                       float(param("thickness"))};
+  const EffectsJob job{f,    normal,  ctx.input(*this, "heuristic_mask"),
+                       mode, shadows, probes_,
+                       b,    s.steps, s.thickness};
   const size_t lights = scene.lights.size();
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     // The tile's shadow pixels are gathered first and looked up light by light (one map's texels

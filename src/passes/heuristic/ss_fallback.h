@@ -14,22 +14,39 @@
 #pragma once
 #include "passes/heuristic/effect_channels.h"
 #include "passes/heuristic/reflection_probes.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 #include "raster/shadow_maps.h"
 
 namespace tandem {
 
-class ScreenSpaceFallbackPass : public Pass {
+struct FallbackSettings {
+  enum class Mode { Off, Environment, ScreenSpace, Probe };
+  enum class Shadows { Off, ShadowMap };
+  // Defaults measured (docs/benchmarks.md): probes score best against rt-only on the heuristic
+  // scenes (SSIM and FLIP; the sky and the screen-space march tie below them).
+  Mode mode = Mode::Probe;
+  Shadows shadows = Shadows::ShadowMap;
+  int shadowMapSize = 1024;
+  int probeSize = 128;
+  int maxProbes = 32;
+  int probeRefresh = 2;
+  int steps = 32;
+  float thickness = 0.05f;
+};
+
+class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
  public:
   std::string type() const override { return "ss_fallback"; }
   std::string description() const override {
     return "Screen-space reflection/refraction (or sky) where no ray was traced";
   }
-  std::vector<ParamDesc> params() const override;
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"fallback", fallback::kChannels}}; }
   void execute(FrameContext& ctx) override;
   void resetHistory() override { probes_ = {}; }
+
+ protected:
+  const ParamTable<FallbackSettings>& tableFor() const override;
 
  private:
   // Brings the probes of the objects that show an untraced reflection or refraction up to date.

@@ -8,26 +8,32 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> PostfxMotionBlurPass::params() const {
-  return {
-      {"tile_size", ParamType::Int, 20, 2, 128, "K: tile size and largest blur radius (px)", {}},
-      {"samples", ParamType::Int, 15, 3, 101, "S: gather samples per pixel (odd)", {}},
-      {"soft_z", ParamType::Float, 0.1, 0.001, 100, "soft depth comparison extent (m)", {}},
-      {"mask_threshold",
-       ParamType::Float,
-       1.0,
-       0,
-       100,
-       "mask tiles whose neighbourhood's blur radii differ by more than this (px)",
-       {}},
-      {"mask",
-       ParamType::Enum,
-       0,
-       0,
-       1,
-       "spread: radii anywhere in the 3 x 3 tiles differ; edges: adjacent pixels' radii jump (a "
-       "motion boundary) somewhere in them, so smooth motion (a camera pan's parallax) stays out",
-       {"spread", "edges"}}};
+const ParamTable<PostfxMotionBlurSettings>& PostfxMotionBlurPass::tableFor() const {
+  using S = PostfxMotionBlurSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::tileSize, {.name = "tile_size",
+                         .min = 2,
+                         .max = 128,
+                         .doc = "K: tile size and largest blur radius (px)"})
+        .add(&S::samples,
+             {.name = "samples", .min = 3, .max = 101, .doc = "S: gather samples per pixel (odd)"})
+        .add(
+            &S::softZ,
+            {.name = "soft_z", .min = 0.001, .max = 100, .doc = "soft depth comparison extent (m)"})
+        .add(&S::maskThreshold,
+             {.name = "mask_threshold",
+              .min = 0,
+              .max = 100,
+              .doc = "mask tiles whose neighbourhood's blur radii differ by more than this (px)"})
+        .add(&S::mask, {.name = "mask",
+                        .doc = "spread: radii anywhere in the 3 x 3 tiles differ; edges: adjacent "
+                               "pixels' radii jump (a motion boundary) somewhere in them, so "
+                               "smooth motion (a camera pan's parallax) stays out",
+                        .choices = {"spread", "edges"}});
+    return t;
+  }();
+  return table;
 }
 
 namespace {
@@ -174,9 +180,10 @@ void PostfxMotionBlurPass::execute(FrameContext& ctx) {
   const Buffer& Z = ctx.input(*this, "view_depth");
   Buffer& out = ctx.output(*this, "mb_postfx");
   Buffer& maskOut = ctx.output(*this, "mb_mask");
-  const int K = int(param("tile_size")), S = int(param("samples")) | 1;
-  const float softZ = float(param("soft_z")), threshold = float(param("mask_threshold"));
-  const bool edgesOnly = param("mask") == 1;
+  const PostfxMotionBlurSettings& s = settings();
+  const int K = s.tileSize, S = s.samples | 1;
+  const float softZ = s.softZ, threshold = s.maskThreshold;
+  const bool edgesOnly = s.mask == PostfxMotionBlurSettings::Mask::Edges;
   size_t masked = 0, pixels = 0;
   for (const View& view : ctx.views) {
     const int ox = view.x, oy = view.y;

@@ -14,11 +14,20 @@
 // Inputs: hdr (sharp, mid-shutter), velocity (pixels over the whole shutter), view_depth.
 // Outputs: mb_postfx, mb_mask.
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class PostfxMotionBlurPass : public Pass {
+struct PostfxMotionBlurSettings {
+  enum class Mask { Spread, Edges };
+  int tileSize = 20;  // K
+  int samples = 15;   // S
+  float softZ = 0.1f;
+  float maskThreshold = 1.0f;
+  Mask mask = Mask::Spread;
+};
+
+class PostfxMotionBlurPass : public SettingsPass<PostfxMotionBlurSettings> {
  public:
   std::string type() const override { return "postfx_motion_blur"; }
   std::string description() const override {
@@ -31,8 +40,10 @@ class PostfxMotionBlurPass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"mb_postfx", 3}, {"mb_mask", 1, BufferKind::Mask}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<PostfxMotionBlurSettings>& tableFor() const override;
 };
 
 // mb_composite: the hybrid motion blur image, lerp(mb_postfx, mb_interleaved, mb_mask).
