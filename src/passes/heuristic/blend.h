@@ -23,7 +23,7 @@ class BlendPass : public Pass {
             {"refraction", 3},
             {"optical", 3, BufferKind::Material},
             {"heuristic_mask", kEffectCount, BufferKind::Mask},
-            {"fallback", fallback::kChannels, BufferKind::Color, Extent::frame(), false, true}};
+            {.slot = "fallback", .channels = fallback::kChannels, .optional = true}};
   }
   std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
   void execute(FrameContext& ctx) override;

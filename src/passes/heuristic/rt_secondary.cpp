@@ -40,8 +40,16 @@ std::vector<ParamDesc> RTSecondaryPass::params() const {
 std::vector<BufferSlot> RTSecondaryPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
   in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
-  in.push_back({"rt_request", 2, BufferKind::Mask, Extent::fixed(1, 1), false, true});
-  in.push_back({"heuristic_order", kEffectCount, BufferKind::List, Extent::any(), false, true});
+  in.push_back({.slot = "rt_request",
+                .channels = 2,
+                .kind = BufferKind::Mask,
+                .extent = Extent::fixed(1, 1),
+                .optional = true});
+  in.push_back({.slot = "heuristic_order",
+                .channels = kEffectCount,
+                .kind = BufferKind::List,
+                .extent = Extent::any(),
+                .optional = true});
   return in;
 }
 
