@@ -233,6 +233,29 @@ void followPath(ViewerState& s, double now) {
   }
 }
 
+// The finished frame into the window's texture (reallocated when its size changed).
+void upload(GLuint tex, const FinishedFrame& frame, int& texW, int& texH) {
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (frame.width != texW || frame.height != texH) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame.width, frame.height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, frame.rgba.data());
+    texW = frame.width, texH = frame.height;
+  } else {
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, texW, texH, GL_RGBA, GL_UNSIGNED_BYTE,
+                    frame.rgba.data());
+  }
+}
+
+// Scripted runs: what the command line asked to write once enough frames have finished.
+void writeScripted(const ViewerOptions& o, ViewerState& s, int fbw, int fbh) {
+  if (!o.windowCapture.empty()) {
+    captureWindow(o.windowCapture, fbw, fbh);
+    std::printf("wrote %s\n", o.windowCapture.c_str());
+  }
+  if (!o.screenshot.empty()) saveScreenshot(s, o.screenshot);
+}
+
 void printReport(const ViewerState& s, const RenderWorker& worker) {
   std::printf(
       "view: %llu frames of %s at %dx%d; %.2f fps (mean frame %.2f ms over the last %zu); "
@@ -324,16 +347,7 @@ int runViewer(const ViewerOptions& o) {
     redrawsPending = std::max(0, redrawsPending - 1);
     if (fresh) {
       s.history.add(s.frame.timings);
-      glBindTexture(GL_TEXTURE_2D, tex);
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-      if (s.frame.width != texW || s.frame.height != texH) {
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, s.frame.width, s.frame.height, 0, GL_RGBA,
-                     GL_UNSIGNED_BYTE, s.frame.rgba.data());
-        texW = s.frame.width, texH = s.frame.height;
-      } else {
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, texW, texH, GL_RGBA, GL_UNSIGNED_BYTE,
-                        s.frame.rgba.data());
-      }
+      upload(tex, s.frame, texW, texH);
     }
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -354,13 +368,8 @@ int runViewer(const ViewerOptions& o) {
     // Scripted runs: once enough frames have finished, write what was asked and maybe quit.
     if (!screenshotsDone && o.frames > 0 && s.frame.serial >= uint64_t(o.frames) &&
         s.frame.width == s.view.width * eyes && s.frame.height == s.view.height && texW > 0) {
-      if (!o.windowCapture.empty()) {
-        captureWindow(o.windowCapture, fbw, fbh);
-        std::printf("wrote %s\n", o.windowCapture.c_str());
-      }
-      if (!o.screenshot.empty()) saveScreenshot(s, o.screenshot);
-      screenshotsDone = true;
-      reportNow = true;
+      writeScripted(o, s, fbw, fbh);
+      screenshotsDone = reportNow = true;
     }
     const auto t1 = Clock::now();
     glfwSwapBuffers(window);
