@@ -37,7 +37,6 @@
 namespace tandem {
 
 struct View;
-class Whitted;
 
 // The Blackman-Harris window at |x| / radius in [0, 1] (1 at the centre, ~0 at the radius).
 float blackmanHarris(float t);
