@@ -24,38 +24,40 @@ std::vector<BufferSlot> TAAPass::inputs() const {
   return {{"hdr", 3}, {"motion", 2, BufferKind::Motion}, history};
 }
 
-std::vector<ParamDesc> TAAPass::params() const {
-  return {
-      {"alpha", ParamType::Float, 0.1, 0.01, 1, "weight of the current frame", {}},
-      {"jitter_phases", ParamType::Int, 8, 1, 256, "length of the Halton (2,3) jitter cycle", {}},
-      {"motion_alpha",
-       ParamType::Float,
-       0.2,
-       0.01,
-       1,
-       "weight of the current frame for pixels moving motion_pixels or more per frame",
-       {}},
-      {"motion_pixels",
-       ParamType::Float,
-       8,
-       0.1,
-       1000,
-       "speed (pixels per frame) at which the weight reaches motion_alpha",
-       {}},
-      {"clamp", ParamType::Bool, 1, 0, 1, "clamp history to the YCoCg neighbourhood box", {}},
-      {"filter", ParamType::Enum, 1, 0, 1, "history resampling", {"bilinear", "catmull_rom"}},
-      {"converge",
-       ParamType::Bool,
-       0,
-       0,
-       1,
-       "average the first frames after a reset equally (weight 1/n until it falls to alpha)",
-       {}}};
+const ParamTable<TAASettings>& TAAPass::tableFor() const {
+  using S = TAASettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::alpha, {.name = "alpha", .min = 0.01, .max = 1, .doc = "weight of the current frame"})
+        .add(&S::jitterPhases, {.name = "jitter_phases",
+                                .min = 1,
+                                .max = 256,
+                                .doc = "length of the Halton (2,3) jitter cycle"})
+        .add(&S::motionAlpha, {.name = "motion_alpha",
+                               .min = 0.01,
+                               .max = 1,
+                               .doc = "weight of the current frame for pixels moving "
+                                      "motion_pixels or more per frame"})
+        .add(&S::motionPixels,
+             {.name = "motion_pixels",
+              .min = 0.1,
+              .max = 1000,
+              .doc = "speed (pixels per frame) at which the weight reaches motion_alpha"})
+        .add(&S::clamp, {.name = "clamp", .doc = "clamp history to the YCoCg neighbourhood box"})
+        .add(
+            &S::filter,
+            {.name = "filter", .doc = "history resampling", .choices = {"bilinear", "catmull_rom"}})
+        .add(&S::converge, {.name = "converge",
+                            .doc = "average the first frames after a reset equally (weight 1/n "
+                                   "until it falls to alpha)"});
+    return t;
+  }();
+  return table;
 }
 
 void TAAPass::request(FrameRequest& r) const {
   r.jitter = true;
-  r.jitterPhases = int(param("jitter_phases"));
+  r.jitterPhases = settings().jitterPhases;
 }
 
 void TAAPass::execute(FrameContext& ctx) {
@@ -69,11 +71,12 @@ void TAAPass::execute(FrameContext& ctx) {
     return;
   }
   ++framesAveraged_;
-  const float converging = param("converge") != 0 ? 1.0f / float(framesAveraged_) : 0.0f;
-  const float alpha = std::max(float(param("alpha")), converging);
-  const float motionAlpha = std::max(float(param("motion_alpha")), converging);
-  const float invMotionPixels = 1.0f / float(param("motion_pixels"));
-  const bool clampHistory = param("clamp") != 0, catmullRom = param("filter") == 1;
+  const TAASettings& s = settings();
+  const float converging = s.converge ? 1.0f / float(framesAveraged_) : 0.0f;
+  const float alpha = std::max(s.alpha, converging);
+  const float motionAlpha = std::max(s.motionAlpha, converging);
+  const float invMotionPixels = 1.0f / s.motionPixels;
+  const bool clampHistory = s.clamp, catmullRom = s.filter == TAASettings::Filter::CatmullRom;
   constexpr int kTile = 32, kPad = kTile + 2;
   // One tile of at most kTile x kTile pixels (the scheduler may hand out larger ranges).
   auto tile = [&](const View& v, int x0, int y0, int x1, int y1) {

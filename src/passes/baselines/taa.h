@@ -10,11 +10,22 @@
 // not dominated by its first aliased frame. Inputs: hdr (jittered colour), motion; history input:
 // taa (last frame's result). Output: taa.
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class TAAPass : public Pass {
+struct TAASettings {
+  enum class Filter { Bilinear, CatmullRom };
+  float alpha = 0.1f;
+  int jitterPhases = 8;
+  float motionAlpha = 0.2f;
+  float motionPixels = 8;
+  bool clamp = true;
+  Filter filter = Filter::CatmullRom;
+  bool converge = false;
+};
+
+class TAAPass : public SettingsPass<TAASettings> {
  public:
   std::string type() const override { return "taa"; }
   std::string description() const override {
@@ -22,10 +33,12 @@ class TAAPass : public Pass {
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"taa", 3}}; }
-  std::vector<ParamDesc> params() const override;
   void request(FrameRequest& r) const override;
   void execute(FrameContext& ctx) override;
   void resetHistory() override { framesAveraged_ = 0; }
+
+ protected:
+  const ParamTable<TAASettings>& tableFor() const override;
 
  private:
   int framesAveraged_ = 0;  // frames in the history since it was last reset
