@@ -8,6 +8,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "core/error.h"
@@ -154,10 +155,13 @@ class PyRenderer {
       py::gil_scoped_release release;
       for (int i = 0; i < frames; ++i) last_ = renderer_->renderFrame(frame_++, camera_);
     }
-    const auto& buffers = renderer_->context().buffers;
+    // Records (typed values passes hand each other) have no pixels to return.
+    std::map<std::string, const Buffer*> buffers;
+    for (const auto& [name, buffer] : renderer_->context().buffers)
+      if (buffer.kind != BufferKind::Record) buffers[name] = &buffer;
     py::dict out;
     if (names.empty())
-      for (const auto& [name, buffer] : buffers) out[name.c_str()] = toArray(buffer);
+      for (const auto& [name, buffer] : buffers) out[name.c_str()] = toArray(*buffer);
     for (const std::string& n : names) {
       auto it = buffers.find(n);
       if (it == buffers.end()) {
@@ -165,7 +169,7 @@ class PyRenderer {
         for (const auto& [name, b] : buffers) list += (list.empty() ? "" : ", ") + name;
         throw InputError("render", "buffers", "no buffer '" + n + "' (has: " + list + ")");
       }
-      out[n.c_str()] = toArray(it->second);
+      out[n.c_str()] = toArray(*it->second);
     }
     return out;
   }

@@ -30,6 +30,8 @@ const char* kindName(BufferKind k) {
       return "material";
     case BufferKind::List:
       return "list";
+    case BufferKind::Record:
+      return "record";
   }
   return "?";
 }

@@ -4,8 +4,10 @@
 // the AOV writer and the viewer show it correctly without knowing its name.
 #pragma once
 #include <algorithm>
+#include <any>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -27,6 +29,7 @@ enum class BufferKind {
   Variance,  // variance of a mean (shown as standard error)
   Material,  // material terms in [0,1] (albedo, specular, optical)
   List,      // records, not pixels: an N x 1 list (per object, per sample)
+  Record,    // a typed value, not pixels: a struct one pass hands another (Buffer::record)
 };
 const char* kindName(BufferKind k);
 
@@ -64,7 +67,8 @@ struct Extent {
 
 // A pass's buffer slot: its name (fixed by the pass), channel count, kind, extent, and whether it
 // reads last frame's value of the buffer (a history input: valid unless the history was reset) or
-// may be missing (an optional input).
+// may be missing (an optional input). A Record slot names the type it carries instead of
+// channels and an extent.
 struct BufferSlot {
   std::string slot;
   int channels = 1;
@@ -72,12 +76,23 @@ struct BufferSlot {
   Extent extent = Extent::frame();
   bool history = false;
   bool optional = false;
+  std::string recordType{};  // Record: the struct's name (a pipeline checks writer and reader)
 };
+
+// A slot carrying a typed value of the struct named `type` (FrameContext::outputRecord).
+inline BufferSlot recordSlot(std::string slot, std::string type) {
+  return {.slot = std::move(slot),
+          .channels = 0,
+          .kind = BufferKind::Record,
+          .extent = Extent::any(),
+          .recordType = std::move(type)};
+}
 
 struct Buffer {
   int width = 0, height = 0, channels = 0;
   BufferKind kind = BufferKind::Color;
   std::vector<float> data;
+  std::any record;  // Record: the value (no pixels)
 
   Buffer() = default;
   Buffer(int w, int h, int c, float fill = 0.0f, BufferKind k = BufferKind::Color)

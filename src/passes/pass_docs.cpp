@@ -88,13 +88,16 @@ void slots(std::ostringstream& o, const Pass& p) {
   const std::vector<BufferSlot> in = p.inputs(), out = p.outputs();
   if (in.empty() && out.empty()) return;
   o << "| buffer | | channels | kind | extent |\n| --- | --- | ---: | --- | --- |\n";
+  // Channels, kind and extent; a record has no pixels, only the type it carries.
+  auto shape = [](const BufferSlot& s) {
+    if (s.kind == BufferKind::Record) return " | | record `" + s.recordType + "` | |\n";
+    return " | " + std::to_string(s.channels) + " | " + kindName(s.kind) + " | " + s.extent.name() +
+           " |\n";
+  };
   for (const BufferSlot& s : in)
     o << "| `" << s.slot << "` | reads" << (s.history ? ", last frame's" : "")
-      << (s.optional ? ", optional" : "") << " | " << s.channels << " | " << kindName(s.kind)
-      << " | " << s.extent.name() << " |\n";
-  for (const BufferSlot& s : out)
-    o << "| `" << s.slot << "` | writes | " << s.channels << " | " << kindName(s.kind) << " | "
-      << s.extent.name() << " |\n";
+      << (s.optional ? ", optional" : "") << shape(s);
+  for (const BufferSlot& s : out) o << "| `" << s.slot << "` | writes" << shape(s);
   o << "\n";
 }
 

@@ -2,6 +2,7 @@
 // the ray tracer, named buffers (with last frame's values of declared history inputs), and what
 // passes report (timings, rays, counters). State private to a pass lives in the pass.
 #pragma once
+#include <any>
 #include <map>
 #include <memory>
 #include <set>
@@ -77,11 +78,38 @@ struct FrameContext {
   const Buffer* previous(const Pass& pass, const std::string& slot) const;
   // An optional input: null when no pass produced it this frame.
   const Buffer* optionalInput(const Pass& pass, const std::string& slot) const;
+  // A Record output: the typed value `pass` hands on through `slot`, new (value-initialised)
+  // each frame.
+  template <class T>
+  T& outputRecord(const Pass& pass, const std::string& slot) {
+    Buffer& b = output(pass, slot);
+    b.record = T{};
+    return std::any_cast<T&>(b.record);
+  }
+  // This frame's record on an input slot; null when an optional input is missing or its
+  // producer was disabled.
+  template <class T>
+  const T* inputRecord(const Pass& pass, const std::string& slot) const {
+    const Buffer* b = optionalInput(pass, slot);
+    return b ? recordOf<T>(*b) : nullptr;
+  }
+  // Last frame's record on a history input slot; null after a reset or before it exists.
+  template <class T>
+  const T* previousRecord(const Pass& pass, const std::string& slot) const {
+    const Buffer* b = previous(pass, slot);
+    return b ? recordOf<T>(*b) : nullptr;
+  }
   // By buffer name (tests, AOV writing, the viewer).
   const Buffer& input(const std::string& name) const;
   bool has(const std::string& name) const { return buffers.count(name) != 0; }
 
  private:
+  template <class T>
+  static const T* recordOf(const Buffer& b) {
+    const T* r = std::any_cast<T>(&b.record);
+    TANDEM_ASSERT(r || !b.record.has_value());  // the pipeline checked the record's type
+    return r;
+  }
   std::unique_ptr<RayTracer> rt_;
   std::map<int, std::unique_ptr<ShadowMaps>> shadowMaps_;
 };

@@ -1,8 +1,11 @@
 // Typed pass settings: a pass keeps its parameters in a struct S whose members carry the
 // defaults, and binds each member once to its ParamDesc. The pass then reads `settings().member`
 // (no string lookup per frame; a misspelt member does not compile), while the pipeline, `--set`,
-// the viewer and docs/passes.md still see the ParamDesc list.
+// the viewer and docs/passes.md still see the ParamDesc list. Settings several passes share (the
+// Whitted parameters) are a struct of their own with its own table, nested into each pass's.
 #pragma once
+#include <charconv>
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <type_traits>
@@ -29,11 +32,6 @@ class ParamTable {
       d.type = ParamType::Int;
     else
       d.type = ParamType::Float;
-    const S defaults{};
-    if constexpr (std::is_enum_v<T>)
-      d.defaultValue = double(int(defaults.*member));
-    else
-      d.defaultValue = double(defaults.*member);
     if (d.type == ParamType::Enum) {
       d.min = 0;
       d.max = double(d.choices.size()) - 1;
@@ -41,22 +39,39 @@ class ParamTable {
       d.min = 0;
       d.max = 1;
     }
+    Binding b{[member](S& s, double v) {
+                if constexpr (std::is_enum_v<T>)
+                  s.*member = T(int(v));
+                else if constexpr (std::is_same_v<T, bool>)
+                  s.*member = v != 0;
+                else
+                  s.*member = T(v);
+              },
+              [member](const S& s) {
+                if constexpr (std::is_enum_v<T>)
+                  return double(int(s.*member));
+                else if constexpr (std::is_same_v<T, float>)
+                  return shortestDouble(s.*member);
+                else
+                  return double(s.*member);
+              }};
+    d.defaultValue = b.get(S{});
     descs_.push_back(std::move(d));
-    assign_.push_back([member](S& s, double v) {
-      if constexpr (std::is_enum_v<T>)
-        s.*member = T(int(v));
-      else if constexpr (std::is_same_v<T, bool>)
-        s.*member = v != 0;
-      else
-        s.*member = T(v);
-    });
+    bindings_.push_back(std::move(b));
     return *this;
   }
-  // Parameters declared elsewhere (shared by several passes) and read by their own code.
-  ParamTable& append(const std::vector<ParamDesc>& more) {
-    for (const ParamDesc& d : more) {
-      descs_.push_back(d);
-      assign_.push_back([](S&, double) {});
+  // Binds every parameter of a nested settings struct under its own names; the defaults are
+  // those of `member`'s initialiser here (a pass may default a shared setting differently).
+  template <class N>
+  ParamTable& nest(N S::*member, const ParamTable<N>& inner) {
+    const S defaults{};
+    for (size_t i = 0; i < inner.descs_.size(); ++i) {
+      ParamDesc d = inner.descs_[i];
+      const auto& in = inner.bindings_[i];
+      d.defaultValue = in.get(defaults.*member);
+      descs_.push_back(std::move(d));
+      bindings_.push_back({[member, set = in.set](S& s, double v) { set(s.*member, v); },
+                           [member, get = in.get](const S& s) { return get(s.*member); }});
     }
     return *this;
   }
@@ -65,15 +80,29 @@ class ParamTable {
   // Writes parameter `name` (already validated by Pass::setParam) into s.
   void assign(S& s, const std::string& name, double value) const {
     for (size_t i = 0; i < descs_.size(); ++i)
-      if (descs_[i].name == name) assign_[i](s, value);
+      if (descs_[i].name == name) bindings_[i].set(s, value);
   }
 
  private:
+  template <class>
+  friend class ParamTable;
+  // A float member's value as the double its shortest decimal reads as (0.01f shows and compares
+  // as 0.01, and converts back to the same float).
+  static double shortestDouble(float f) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof(text) - 1, f).ptr;
+    *end = '\0';
+    return std::strtod(text, nullptr);
+  }
+  struct Binding {
+    std::function<void(S&, double)> set;
+    std::function<double(const S&)> get;
+  };
   std::vector<ParamDesc> descs_;
-  std::vector<std::function<void(S&, double)>> assign_;
+  std::vector<Binding> bindings_;
 };
 
-// A pass whose parameters are the settings struct S, bound by the static table `table()`.
+// A pass whose parameters are the settings struct S, bound by the static table `tableFor()`.
 template <class S>
 class SettingsPass : public Pass {
  public:

@@ -172,6 +172,10 @@ void Pipeline::validate(const std::string& source) const {
         throw InputError(
             source, where,
             "input '" + buf + "' is " + kindName(out.kind) + ", expected " + kindName(in.kind));
+      if (out.recordType != in.recordType)
+        throw InputError(
+            source, where,
+            "input '" + buf + "' carries " + out.recordType + ", expected " + in.recordType);
       if (in.extent.scale != Extent::Scale::Any && !(out.extent == in.extent))
         throw InputError(source, where,
                          "input '" + buf + "' has extent " + out.extent.name() + ", expected " +
@@ -216,17 +220,22 @@ std::vector<std::string> Pipeline::producedBuffers() const {
   for (const auto& p : passes)
     for (const BufferSlot& out : p->outputs()) {
       const std::string& n = p->bufferName(out.slot);
-      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+      if (out.kind != BufferKind::Record && std::find(names.begin(), names.end(), n) == names.end())
+        names.push_back(n);
     }
   return names;
 }
 
 namespace {
 // A disabled pass: each output takes the first (this frame's) input with the same channel count
-// and extent (tonemap off shows the raw HDR), or zeros.
+// and extent (tonemap off shows the raw HDR), or zeros; a record output is empty.
 void bypass(const Pass& p, FrameContext& ctx) {
   const std::vector<BufferSlot> ins = p.inputs();
   for (const BufferSlot& o : p.outputs()) {
+    if (o.kind == BufferKind::Record) {
+      ctx.output(p, o.slot).record.reset();
+      continue;
+    }
     auto same = std::find_if(ins.begin(), ins.end(), [&](const BufferSlot& i) {
       return !i.history && i.channels == o.channels && ctx.has(p.bufferName(i.slot));
     });

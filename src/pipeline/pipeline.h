@@ -45,7 +45,8 @@ class Pipeline {
   // Every pass forgets its own history (the frame context's history buffers are cleared too
   // when execute() sees ctx.historyReset).
   void resetHistory();
-  // Buffer names produced by the passes, in order (for --aov listings and the viewer).
+  // Buffer names produced by the passes, in order (for --aov listings and the viewer); records,
+  // which have no pixels, are not listed.
   std::vector<std::string> producedBuffers() const;
 
   // Sets a parameter from "label.param=value" (value as JSON, or a bare enum choice) on every

@@ -9,6 +9,7 @@ namespace tandem {
 namespace {
 
 std::string slotText(const BufferSlot& s) {
+  if (s.kind == BufferKind::Record) return "record " + s.recordType;
   std::ostringstream t;
   t << s.channels << " " << kindName(s.kind);
   if (!(s.extent == Extent::frame())) t << ", " << s.extent.name();

@@ -12,6 +12,7 @@
 #include "eval/metrics/metrics.h"
 #include "eval/reference/reference_cache.h"
 #include "pipeline/aov.h"
+#include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
@@ -88,11 +89,58 @@ DofExperimentOptions dofOptionsFromJson(const nlohmann::json& j, const std::stri
 namespace {
 
 struct StaticRun {
-  Buffer image;                      // the displayed image after warm-up and the timed frames
-  std::map<std::string, double> ms;  // median per pass
+  Buffer image;                           // the displayed image after warm-up and the timed frames
+  std::map<std::string, double> groupMs;  // median per Table 2 pass group (table2Group)
+  double rtDofMs = 0;                     // median of the lens-ray pass (0 without one)
   double frameMs = 0;
   double raysPerPixel = 0, maskedShare = 0;
 };
+
+// Table 2's pass groups in its row order.
+const std::vector<std::string>& table2Groups() {
+  static const std::vector<std::string> g = {"sharp image (raster, RT shadows/reflections, TAA)",
+                                             "post-process",
+                                             "G-buffer & σ² blur (ray mask)",
+                                             "ray trace",
+                                             "accumulation",
+                                             "median + reconstruction",
+                                             "composite",
+                                             "final TAA"};
+  return g;
+}
+
+// The Table 2 group of a pass of `type` (empty: counted under "others"); a TAA pass is the sharp
+// image's before the DoF composite and the final one after it.
+std::string table2Group(const std::string& type, bool afterComposite) {
+  static const std::map<std::string, size_t> byType = {{"raster_gbuffer", 0},
+                                                       {"deferred_shading", 0},
+                                                       {"heuristic", 0},
+                                                       {"rt_secondary", 0},
+                                                       {"blend", 0},
+                                                       {"dof_coc", 1},
+                                                       {"postfx_dof", 1},
+                                                       {"ray_mask", 2},
+                                                       {"rt_dof", 3},
+                                                       {"dof_accumulation", 4},
+                                                       {"dof_reconstruction", 5},
+                                                       {"dof_composite", 6}};
+  if (type == "taa") return table2Groups()[afterComposite ? 7 : 0];
+  auto it = byType.find(type);
+  return it == byType.end() ? std::string() : table2Groups()[it->second];
+}
+
+// Each group's ms, the pipeline's passes found by type (timing rows: medians by label).
+std::map<std::string, double> groupTimes(const Pipeline& p, const PassTimes& times) {
+  std::map<std::string, double> groups;
+  bool afterComposite = false;
+  for (size_t i = 0; i < p.passes.size(); ++i) {
+    const std::string& type = p.passes[i]->type();
+    const std::string g = table2Group(type, afterComposite);
+    if (!g.empty()) groups[g] += times.ofPass(i);
+    afterComposite |= type == "dof_composite";
+  }
+  return groups;
+}
 
 StaticRun renderStatic(const Scene& scene, const std::string& pipeline,
                        const std::vector<std::string>& sets, int w, int h, int warmup, int frames) {
@@ -110,7 +158,11 @@ StaticRun renderStatic(const Scene& scene, const std::string& pipeline,
   }
   StaticRun run;
   run.image = r.output();
-  for (auto& [name, v] : ms) run.ms[name] = summarize(v).median;
+  std::map<std::string, double> medians;
+  for (auto& [name, v] : ms) medians[name] = summarize(v).median;
+  const PassTimes times(r.pipeline(), std::move(medians));
+  run.groupMs = groupTimes(r.pipeline(), times);
+  if (times.has("rt_dof")) run.rtDofMs = times.ofType("rt_dof");
   run.frameMs = summarize(total).median;
   const auto& c = r.context().counters;
   if (c.count("ray_mask/rays_per_pixel")) run.raysPerPixel = c.at("ray_mask/rays_per_pixel");
@@ -129,21 +181,6 @@ Buffer referenceFor(const Scene& scene, const CameraDesc& cam, int w, int h, int
   job.settings.integrator = integrator;
   job.settings.progress = true;
   return visualizeBuffer(referenceImage(job, cache).hdr);
-}
-
-// Pass groups of Table 2 (pass labels of the built-in pipelines; sub-parts "a/b" are skipped).
-const std::vector<std::pair<std::string, std::vector<std::string>>>& passGroups() {
-  static const std::vector<std::pair<std::string, std::vector<std::string>>> g = {
-      {"sharp image (raster, RT shadows/reflections, TAA)",
-       {"raster_gbuffer", "deferred_shading", "heuristic", "rt_secondary", "blend", "taa_raster"}},
-      {"post-process", {"dof_coc", "postfx_dof"}},
-      {"G-buffer & σ² blur (ray mask)", {"ray_mask"}},
-      {"ray trace", {"rt_dof"}},
-      {"accumulation", {"dof_accumulation"}},
-      {"median + reconstruction", {"dof_reconstruction"}},
-      {"composite", {"dof_composite"}},
-      {"final TAA", {"taa_final"}}};
-  return g;
 }
 
 std::vector<std::string> setM(int m) {
@@ -170,12 +207,11 @@ void table2(const DofExperimentOptions& o, const std::vector<Scene>& scenes,
     }
   }
   std::vector<double> grouped(runs.size(), 0.0), ours(runs.size(), 0.0);
-  for (const auto& [group, names] : passGroups()) {
+  for (const std::string& group : table2Groups()) {
     std::vector<std::string> row{group};
     for (size_t i = 0; i < runs.size(); ++i) {
-      double v = 0;
-      for (const std::string& n : names)
-        if (runs[i].ms.count(n)) v += runs[i].ms.at(n);
+      const auto it = runs[i].groupMs.find(group);
+      const double v = it == runs[i].groupMs.end() ? 0.0 : it->second;
       grouped[i] += v;
       if (group != "post-process" && group.rfind("sharp", 0) != 0 && group != "final TAA")
         ours[i] += v;
@@ -256,10 +292,9 @@ Figure7 figure7(const DofExperimentOptions& o, const Scene& fig, const std::stri
     const double hs = ssim(h.image, ref), rs = ssim(r.image, ref), fss = ssim(f.image, ref);
     const double hf = flip(ref, h.image), rf = flip(ref, r.image);
     sweepRows.push_back({std::to_string(m), fmt(hs, 4), fmt(hf, 4), fmt(rmse(h.image, ref), 4),
-                         fmt(h.frameMs, 1), fmt(h.ms.count("rt_dof") ? h.ms.at("rt_dof") : 0, 1),
-                         fmt(rs, 4), fmt(rf, 4), fmt(rmse(r.image, ref), 4), fmt(r.frameMs, 1),
-                         fmt(postfxSsim, 4), fmt(postfxFlip, 4), fmt(postfxRmse, 4), fmt(fss, 4),
-                         fmt(f.frameMs, 1)});
+                         fmt(h.frameMs, 1), fmt(h.rtDofMs, 1), fmt(rs, 4), fmt(rf, 4),
+                         fmt(rmse(r.image, ref), 4), fmt(r.frameMs, 1), fmt(postfxSsim, 4),
+                         fmt(postfxFlip, 4), fmt(postfxRmse, 4), fmt(fss, 4), fmt(f.frameMs, 1)});
     const double x = m;
     sF.x.push_back(x), sF.y.push_back(fss), tF.x.push_back(x), tF.y.push_back(f.frameMs);
     fullPoints.push_back({m, fss, f.frameMs});
@@ -268,7 +303,7 @@ Figure7 figure7(const DofExperimentOptions& o, const Scene& fig, const std::stri
     fH.x.push_back(x), fH.y.push_back(hf), fR.x.push_back(x), fR.y.push_back(rf);
     fP.x.push_back(x), fP.y.push_back(postfxFlip);
     tH.x.push_back(x), tH.y.push_back(h.frameMs), tR.x.push_back(x), tR.y.push_back(r.frameMs);
-    tT.x.push_back(x), tT.y.push_back(h.ms.count("rt_dof") ? h.ms.at("rt_dof") : 0);
+    tT.x.push_back(x), tT.y.push_back(h.rtDofMs);
     rtPoints.push_back({m, rs, r.frameMs});
     hybridPoints.push_back({m, hs, h.frameMs});
     if (m == 10 || hybridSsim10 < 0) {

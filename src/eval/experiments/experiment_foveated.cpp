@@ -12,6 +12,7 @@
 #include "eval/reference/reference_cache.h"
 #include "passes/foveated/foveation_map.h"
 #include "pipeline/aov.h"
+#include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
@@ -246,10 +247,9 @@ std::vector<double> table4(const FoveatedExperimentOptions& o, const std::vector
           const FrameTimings ft = rd.renderFrame(f, cam);
           if (f < o.warmup) continue;
           ms.push_back(ft.totalMs);
-          for (const PassTiming& t : ft.passes) {
-            if (t.name == "foveated_pt") pt.push_back(t.ms);
-            if (t.name == "nh_denoise") dn.push_back(t.ms);
-          }
+          const PassTimes times(rd.pipeline(), ft);
+          if (times.has("foveated_pt")) pt.push_back(times.ofType("foveated_pt"));
+          if (times.has("nh_denoise")) dn.push_back(times.ofType("nh_denoise"));
         }
         const double mean = summarize(ms).mean;
         configMs[size_t(c)] = mean;

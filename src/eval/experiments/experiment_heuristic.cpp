@@ -7,12 +7,14 @@
 #include <memory>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/json_fields.h"
 #include "eval/experiments/experiment_report.h"
 #include "eval/metrics/metrics.h"
+#include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
@@ -85,15 +87,9 @@ struct Run {
   }
 };
 
-double passMs(const FrameTimings& ft, const std::string& name) {
-  for (const PassTiming& p : ft.passes)
-    if (p.name == name) return p.ms;
-  return 0;
-}
-
 // Median per pass and of the frame over the timed frames of a static shot.
 struct StaticResult {
-  std::map<std::string, double> ms;  // pass -> median
+  std::map<std::string, double> ms;  // pass type -> median (found through the pipeline)
   double frame = 0;
   size_t selected = 0, visible = 0;
   Buffer image, mask;
@@ -109,7 +105,9 @@ StaticResult runStatic(Run& run, const CameraDesc& cam, const HeuristicExperimen
     frames.push_back(ft.totalMs);
   }
   StaticResult r;
-  for (auto& [name, v] : samples) r.ms[name] = summarize(v).median;
+  std::map<std::string, double> medians;
+  for (auto& [name, v] : samples) medians[name] = summarize(v).median;
+  r.ms = PassTimes(run.renderer->pipeline(), std::move(medians)).byType();
   r.frame = summarize(frames).median;
   r.image = run.renderer->output();
   if (run.heuristic) {
@@ -211,7 +209,7 @@ void cameraPath(const Scene& scene, const CameraDesc& cam, const HeuristicExperi
     allMs.push_back(all.renderer->renderFrame(f, c).totalMs);
     FrameTimings bt = budget.renderer->renderFrame(f, c);
     budgetFrameMs.push_back(bt.totalMs);
-    double rtMs = passMs(bt, "rt_secondary");
+    double rtMs = PassTimes(budget.renderer->pipeline(), bt).ofType("rt_secondary");
     res.budgetRtMs.push_back(rtMs);
     bool within = std::abs(rtMs - o.budgetMs) <= o.tolerance * o.budgetMs;
     // The budget binds when something visible was left out (not selected, or cut by the

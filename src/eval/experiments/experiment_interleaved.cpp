@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <utility>
 
 #include "core/image_io.h"
 #include "core/json_fields.h"
@@ -12,6 +13,7 @@
 #include "eval/metrics/metrics.h"
 #include "eval/reference/reference_cache.h"
 #include "pipeline/aov.h"
+#include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "raster/sample_tiles.h"
 #include "scene/loaders.h"
@@ -101,7 +103,7 @@ Shot shotOf(const std::string& spec, const std::string& label, float shutter) {
 struct RenderResult {
   Buffer hdr;
   double frameMs = 0;
-  std::map<std::string, double> partMs;  // median ms per pass / part name
+  std::map<std::string, double> partMs;  // median ms per pass type and "type/part"
   std::map<std::string, double> counters;
 };
 
@@ -128,7 +130,9 @@ RenderResult renderShot(const Shot& shot, const std::string& pipeline,
   RenderResult out;
   out.hdr = r.context().input("hdr");
   out.frameMs = summarize(total).median;
-  for (auto& [name, v] : parts) out.partMs[name] = summarize(v).median;
+  std::map<std::string, double> medians;
+  for (auto& [name, v] : parts) medians[name] = summarize(v).median;
+  out.partMs = PassTimes(r.pipeline(), std::move(medians)).byType();
   out.counters = r.context().counters;
   return out;
 }

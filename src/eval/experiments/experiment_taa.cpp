@@ -11,6 +11,7 @@
 #include "eval/metrics/metrics.h"
 #include "eval/reference/supersample.h"
 #include "pipeline/aov.h"
+#include "pipeline/pass_times.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
 
@@ -109,8 +110,7 @@ void staticShot(const TaaExperimentOptions& o, const Scene& scene, const std::st
       jitChange += meanAbsDiff(b, lastJit);
       ++measured;
       taaFrameMs.push_back(ft.totalMs);
-      for (const PassTiming& p : ft.passes)
-        if (p.name == "taa") taaMs.push_back(p.ms);
+      taaMs.push_back(PassTimes(taa.pipeline(), ft).ofType("taa"));
       baseFrameMs.push_back(base.renderFrame(0, cam).totalMs);
     }
     lastTaa = a;

@@ -16,34 +16,39 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> AccumulationPass::params() const {
-  return {{"samples", ParamType::Int, 64, 1, 4096, "rasterized images averaged", {}, true},
-          {"mode",
-           ParamType::Enum,
-           2,
-           0,
-           2,
-           "what the samples vary",
-           {"dof", "motion_blur", "both"},
-           true},
-          {"antialias", ParamType::Bool, 1, 0, 1, "jitter each image within the pixel", {}},
-          {"shading",
-           ParamType::Enum,
-           1,
-           0,
-           1,
-           "whitted: ray-traced shadows, mirrors, glass (as interleaved_*); local: Blinn-Phong "
-           "without shadows",
-           {"whitted", "local"},
-           true}};
+const ParamTable<AccumulationSettings>& AccumulationPass::tableFor() const {
+  using S = AccumulationSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::samples, {.name = "samples",
+                        .min = 1,
+                        .max = 4096,
+                        .doc = "rasterized images averaged",
+                        .invalidatesHistory = true})
+        .add(&S::mode, {.name = "mode",
+                        .doc = "what the samples vary",
+                        .choices = {"dof", "motion_blur", "both"},
+                        .invalidatesHistory = true})
+        .add(&S::antialias, {.name = "antialias", .doc = "jitter each image within the pixel"})
+        .add(&S::shading,
+             {.name = "shading",
+              .doc = "whitted: ray-traced shadows, mirrors, glass (as interleaved_*); local: "
+                     "Blinn-Phong without shadows",
+              .choices = {"whitted", "local"},
+              .invalidatesHistory = true});
+    return t;
+  }();
+  return table;
 }
 
 void AccumulationPass::execute(FrameContext& ctx) {
-  const int n = int(param("samples")), mode = int(param("mode"));
-  const bool lens = mode != 1, time = mode != 0, aa = param("antialias") != 0;
+  const AccumulationSettings& s = settings();
+  const int n = s.samples;
+  const bool lens = s.mode != AccumulationSettings::Mode::MotionBlur,
+             time = s.mode != AccumulationSettings::Mode::Dof, aa = s.antialias;
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
-  RayTracer* rt = param("shading") == 0 ? &ctx.rayTracer() : nullptr;
+  RayTracer* rt = s.shading == AccumulationSettings::Shading::Whitted ? &ctx.rayTracer() : nullptr;
   const uint64_t raysBefore = rt ? rt->raysTraced() : 0;
   const std::vector<TimeLensPair> pairs = stratifiedTimeLensPairs(n, ctx.seed);
   Buffer& hdr = ctx.output(*this, "hdr");

@@ -12,13 +12,22 @@
 #pragma once
 #include <vector>
 
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 #include "raster/rasterizer.h"
 #include "raster/sample_tiles.h"
 
 namespace tandem {
 
-class AccumulationPass : public Pass {
+struct AccumulationSettings {
+  enum class Mode { Dof, MotionBlur, Both };
+  enum class Shading { Whitted, Local };
+  int samples = 64;
+  Mode mode = Mode::Both;
+  bool antialias = true;
+  Shading shading = Shading::Local;
+};
+
+class AccumulationPass : public SettingsPass<AccumulationSettings> {
  public:
   std::string type() const override { return "accumulation"; }
   std::string description() const override {
@@ -26,8 +35,10 @@ class AccumulationPass : public Pass {
            "baseline)";
   }
   std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<AccumulationSettings>& tableFor() const override;
 
  private:
   Rasterizer rasterizer_;

@@ -5,76 +5,70 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> PTReferencePass::params() const {
-  return {{"spp", ParamType::Int, 1024, 1, 1 << 20, "target samples per pixel", {}},
-          {"time_limit",
-           ParamType::Float,
-           0,
-           0,
-           1e7,
-           "seconds; > 0 stops at the last batch that fits",
-           {}},
-          {"max_depth",
-           ParamType::Int,
-           16,
-           1,
-           1024,
-           "maximum path length in bounces",
-           {},
-           /*invalidatesHistory=*/true},
-          {"progress", ParamType::Bool, 1, 0, 1, "progress bar on a terminal's stderr", {}},
-          {"accumulate",
-           ParamType::Bool,
-           0,
-           0,
-           1,
-           "keep converging over frames while nothing changes (viewer)",
-           {}},
-          {"frame_spp", ParamType::Int, 4, 1, 1024, "accumulate: samples added per frame", {}},
-          {"integrator",
-           ParamType::Enum,
-           0,
-           0,
-           2,
-           "path: path tracing (global illumination); whitted: distributed ray tracing of the "
-           "hybrids' shading (shadows, mirrors, glass; the same light transport as rt-only); "
-           "diffuse-gi: the foveated pipelines' path tracer, converged",
-           {"path", "whitted", "diffuse-gi"},
-           /*invalidatesHistory=*/true},
-          {"whitted_depth",
-           ParamType::Int,
-           10,
-           1,
-           64,
-           "whitted: recursion depth of secondary rays (rt_whitted's max_depth)",
-           {},
-           /*invalidatesHistory=*/true}};
+const ParamTable<PTReferenceSettings>& PTReferencePass::tableFor() const {
+  using S = PTReferenceSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::spp, {.name = "spp", .min = 1, .max = 1 << 20, .doc = "target samples per pixel"})
+        .add(&S::timeLimit, {.name = "time_limit",
+                             .min = 0,
+                             .max = 1e7,
+                             .doc = "seconds; > 0 stops at the last batch that fits"})
+        .add(&S::maxDepth, {.name = "max_depth",
+                            .min = 1,
+                            .max = 1024,
+                            .doc = "maximum path length in bounces",
+                            .invalidatesHistory = true})
+        .add(&S::progress, {.name = "progress", .doc = "progress bar on a terminal's stderr"})
+        .add(&S::accumulate, {.name = "accumulate",
+                              .doc = "keep converging over frames while nothing changes (viewer)"})
+        .add(&S::frameSpp, {.name = "frame_spp",
+                            .min = 1,
+                            .max = 1024,
+                            .doc = "accumulate: samples added per frame"})
+        .add(&S::integrator,
+             {.name = "integrator",
+              .doc = "path: path tracing (global illumination); whitted: distributed ray tracing "
+                     "of the hybrids' shading (shadows, mirrors, glass; the same light transport "
+                     "as rt-only); diffuse-gi: the foveated pipelines' path tracer, converged",
+              .choices = {"path", "whitted", "diffuse-gi"},
+              .invalidatesHistory = true})
+        .add(&S::whittedDepth,
+             {.name = "whitted_depth",
+              .min = 1,
+              .max = 64,
+              .doc = "whitted: recursion depth of secondary rays (rt_whitted's max_depth)",
+              .invalidatesHistory = true});
+    return t;
+  }();
+  return table;
 }
 
 void PTReferencePass::execute(FrameContext& ctx) {
   const auto t0 = Clock::now();
   RayTracer& rt = ctx.rayTracer();  // (re)builds the BVH: reported apart from the sampling
   ctx.passParts.push_back({"bvh", msSince(t0), 0});
-  ReferenceSettings settings;
-  settings.spp = int(param("spp"));
-  settings.timeLimitS = param("time_limit");
-  settings.path.maxDepth = int(param("max_depth"));
-  settings.integrator = Integrator(int(param("integrator")));
-  settings.whitted.maxDepth = int(param("whitted_depth"));
-  settings.progress = param("progress") != 0;
-  settings.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);
+  const PTReferenceSettings& s = settings();
+  ReferenceSettings ref;
+  ref.spp = s.spp;
+  ref.timeLimitS = s.timeLimit;
+  ref.path.maxDepth = s.maxDepth;
+  ref.integrator = s.integrator;
+  ref.whitted.maxDepth = s.whittedDepth;
+  ref.progress = s.progress;
+  ref.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);
   SampleCluster single;
   SampleCluster& cluster = ctx.cluster ? *ctx.cluster : single;
-  const bool accumulate = param("accumulate") != 0;
+  const bool accumulate = s.accumulate;
   if (accumulate) {
     // Samples continue by index, so the frame number must not change the sequence.
-    settings.seed = ctx.seed * 0x9E3779B97F4A7C15ull;
+    ref.seed = ctx.seed * 0x9E3779B97F4A7C15ull;
     // History resets (scene, size, pipeline, lens, max_depth) clear sums_; a moved camera or
     // moved geometry starts over too (scene time matters only through moved geometry).
     if (ctx.anyCameraMoved() || ctx.frame.geometryVersion != geometryVersion_) sums_.clear();
     geometryVersion_ = ctx.frame.geometryVersion;
-    settings.timeLimitS = 0;
-    settings.progress = false;
+    ref.timeLimitS = 0;
+    ref.progress = false;
   } else {
     sums_.clear();
   }
@@ -87,9 +81,9 @@ void PTReferencePass::execute(FrameContext& ctx) {
     const View& v = ctx.views[i];
     SampleSums& sums = sums_[i];
     if (sums.width != v.width() || sums.height != v.height()) sums.reset(v.width(), v.height());
-    ReferenceSettings eye = settings;
+    ReferenceSettings eye = ref;
     eye.seed += uint64_t(i) * 0xD1B54A32D192ED03ull;  // eyes get independent samples
-    if (accumulate) eye.spp = std::min(settings.spp, sums.samples + int(param("frame_spp")));
+    if (accumulate) eye.spp = std::min(ref.spp, sums.samples + s.frameSpp);
     ReferenceResult r =
         renderReference(rt, *ctx.scene, v.camera, v.shutterCamera, eye, cluster, sums);
     spp = i == 0 ? r.spp : std::min(spp, r.spp);

@@ -8,12 +8,23 @@
 // the camera and geometry stay the same, up to `spp`, and starts over on a history reset (scene,
 // size, pipeline, lens, max_depth), a camera move or moved geometry. Stereo: one render per eye.
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 #include "rt/reference_render.h"
 
 namespace tandem {
 
-class PTReferencePass : public Pass {
+struct PTReferenceSettings {
+  int spp = 1024;
+  double timeLimit = 0;  // seconds
+  int maxDepth = 16;
+  bool progress = true;
+  bool accumulate = false;
+  int frameSpp = 4;
+  Integrator integrator = Integrator::Path;
+  int whittedDepth = 10;
+};
+
+class PTReferencePass : public SettingsPass<PTReferenceSettings> {
  public:
   std::string type() const override { return "pt_reference"; }
   std::string description() const override {
@@ -22,9 +33,11 @@ class PTReferencePass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"hdr", 3}, {"variance", 1, BufferKind::Variance}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
   void resetHistory() override { sums_.clear(); }
+
+ protected:
+  const ParamTable<PTReferenceSettings>& tableFor() const override;
 
  private:
   std::vector<SampleSums> sums_;  // per view, carried across frames in accumulate mode

@@ -8,8 +8,13 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> RTWhittedPass::params() const {
-  return whittedParams(ShadowMode::Rays);  // the all-rays baseline
+const ParamTable<RTWhittedSettings>& RTWhittedPass::tableFor() const {
+  static const ParamTable<RTWhittedSettings> table = [] {
+    ParamTable<RTWhittedSettings> t;
+    t.nest(&RTWhittedSettings::whitted, whittedTable());
+    return t;
+  }();
+  return table;
 }
 
 void RTWhittedPass::execute(FrameContext& ctx) {
@@ -17,9 +22,9 @@ void RTWhittedPass::execute(FrameContext& ctx) {
   const uint64_t before = rt.raysTraced();
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
-  Whitted whitted(rt, scene, shading, whittedSettings(*this));
+  Whitted whitted(rt, scene, shading, settings().whitted.settings());
   ShadowTally tally;
-  prepareShadows(ctx, *this, whitted, &tally);
+  prepareShadows(ctx, settings().whitted, whitted, &tally);
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& ids = ctx.output(*this, "object_id");
   for (const View& v : ctx.views) {

@@ -1,12 +1,16 @@
 // rt_whitted: Whitted ray tracing from the camera with the same effects for every pixel, no
 // rasterization and no heuristic (seed 002's "RAYT ONLY"); primary rays as rt_gbuffer traces them.
-// Output: hdr. Parameters: max_depth, importance_cutoff.
+// Output: hdr. Parameters: the Whitted settings, every shadow traced by default.
 #pragma once
-#include "pipeline/pass.h"
+#include "passes/common/whitted_settings.h"
 
 namespace tandem {
 
-class RTWhittedPass : public Pass {
+struct RTWhittedSettings {
+  WhittedParams whitted{.shadows = ShadowMode::Rays};  // the all-rays baseline
+};
+
+class RTWhittedPass : public SettingsPass<RTWhittedSettings> {
  public:
   std::string type() const override { return "rt_whitted"; }
   std::string description() const override {
@@ -15,8 +19,10 @@ class RTWhittedPass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"hdr", 3}, {"object_id", 1, BufferKind::Id}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<RTWhittedSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

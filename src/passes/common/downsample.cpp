@@ -5,11 +5,22 @@
 
 namespace tandem {
 
+const ParamTable<DownsampleSettings>& DownsamplePass::tableFor() const {
+  using S = DownsampleSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::filter,
+          {.name = "filter", .doc = "reduction filter", .choices = {"box", "bilinear"}});
+    return t;
+  }();
+  return table;
+}
+
 void DownsamplePass::execute(FrameContext& ctx) {
   const Buffer& hdr = ctx.input(*this, "hdr");
   Buffer& half = ctx.output(*this, "half");
   Buffer& quarter = ctx.output(*this, "quarter");
-  const bool box = param("filter") == 0;
+  const bool box = settings().filter == DownsampleSettings::Filter::Box;
   half.data = (box ? downsampleBox(hdr) : resizeBilinear(hdr, half.width, half.height)).data;
   quarter.data =
       (box ? downsampleBox(half) : resizeBilinear(hdr, quarter.width, quarter.height)).data;

@@ -2,11 +2,16 @@
 // input of reduced-extent passes (gather DoF at 1/2 resolution, mip-based blurs).
 // Input: hdr. Output: half (1/2 extent) or quarter (1/4 extent). Parameter: filter.
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class DownsamplePass : public Pass {
+struct DownsampleSettings {
+  enum class Filter { Box, Bilinear };
+  Filter filter = Filter::Box;
+};
+
+class DownsamplePass : public SettingsPass<DownsampleSettings> {
  public:
   std::string type() const override { return "downsample"; }
   std::string description() const override {
@@ -17,10 +22,10 @@ class DownsamplePass : public Pass {
     return {{"half", 3, BufferKind::Color, Extent::half()},
             {"quarter", 3, BufferKind::Color, Extent::quarter()}};
   }
-  std::vector<ParamDesc> params() const override {
-    return {{"filter", ParamType::Enum, 0, 0, 1, "reduction filter", {"box", "bilinear"}}};
-  }
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<DownsampleSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

@@ -6,16 +6,24 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> TonemapPass::params() const {
-  return {{"exposure", ParamType::Float, 0.0, -20.0, 20.0, "exposure in stops (scale 2^EV)", {}},
-          {"operator", ParamType::Enum, 2, 0, 2, "tone curve", {"clamp", "reinhard", "aces"}}};
+const ParamTable<TonemapSettings>& TonemapPass::tableFor() const {
+  using S = TonemapSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::exposure,
+          {.name = "exposure", .min = -20, .max = 20, .doc = "exposure in stops (scale 2^EV)"})
+        .add(&S::op,
+             {.name = "operator", .doc = "tone curve", .choices = {"clamp", "reinhard", "aces"}});
+    return t;
+  }();
+  return table;
 }
 
 void TonemapPass::execute(FrameContext& ctx) {
   const Buffer& hdr = ctx.input(*this, "hdr");
   Buffer& out = ctx.output(*this, "output");
-  const float ev = float(param("exposure"));
-  const auto op = ToneOperator(int(param("operator")));
+  const float ev = settings().exposure;
+  const auto op = settings().op;
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y) {
       const size_t i = (size_t(y) * size_t(ctx.width) + size_t(x0)) * 3;

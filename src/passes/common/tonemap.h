@@ -4,18 +4,25 @@
 // Input: hdr. Output: output. Parameters: exposure, operator.
 #pragma once
 #include "core/color.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class TonemapPass : public Pass {
+struct TonemapSettings {
+  float exposure = 0;
+  ToneOperator op = ToneOperator::Aces;
+};
+
+class TonemapPass : public SettingsPass<TonemapSettings> {
  public:
   std::string type() const override { return "tonemap"; }
   std::string description() const override { return "Exposure, tone curve and sRGB encoding"; }
   std::vector<BufferSlot> inputs() const override { return {{"hdr", 3}}; }
   std::vector<BufferSlot> outputs() const override { return {{"output", 3, BufferKind::Display}}; }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<TonemapSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

@@ -3,24 +3,34 @@
 // counters behind classified shadows.
 #pragma once
 #include <string>
-#include <vector>
 
 #include "pipeline/frame_context.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 #include "rt/whitted.h"
 
 namespace tandem {
 
-// `shadows`: the default of the shadow mode (classified for the hybrids; rt_whitted, the
-// all-rays baseline, traces every shadow).
-std::vector<ParamDesc> whittedParams(ShadowMode shadows = ShadowMode::Classified);
-WhittedSettings whittedSettings(const Pass& p);
+// Nested into each tracing pass's settings (ParamTable::nest). A pass's own initialiser may
+// change a default: rt_whitted, the all-rays baseline, defaults `shadows` to rays.
+struct WhittedParams {
+  enum class Attenuation { Textured, Base };
+  int maxDepth = 10;
+  float importanceCutoff = 0.01f;
+  Attenuation shadowAttenuation = Attenuation::Textured;
+  bool shadeAtMaxDepth = false;
+  ShadowMode shadows = ShadowMode::Classified;
+  float shadowCull = 0.004f;
+  int shadowMapSize = 1024;
+  WhittedSettings settings() const;
+};
+const ParamTable<WhittedParams>& whittedTable();
 
-// The frame's shadow maps when p's settings use them (drawn or brought up to date here; a pass
-// part "shadow_maps" times that), else null.
-const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& p);
-// Hands `w` those maps and the tally to count its shadow queries into.
-void prepareShadows(FrameContext& ctx, const Pass& p, Whitted& w, ShadowTally* tally);
+// The frame's shadow maps when `w` uses them (drawn or brought up to date here; a pass part
+// "shadow_maps" times that), else null.
+const ShadowMaps* shadowMapsFor(FrameContext& ctx, const WhittedParams& w);
+// Hands `whitted` those maps and the tally to count its shadow queries into.
+void prepareShadows(FrameContext& ctx, const WhittedParams& p, Whitted& whitted,
+                    ShadowTally* tally);
 
 // Counters of one pass's shadow queries ("<label>/shadow_rays_per_pixel", "/shadow_traced",
 // "/shadow_culled": shares of the light-surface pairs; pixels: the pass's shaded pixels).

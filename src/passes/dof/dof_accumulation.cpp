@@ -35,29 +35,31 @@ std::vector<BufferSlot> DofAccumulationPass::outputs() const {
           {"dof_variance", 1, BufferKind::Variance, Extent::any()}};
 }
 
-std::vector<ParamDesc> DofAccumulationPass::params() const {
-  return {{"history_weight",
-           ParamType::Float,
-           0.95,
-           0,
-           0.999,
-           "exponential moving average: weight of the history (the paper: 0.95)",
-           {}},
-          {"motion_pixels",
-           ParamType::Float,
-           0.25,
-           0,
-           1000,
-           "a pixel moving this many frame pixels uses this frame's hit ratio",
-           {}},
-          {"adaptive_alpha",
-           ParamType::Bool,
-           1,
-           0,
-           1,
-           "per-pixel blend factor from the temporal gradient (Schied 2018; beyond the paper)",
-           {}},
-          {"variance_blur", ParamType::Float, 1, 0, 16, "σ of the variance's Gaussian blur", {}}};
+const ParamTable<DofAccumulationSettings>& DofAccumulationPass::tableFor() const {
+  using S = DofAccumulationSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::historyWeight,
+          {.name = "history_weight",
+           .min = 0,
+           .max = 0.999,
+           .doc = "exponential moving average: weight of the history (the paper: 0.95)"})
+        .add(&S::motionPixels,
+             {.name = "motion_pixels",
+              .min = 0,
+              .max = 1000,
+              .doc = "a pixel moving this many frame pixels uses this frame's hit ratio"})
+        .add(&S::adaptiveAlpha,
+             {.name = "adaptive_alpha",
+              .doc = "per-pixel blend factor from the temporal gradient (Schied 2018; beyond the "
+                     "paper)"})
+        .add(&S::varianceBlur, {.name = "variance_blur",
+                                .min = 0,
+                                .max = 16,
+                                .doc = "σ of the variance's Gaussian blur"});
+    return t;
+  }();
+  return table;
 }
 
 namespace {
@@ -128,9 +130,9 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
   Buffer& color = ctx.output(*this, "rt_color", w, h);
   Buffer variance(w, h, 1, 0.0f, BufferKind::Variance);
   const float scale = float(ctx.width) / float(w);
-  const float minAlpha = 1.0f - float(param("history_weight"));
-  const float motionPx = float(param("motion_pixels"));
-  const bool adaptive = param("adaptive_alpha") != 0;
+  const float minAlpha = 1.0f - settings().historyWeight;
+  const float motionPx = settings().motionPixels;
+  const bool adaptive = settings().adaptiveAlpha;
 
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
@@ -222,7 +224,7 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
   // Share of pixels whose variance alone adds a ray at m = 10 with the paper's weight 1e5.
   ctx.counters["dof_accumulation/variance_above_1e-6"] = above / n;
   Buffer& varOut = ctx.output(*this, "dof_variance", w, h);
-  varOut.data = gaussianBlur(variance, float(param("variance_blur"))).data;
+  varOut.data = gaussianBlur(variance, settings().varianceBlur).data;
 }
 
 }  // namespace tandem

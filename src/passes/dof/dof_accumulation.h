@@ -18,11 +18,18 @@
 // Inputs: rt_near, rt_far, rt_hit, rt_far_position, motion; history: acc_near, acc_far,
 // acc_moments. Outputs: those three, rt_color (rgb, CoC, hit ratio, coverage), dof_variance.
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class DofAccumulationPass : public Pass {
+struct DofAccumulationSettings {
+  float historyWeight = 0.95f;
+  float motionPixels = 0.25f;
+  bool adaptiveAlpha = true;
+  float varianceBlur = 1;
+};
+
+class DofAccumulationPass : public SettingsPass<DofAccumulationSettings> {
  public:
   std::string type() const override { return "dof_accumulation"; }
   std::string description() const override {
@@ -31,8 +38,10 @@ class DofAccumulationPass : public Pass {
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<DofAccumulationSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

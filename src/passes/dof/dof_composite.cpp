@@ -10,33 +10,35 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> DofCompositePass::params() const {
-  return {
-      {"mode",
-       ParamType::Enum,
-       0,
-       0,
-       1,
-       "hybrid: eq. 7; rt: the ray-traced colour wherever there is one (rt-dof)",
-       {"hybrid", "rt"}},
-      {"far_blend", ParamType::Float, 0.3, 0.001, 1, "eq. 7: smoothstep(0, far_blend, h)", {}},
-      {"bokeh", ParamType::Bool, 1, 0, 1, "near field: post-process colour on bright bokeh", {}},
-      {"silhouette",
-       ParamType::Enum,
-       1,
-       0,
-       1,
-       "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) or "
-       "sharp_background: the raster colour and the traced near field by hit ratio",
-       {"eq7", "sharp_background"}},
-      {"fine_coc",
-       ParamType::Float,
-       12,
-       0,
-       64,
-       "out of focus with no foreground over the pixel: below this |CoC| (px) the sharp "
-       "image gathered at full resolution instead of the upsampled rays / gather (0 = off)",
-       {}}};
+const ParamTable<DofCompositeSettings>& DofCompositePass::tableFor() const {
+  using S = DofCompositeSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::mode,
+          {.name = "mode",
+           .doc = "hybrid: eq. 7; rt: the ray-traced colour wherever there is one (rt-dof)",
+           .choices = {"hybrid", "rt"}})
+        .add(&S::farBlend, {.name = "far_blend",
+                            .min = 0.001,
+                            .max = 1,
+                            .doc = "eq. 7: smoothstep(0, far_blend, h)"})
+        .add(&S::bokeh, {.name = "bokeh", .doc = "near field: post-process colour on bright bokeh"})
+        .add(&S::silhouette,
+             {.name = "silhouette",
+              .doc = "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) "
+                     "or sharp_background: the raster colour and the traced near field by hit "
+                     "ratio",
+              .choices = {"eq7", "sharp_background"}})
+        .add(&S::fineCoc,
+             {.name = "fine_coc",
+              .min = 0,
+              .max = 64,
+              .doc = "out of focus with no foreground over the pixel: below this |CoC| (px) the "
+                     "sharp image gathered at full resolution instead of the upsampled rays / "
+                     "gather (0 = off)"});
+    return t;
+  }();
+  return table;
 }
 
 namespace {
@@ -95,10 +97,11 @@ void DofCompositePass::execute(FrameContext& ctx) {
   const Buffer& postfx = postfxIn ? *postfxIn : sharp;
   const Buffer* rt = ctx.optionalInput(*this, "rt_recon");
   Buffer& out = ctx.output(*this, "dof");
-  const bool rtMode = param("mode") == 1, useBokeh = param("bokeh") != 0;
-  const float farBlend = float(param("far_blend"));
-  const bool sharpBackground = param("silhouette") == 1;
-  const float fineCoc = float(param("fine_coc"));
+  const DofCompositeSettings& s = settings();
+  const bool rtMode = s.mode == DofCompositeSettings::Mode::Rt, useBokeh = s.bokeh;
+  const float farBlend = s.farBlend;
+  const bool sharpBackground = s.silhouette == DofCompositeSettings::Silhouette::SharpBackground;
+  const float fineCoc = s.fineCoc;
   const int W = sharp.width, H = sharp.height;
   const float sx = rt ? float(rt->width) / float(W) : 1.0f,
               sy = rt ? float(rt->height) / float(H) : 1.0f;

@@ -23,11 +23,21 @@
 // stands in: rt-dof has no post-process), rt_recon. Output: dof.
 #pragma once
 #include "passes/dof/dof_common.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class DofCompositePass : public Pass {
+struct DofCompositeSettings {
+  enum class Mode { Hybrid, Rt };
+  enum class Silhouette { Eq7, SharpBackground };
+  Mode mode = Mode::Hybrid;
+  float farBlend = 0.3f;
+  bool bokeh = true;
+  Silhouette silhouette = Silhouette::SharpBackground;
+  float fineCoc = 12;  // frame pixels
+};
+
+class DofCompositePass : public SettingsPass<DofCompositeSettings> {
  public:
   std::string type() const override { return "dof_composite"; }
   std::string description() const override {
@@ -41,8 +51,10 @@ class DofCompositePass : public Pass {
     return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, postfx, bokeh, rt};
   }
   std::vector<BufferSlot> outputs() const override { return {{"dof", 3}}; }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<DofCompositeSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

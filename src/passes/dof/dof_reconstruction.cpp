@@ -10,10 +10,19 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> DofReconstructionPass::params() const {
-  return {{"variance_weight", ParamType::Float, 2000, 0, 1e9, "eq. 5: b = clamp(σ²·w, 0, 0.9)", {}},
-          {"lod_scale", ParamType::Float, 0.05, 0, 10, "eq. 8: lod = clamp(c_t·k, 0, 3)", {}},
-          {"median", ParamType::Bool, 1, 0, 1, "3x3 median before the reconstruction", {}}};
+const ParamTable<DofReconstructionSettings>& DofReconstructionPass::tableFor() const {
+  using S = DofReconstructionSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(
+         &S::varianceWeight,
+         {.name = "variance_weight", .min = 0, .max = 1e9, .doc = "eq. 5: b = clamp(σ²·w, 0, 0.9)"})
+        .add(&S::lodScale,
+             {.name = "lod_scale", .min = 0, .max = 10, .doc = "eq. 8: lod = clamp(c_t·k, 0, 3)"})
+        .add(&S::median, {.name = "median", .doc = "3x3 median before the reconstruction"});
+    return t;
+  }();
+  return table;
 }
 
 void DofReconstructionPass::execute(FrameContext& ctx) {
@@ -21,7 +30,7 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
   const Buffer& variance = ctx.input(*this, "dof_variance");
   const int w = in.width, h = in.height;
   Buffer& out = ctx.output(*this, "rt_recon", w, h);
-  const Buffer filtered = param("median") != 0 ? median3x3(in) : in;
+  const Buffer filtered = settings().median ? median3x3(in) : in;
   // Mip levels 0..3 of colour, CoC and hit ratio premultiplied by coverage, so uncovered
   // pixels do not darken the coarser levels.
   constexpr int N = dof::RtChannels::kCount, kCov = dof::RtChannels::kCoverage;
@@ -34,7 +43,7 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
   std::vector<Buffer> mips = {premul};
   while (mips.size() < 4 && mips.back().width > 1 && mips.back().height > 1)
     mips.push_back(downsampleBox(mips.back()));
-  const float vw = float(param("variance_weight")), lodScale = float(param("lod_scale"));
+  const float vw = settings().varianceWeight, lodScale = settings().lodScale;
   const float scale = float(ctx.width) / float(w);  // CoC is in frame pixels
   // The taps' directions: the centre, then rings of 8 and 16 (the second turned by half a step),
   // the same for every pixel.

@@ -8,11 +8,17 @@
 // Inputs: rt_color (dof::RtChannels), dof_variance. Output: rt_recon (the same channels).
 #pragma once
 #include "passes/dof/dof_common.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class DofReconstructionPass : public Pass {
+struct DofReconstructionSettings {
+  float varianceWeight = 2000;
+  float lodScale = 0.05f;
+  bool median = true;
+};
+
+class DofReconstructionPass : public SettingsPass<DofReconstructionSettings> {
  public:
   std::string type() const override { return "dof_reconstruction"; }
   std::string description() const override {
@@ -25,8 +31,10 @@ class DofReconstructionPass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"rt_recon", dof::RtChannels::kCount, BufferKind::Color, Extent::any()}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<DofReconstructionSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

@@ -14,36 +14,34 @@ namespace tandem {
 
 using dof::saturate;
 
-std::vector<ParamDesc> PostfxDofPass::params() const {
-  return {{"depth_range",
-           ParamType::Float,
-           0.1,
-           0,
-           1e6,
-           "metres: a tap this much nearer than the centre is foreground (the paper: 10 cm)",
-           {}},
-          {"specular_threshold",
-           ParamType::Float,
-           0.5,
-           0,
-           1,
-           "specular luminance from which a sample counts towards the bokeh intensity",
-           {}},
-          {"bokeh_luminance",
-           ParamType::Float,
-           1.0,
-           0,
-           1e6,
-           "luminance from which a high-specular sample is a bright highlight (bokeh)",
-           {}},
-          {"polygon",
-           ParamType::Bool,
-           1,
-           0,
-           1,
-           "polygonal aperture (apertureBlades >= 3) in the gather kernel (beyond the paper)",
-           {}},
-          {"median", ParamType::Bool, 1, 0, 1, "3x3 median post-filter", {}}};
+const ParamTable<PostfxDofSettings>& PostfxDofPass::tableFor() const {
+  using S = PostfxDofSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(
+         &S::depthRange,
+         {.name = "depth_range",
+          .min = 0,
+          .max = 1e6,
+          .doc = "metres: a tap this much nearer than the centre is foreground (the paper: 10 cm)"})
+        .add(&S::specularThreshold,
+             {.name = "specular_threshold",
+              .min = 0,
+              .max = 1,
+              .doc = "specular luminance from which a sample counts towards the bokeh intensity"})
+        .add(&S::bokehLuminance,
+             {.name = "bokeh_luminance",
+              .min = 0,
+              .max = 1e6,
+              .doc = "luminance from which a high-specular sample is a bright highlight (bokeh)"})
+        .add(&S::polygon,
+             {.name = "polygon",
+              .doc = "polygonal aperture (apertureBlades >= 3) in the gather kernel (beyond the "
+                     "paper)"})
+        .add(&S::median, {.name = "median", .doc = "3x3 median post-filter"});
+    return t;
+  }();
+  return table;
 }
 
 namespace {
@@ -288,17 +286,15 @@ void PostfxDofPass::execute(FrameContext& ctx) {
   }
   // 1. Downsample CoC, depth and the high-specular flag; 2. tile max |CoC| and its 3x3
   // neighbourhood max; 3. the colour prefiltered.
-  const HalfGrid grid =
-      prefilter(downsample(hdr, cocIn, specIn, lens, float(param("specular_threshold")),
-                           float(param("bokeh_luminance"))),
-                hdr, cocIn);
+  const HalfGrid grid = prefilter(
+      downsample(hdr, cocIn, specIn, lens, settings().specularThreshold, settings().bokehLuminance),
+      hdr, cocIn);
   // 4. The gather.
   Buffer gathered(grid.hw, grid.hh, 3), bokeh(grid.hw, grid.hh, 2);
-  gather(grid, lens,
-         {float(param("depth_range")), param("polygon") != 0 && lens.blades >= 3, ctx.serial},
+  gather(grid, lens, {settings().depthRange, settings().polygon && lens.blades >= 3, ctx.serial},
          gathered, bokeh);
   // 5. Median, upscale.
-  const Buffer filtered = param("median") != 0 ? median3x3(gathered) : gathered;
+  const Buffer filtered = settings().median ? median3x3(gathered) : gathered;
   out.data = resizeBilinear(filtered, hdr.width, hdr.height).data;
   bokehOut.data = resizeBilinear(bokeh, hdr.width, hdr.height).data;
 }

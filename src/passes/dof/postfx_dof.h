@@ -19,11 +19,19 @@
 // Inputs: hdr (sharp colour), coc, specular. Outputs: postfx (colour), bokeh (intensity, and the
 // share of the gather's weight from foreground taps: where a blurred foreground spreads).
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class PostfxDofPass : public Pass {
+struct PostfxDofSettings {
+  float depthRange = 0.1f;  // metres
+  float specularThreshold = 0.5f;
+  float bokehLuminance = 1;
+  bool polygon = true;
+  bool median = true;
+};
+
+class PostfxDofPass : public SettingsPass<PostfxDofSettings> {
  public:
   std::string type() const override { return "postfx_dof"; }
   std::string description() const override {
@@ -36,8 +44,10 @@ class PostfxDofPass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"postfx", 3}, {"bokeh", 2, BufferKind::Mask}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<PostfxDofSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

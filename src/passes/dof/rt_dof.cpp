@@ -15,17 +15,17 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> RTDofPass::params() const {
-  std::vector<ParamDesc> p = whittedParams();
-  p.push_back({"reuse_raster",
-               ParamType::Bool,
-               0,
-               0,
-               1,
-               "hits the sharp image shows take its colour instead of being shaded (beyond the "
-               "paper)",
-               {}});
-  return p;
+const ParamTable<RTDofSettings>& RTDofPass::tableFor() const {
+  using S = RTDofSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.nest(&S::whitted, whittedTable())
+        .add(&S::reuseRaster, {.name = "reuse_raster",
+                               .doc = "hits the sharp image shows take its colour instead of "
+                                      "being shaded (beyond the paper)"});
+    return t;
+  }();
+  return table;
 }
 
 namespace {
@@ -202,14 +202,14 @@ void RTDofPass::execute(FrameContext& ctx) {
   const uint64_t before = rt.raysTraced();
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
-  Whitted whitted(rt, scene, shading, whittedSettings(*this));
+  Whitted whitted(rt, scene, shading, settings().whitted.settings());
   ShadowTally tally;
-  prepareShadows(ctx, *this, whitted, &tally);
+  prepareShadows(ctx, settings().whitted, whitted, &tally);
   const ThinLens lens = ThinLens::of(cams.front());  // the same lens in every view
   const float nearT = cams.front().desc.nearPlane;
   const Buffer* sharp = ctx.optionalInput(*this, "hdr");
   const Buffer* depth = ctx.optionalInput(*this, "depth");
-  const bool reuse = param("reuse_raster") != 0 && sharp && depth;
+  const bool reuse = settings().reuseRaster && sharp && depth;
   // New lens samples every executed frame (a static shot repeats its frame index).
   const LensRays job{
       ctx,

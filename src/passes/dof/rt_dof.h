@@ -11,12 +11,17 @@
 // |CoC| in frame pixels), rt_hit (hit ratio, rays), rt_far_position (mean far hit, 1 where there is
 // one).
 #pragma once
+#include "passes/common/whitted_settings.h"
 #include "passes/dof/dof_common.h"
-#include "pipeline/pass.h"
 
 namespace tandem {
 
-class RTDofPass : public Pass {
+struct RTDofSettings {
+  WhittedParams whitted{};
+  bool reuseRaster = false;
+};
+
+class RTDofPass : public SettingsPass<RTDofSettings> {
  public:
   std::string type() const override { return "rt_dof"; }
   std::string description() const override {
@@ -34,8 +39,10 @@ class RTDofPass : public Pass {
             {"rt_hit", dof::kHitChannels, BufferKind::Mask, Extent::any()},
             {"rt_far_position", dof::kFarPositionChannels, BufferKind::Position, Extent::any()}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<RTDofSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

@@ -24,14 +24,17 @@ std::vector<BufferSlot> FoveatedPTPass::inputs() const {
           {"fov_coords", 3, BufferKind::List, Extent::any()}};
 }
 
-std::vector<ParamDesc> FoveatedPTPass::params() const {
-  return {{"light_selection",
-           ParamType::Enum,
-           1,
-           0,
-           1,
-           "uniform: any light alike (the thesis); grid: by estimated irradiance where the path is",
-           {"uniform", "grid"}}};
+const ParamTable<FoveatedPTSettings>& FoveatedPTPass::tableFor() const {
+  using S = FoveatedPTSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::lightSelection, {.name = "light_selection",
+                               .doc = "uniform: any light alike (the thesis); grid: by estimated "
+                                      "irradiance where the path is",
+                               .choices = {"uniform", "grid"}});
+    return t;
+  }();
+  return table;
 }
 
 void FoveatedPTPass::execute(FrameContext& ctx) {
@@ -54,7 +57,7 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
       std::fprintf(stderr, "tandem: warning: %s\n", note.c_str());
   }
   const LightGrid* grid = nullptr;
-  if (param("light_selection") == 1) {
+  if (settings().lightSelection == FoveatedPTSettings::LightSelection::Grid) {
     const uint64_t key = lightSetKey(shading.lights, DiffuseGI::lightsSampled(*ctx.scene));
     if (!grid_ || key != gridKey_ || gridScene_ != ctx.scene) {
       const auto t0 = Clock::now();

@@ -13,12 +13,17 @@
 #include <cstdint>
 #include <memory>
 
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 #include "rt/light_grid.h"
 
 namespace tandem {
 
-class FoveatedPTPass : public Pass {
+struct FoveatedPTSettings {
+  enum class LightSelection { Uniform, Grid };
+  LightSelection lightSelection = LightSelection::Grid;
+};
+
+class FoveatedPTPass : public SettingsPass<FoveatedPTSettings> {
  public:
   std::string type() const override { return "foveated_pt"; }
   std::string description() const override {
@@ -28,8 +33,10 @@ class FoveatedPTPass : public Pass {
   std::vector<BufferSlot> outputs() const override {
     return {{"pt_noisy", 3, BufferKind::Color}, {"pt_variance", 1, BufferKind::Variance}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<FoveatedPTSettings>& tableFor() const override;
 
  private:
   std::unique_ptr<LightGrid> grid_;

@@ -6,69 +6,74 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> FoveationPass::params() const {
-  using T = ParamType;
-  return {
-      {"mode",
-       T::Enum,
-       0,
-       0,
-       1,
-       "foveated: three layers; full: every pixel (Base)",
-       {"foveated", "full"}},
-      {"r0", T::Float, 144, 0, 16384, "inner (fovea) radius in pixels", {}},
-      {"r1", T::Float, 288, 0, 16384, "middle ring's outer radius in pixels (>= r0)", {}},
-      {"p",
-       T::Float,
-       0.5,
-       0,
-       1,
-       "middle ring's probability at r1 (falls linearly from 1 at r0)",
-       {}},
-      {"outer_p",
-       T::Float,
-       -1,
-       -1,
-       1,
-       "outer layer's probability; -1: p (the thesis' 1 - p at p = 0.5)",
-       {}},
-      {"spp_inner", T::Int, 4, 1, 1024, "samples per listed pixel, inner layer", {}},
-      {"spp_middle", T::Int, 3, 1, 1024, "samples per listed pixel, middle ring", {}},
-      {"spp_outer", T::Int, 2, 1, 1024, "samples per listed pixel, outer layer", {}},
-      {"gaze",
-       T::Enum,
-       0,
-       0,
-       1,
-       "trace: the scene's gazeTrace at the frame time when it has one; fixed: gaze_x, gaze_y",
-       {"trace", "fixed"}},
-      {"gaze_x", T::Float, 0.5, 0, 1, "gaze point, fraction of the eye's width", {}},
-      {"gaze_y", T::Float, 0.5, 0, 1, "gaze point, fraction of the eye's height", {}},
-      {"scale_radii",
-       T::Bool,
-       1,
-       0,
-       1,
-       "radii are for 1080 rows: scale them to the eye's height",
-       {}},
-      {"seed", T::Int, 0, 0, 1e9, "seed of the selection toss", {}},
-  };
+const ParamTable<FoveationSettings>& FoveationPass::tableFor() const {
+  using S = FoveationSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::mode, {.name = "mode",
+                     .doc = "foveated: three layers; full: every pixel (Base)",
+                     .choices = {"foveated", "full"}})
+        .add(&S::r0,
+             {.name = "r0", .min = 0, .max = 16384, .doc = "inner (fovea) radius in pixels"})
+        .add(&S::r1, {.name = "r1",
+                      .min = 0,
+                      .max = 16384,
+                      .doc = "middle ring's outer radius in pixels (>= r0)"})
+        .add(&S::p, {.name = "p",
+                     .min = 0,
+                     .max = 1,
+                     .doc = "middle ring's probability at r1 (falls linearly from 1 at r0)"})
+        .add(&S::outerP, {.name = "outer_p",
+                          .min = -1,
+                          .max = 1,
+                          .doc = "outer layer's probability; -1: p (the thesis' 1 - p at p = 0.5)"})
+        .add(&S::sppInner, {.name = "spp_inner",
+                            .min = 1,
+                            .max = 1024,
+                            .doc = "samples per listed pixel, inner layer"})
+        .add(&S::sppMiddle, {.name = "spp_middle",
+                             .min = 1,
+                             .max = 1024,
+                             .doc = "samples per listed pixel, middle ring"})
+        .add(&S::sppOuter, {.name = "spp_outer",
+                            .min = 1,
+                            .max = 1024,
+                            .doc = "samples per listed pixel, outer layer"})
+        .add(&S::gaze, {.name = "gaze",
+                        .doc = "trace: the scene's gazeTrace at the frame time when it has one; "
+                               "fixed: gaze_x, gaze_y",
+                        .choices = {"trace", "fixed"}})
+        .add(&S::gazeX, {.name = "gaze_x",
+                         .min = 0,
+                         .max = 1,
+                         .doc = "gaze point, fraction of the eye's width"})
+        .add(&S::gazeY, {.name = "gaze_y",
+                         .min = 0,
+                         .max = 1,
+                         .doc = "gaze point, fraction of the eye's height"})
+        .add(&S::scaleRadii, {.name = "scale_radii",
+                              .doc = "radii are for 1080 rows: scale them to the eye's height"})
+        .add(&S::seed, {.name = "seed", .min = 0, .max = 1e9, .doc = "seed of the selection toss"});
+    return t;
+  }();
+  return table;
 }
 
 FoveationDesc FoveationPass::desc(int width, int height) const {
   (void)width;
   FoveationDesc d;
-  d.full = param("mode") == 1;
-  const float k = param("scale_radii") != 0 ? float(height) / 1080.0f : 1.0f;
-  d.r0 = float(param("r0")) * k;
-  d.r1 = float(param("r1")) * k;
-  d.p = float(param("p"));
-  d.outerP = float(param("outer_p"));
-  d.spp[0] = int(param("spp_inner"));
-  d.spp[1] = int(param("spp_middle"));
-  d.spp[2] = int(param("spp_outer"));
-  d.gaze = Vec2(float(param("gaze_x")), float(param("gaze_y")));
-  d.seed = uint64_t(param("seed"));
+  const FoveationSettings& s = settings();
+  d.full = s.mode == FoveationSettings::Mode::Full;
+  const float k = s.scaleRadii ? float(height) / 1080.0f : 1.0f;
+  d.r0 = s.r0 * k;
+  d.r1 = s.r1 * k;
+  d.p = s.p;
+  d.outerP = s.outerP;
+  d.spp[0] = s.sppInner;
+  d.spp[1] = s.sppMiddle;
+  d.spp[2] = s.sppOuter;
+  d.gaze = Vec2(s.gazeX, s.gazeY);
+  d.seed = uint64_t(s.seed);
   return d;
 }
 
@@ -76,7 +81,8 @@ void FoveationPass::execute(FrameContext& ctx) {
   const View& eye = ctx.views.front();
   FoveationDesc d = desc(eye.width(), eye.height());
   // A moving gaze: the distribution is rebuilt only on the frames where the point moves.
-  if (param("gaze") == 0 && ctx.scene && !ctx.scene->gazeTrace.empty())
+  if (settings().gaze == FoveationSettings::Gaze::Trace && ctx.scene &&
+      !ctx.scene->gazeTrace.empty())
     d.gaze = sampleGazeTrace(ctx.scene->gazeTrace, ctx.frame.time);
   d.validate("pass foveation");
   const bool rebuild =

@@ -8,11 +8,25 @@
 // The gaze follows the scene's gazeTrace (at the frame's time) when it has one, else gaze_x/y.
 #pragma once
 #include "passes/foveated/foveation_map.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class FoveationPass : public Pass {
+struct FoveationSettings {
+  enum class Mode { Foveated, Full };
+  enum class Gaze { Trace, Fixed };
+  Mode mode = Mode::Foveated;
+  float r0 = 144, r1 = 288;  // pixels at 1080 rows
+  float p = 0.5f;
+  float outerP = -1;
+  int sppInner = 4, sppMiddle = 3, sppOuter = 2;
+  Gaze gaze = Gaze::Trace;
+  float gazeX = 0.5f, gazeY = 0.5f;
+  bool scaleRadii = true;
+  int seed = 0;
+};
+
+class FoveationPass : public SettingsPass<FoveationSettings> {
  public:
   std::string type() const override { return "foveation"; }
   std::string description() const override {
@@ -24,11 +38,13 @@ class FoveationPass : public Pass {
             {"fov_mask", 1, BufferKind::Mask},
             {"fov_layer", 1, BufferKind::Id}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
   // The distribution the parameters describe for an eye of width x height (what execute uses).
   FoveationDesc desc(int width, int height) const;
   const FoveationMap& map() const { return map_; }
+
+ protected:
+  const ParamTable<FoveationSettings>& tableFor() const override;
 
  private:
   FoveationMap map_;

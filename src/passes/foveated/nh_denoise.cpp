@@ -204,72 +204,63 @@ std::vector<BufferSlot> NHDenoisePass::inputs() const {
           variance};
 }
 
-std::vector<ParamDesc> NHDenoisePass::params() const {
-  using T = ParamType;
-  return {
-      {"regions",
-       T::Enum,
-       2,
-       0,
-       2,
-       "one: whole frame (Base); two: inner + rest (NH2LD); three: NH3LD",
-       {"one", "two", "three"}},
-      {"levels_inner", T::Int, 2, 0, 10, "M: levels of the inner layer (regions two, three)", {}},
-      {"levels_middle", T::Int, 3, 0, 10, "N: levels of the middle ring (regions three)", {}},
-      {"levels_outer",
-       T::Int,
-       5,
-       0,
-       10,
-       "P: levels of the outer layer (two: middle + outer; one: the frame)",
-       {}},
-      {"sigma_color",
-       T::Float,
-       16.0,
-       0.001,
-       1000,
-       "colour edge-stopping σ, relative to mean luminance",
-       {}},
-      {"sigma_normal", T::Float, 0.3, 0.001, 10, "normal edge-stopping σ", {}},
-      {"sigma_position",
-       T::Float,
-       0.05,
-       0.0001,
-       10,
-       "position edge-stopping σ, relative to eye distance",
-       {}},
-      {"demodulate", T::Bool, 1, 0, 1, "filter illumination (divided by the diffuse albedo)", {}},
-      {"color_weight",
-       T::Enum,
-       0,
-       0,
-       1,
-       "mean: σ_c x mean luminance, halved per level (Dammertz); variance: σ_v x each pixel's "
-       "own noise, from pt_variance (beyond the thesis)",
-       {"mean", "variance"}},
-      {"sigma_variance",
-       T::Float,
-       4.0,
-       0.01,
-       100,
-       "variance: colour edge-stopping σ in standard deviations of the pixel's estimate",
-       {}},
-      {"levels_from",
-       T::Enum,
-       0,
-       0,
-       1,
-       "fixed: the level counts above; variance: per region from its measured noise (beyond the "
-       "thesis)",
-       {"fixed", "variance"}},
-      {"target_variance",
-       T::Float,
-       0.001,
-       1e-6,
-       10,
-       "variance: the relative noise variance per pixel area each region is filtered down to",
-       {}},
-  };
+const ParamTable<NHDenoiseSettings>& NHDenoisePass::tableFor() const {
+  using S = NHDenoiseSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::regions, {.name = "regions",
+                        .doc = "one: whole frame (Base); two: inner + rest (NH2LD); three: NH3LD",
+                        .choices = {"one", "two", "three"}})
+        .add(&S::levelsInner, {.name = "levels_inner",
+                               .min = 0,
+                               .max = 10,
+                               .doc = "M: levels of the inner layer (regions two, three)"})
+        .add(&S::levelsMiddle, {.name = "levels_middle",
+                                .min = 0,
+                                .max = 10,
+                                .doc = "N: levels of the middle ring (regions three)"})
+        .add(&S::levelsOuter,
+             {.name = "levels_outer",
+              .min = 0,
+              .max = 10,
+              .doc = "P: levels of the outer layer (two: middle + outer; one: the frame)"})
+        .add(&S::sigmaColor, {.name = "sigma_color",
+                              .min = 0.001,
+                              .max = 1000,
+                              .doc = "colour edge-stopping σ, relative to mean luminance"})
+        .add(&S::sigmaNormal,
+             {.name = "sigma_normal", .min = 0.001, .max = 10, .doc = "normal edge-stopping σ"})
+        .add(&S::sigmaPosition, {.name = "sigma_position",
+                                 .min = 0.0001,
+                                 .max = 10,
+                                 .doc = "position edge-stopping σ, relative to eye distance"})
+        .add(&S::demodulate,
+             {.name = "demodulate", .doc = "filter illumination (divided by the diffuse albedo)"})
+        .add(&S::colorWeight,
+             {.name = "color_weight",
+              .doc = "mean: σ_c x mean luminance, halved per level (Dammertz); variance: σ_v x "
+                     "each pixel's own noise, from pt_variance (beyond the thesis)",
+              .choices = {"mean", "variance"}})
+        .add(&S::sigmaVariance,
+             {.name = "sigma_variance",
+              .min = 0.01,
+              .max = 100,
+              .doc = "variance: colour edge-stopping σ in standard deviations of the pixel's "
+                     "estimate"})
+        .add(&S::levelsFrom,
+             {.name = "levels_from",
+              .doc = "fixed: the level counts above; variance: per region from its measured noise "
+                     "(beyond the thesis)",
+              .choices = {"fixed", "variance"}})
+        .add(&S::targetVariance,
+             {.name = "target_variance",
+              .min = 1e-6,
+              .max = 10,
+              .doc = "variance: the relative noise variance per pixel area each region is "
+                     "filtered down to"});
+    return t;
+  }();
+  return table;
 }
 
 void NHDenoisePass::execute(FrameContext& ctx) {
@@ -283,11 +274,13 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   const Buffer& layer = ctx.input(*this, "fov_layer");
   Buffer& out = ctx.output(*this, "denoised");
   const int W = ctx.width, H = ctx.height;
-  const bool demodulate = param("demodulate") != 0;
+  const NHDenoiseSettings& s = settings();
+  const bool demodulate = s.demodulate;
   const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
   const AtrousWeights weights{
-      float(param("sigma_color")), float(param("sigma_normal")), float(param("sigma_position")),
-      param("color_weight") == 1 && variance != nullptr, float(param("sigma_variance"))};
+      s.sigmaColor, s.sigmaNormal, s.sigmaPosition,
+      s.colorWeight == NHDenoiseSettings::ColorWeight::Variance && variance != nullptr,
+      s.sigmaVariance};
   const Demodulation dm{diffuse, emission, depth, demodulate};
   const auto t0 = Clock::now();
   AtrousImage& img = image_;
@@ -328,9 +321,8 @@ void NHDenoisePass::execute(FrameContext& ctx) {
     initGuide(img, ctx.views);
   }
   // Regions as row spans of the layer map, per view (taps never cross into the other eye).
-  const int mode = int(param("regions"));
-  const int levels[3] = {int(param("levels_inner")), int(param("levels_middle")),
-                         int(param("levels_outer"))};
+  const int mode = int(s.regions);
+  const int levels[3] = {s.levelsInner, s.levelsMiddle, s.levelsOuter};
   const int count = mode + 1;
   std::vector<AtrousRegion> regions(static_cast<size_t>(count));
   auto regionOf = [&](int L) { return mode == 0 ? 0 : mode == 1 ? std::min(L, 1) : L; };
@@ -351,8 +343,8 @@ void NHDenoisePass::execute(FrameContext& ctx) {
         x = end;
       }
     }
-  if (param("levels_from") == 1) {
-    const float target = float(param("target_variance"));
+  if (s.levelsFrom == NHDenoiseSettings::LevelsFrom::Variance) {
+    const float target = s.targetVariance;
     const float mean = sampledMeanLuminance(img);
     for (size_t r = 0; r < regions.size(); ++r) {
       const RegionNoise noise = measureNoise(img, regions[r]);

@@ -16,11 +16,25 @@
 #include <vector>
 
 #include "passes/foveated/atrous.h"
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class NHDenoisePass : public Pass {
+struct NHDenoiseSettings {
+  enum class Regions { One, Two, Three };  // Base, NH2LD, NH3LD
+  enum class ColorWeight { Mean, Variance };
+  enum class LevelsFrom { Fixed, Variance };
+  Regions regions = Regions::Three;
+  int levelsInner = 2, levelsMiddle = 3, levelsOuter = 5;  // M, N, P
+  float sigmaColor = 16, sigmaNormal = 0.3f, sigmaPosition = 0.05f;
+  bool demodulate = true;
+  ColorWeight colorWeight = ColorWeight::Mean;
+  float sigmaVariance = 4;
+  LevelsFrom levelsFrom = LevelsFrom::Fixed;
+  float targetVariance = 0.001f;
+};
+
+class NHDenoisePass : public SettingsPass<NHDenoiseSettings> {
  public:
   std::string type() const override { return "nh_denoise"; }
   std::string description() const override {
@@ -28,10 +42,12 @@ class NHDenoisePass : public Pass {
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"denoised", 3, BufferKind::Color}}; }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
   // The (region, step width) of every level the last frame ran, in order (Algorithm 1).
   const std::vector<std::pair<int, int>>& lastSteps() const { return steps_; }
+
+ protected:
+  const ParamTable<NHDenoiseSettings>& tableFor() const override;
 
  private:
   std::vector<std::pair<int, int>> steps_;

@@ -28,50 +28,36 @@ std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
           history};
 }
 
-std::vector<ParamDesc> PeripheryAccumulationPass::params() const {
-  using T = ParamType;
-  return {{"from_layer",
-           T::Int,
-           1,
-           0,
-           3,
-           "first layer accumulated (0 inner, 1 middle, 2 outer; 3: none)",
-           {}},
-          {"alpha_min",
-           T::Float,
-           0.1,
-           0.01,
-           1,
-           "smallest weight of this frame (the history's length)",
-           {}},
-          {"position_tolerance",
-           T::Float,
-           0.02,
-           0.0001,
-           1,
-           "same surface: world distance over eye distance",
-           {}},
-          {"normal_tolerance",
-           T::Float,
-           25,
-           0,
-           180,
-           "same surface: largest angle (degrees) between the normals",
-           {}},
-          {"demodulate",
-           T::Bool,
-           1,
-           0,
-           1,
-           "accumulate illumination (divided by the diffuse albedo): texture never lags",
-           {}},
-          {"fill_unlisted",
-           T::Bool,
-           1,
-           0,
-           1,
-           "unlisted pixels take their reprojected history (pt_accum_mask marks them)",
-           {}}};
+const ParamTable<PeripheryAccumulationSettings>& PeripheryAccumulationPass::tableFor() const {
+  using S = PeripheryAccumulationSettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.add(&S::fromLayer, {.name = "from_layer",
+                          .min = 0,
+                          .max = 3,
+                          .doc = "first layer accumulated (0 inner, 1 middle, 2 outer; 3: none)"})
+        .add(&S::alphaMin, {.name = "alpha_min",
+                            .min = 0.01,
+                            .max = 1,
+                            .doc = "smallest weight of this frame (the history's length)"})
+        .add(&S::positionTolerance, {.name = "position_tolerance",
+                                     .min = 0.0001,
+                                     .max = 1,
+                                     .doc = "same surface: world distance over eye distance"})
+        .add(&S::normalTolerance,
+             {.name = "normal_tolerance",
+              .min = 0,
+              .max = 180,
+              .doc = "same surface: largest angle (degrees) between the normals"})
+        .add(&S::demodulate,
+             {.name = "demodulate",
+              .doc = "accumulate illumination (divided by the diffuse albedo): texture never lags"})
+        .add(&S::fillUnlisted,
+             {.name = "fill_unlisted",
+              .doc = "unlisted pixels take their reprojected history (pt_accum_mask marks them)"});
+    return t;
+  }();
+  return table;
 }
 
 void PeripheryAccumulationPass::execute(FrameContext& ctx) {
@@ -87,14 +73,15 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
   Buffer& accumVariance = ctx.output(*this, "pt_accum_variance");
   const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
   Buffer& history = ctx.output(*this, "pt_history");
-  const int fromLayer = int(param("from_layer"));
-  const float alphaMin = float(param("alpha_min"));
-  const float cap = 1.0f / alphaMin, tol = float(param("position_tolerance"));
-  const float minCos = std::cos(float(param("normal_tolerance")) * kPi / 180.0f);
+  const PeripheryAccumulationSettings& s = settings();
+  const int fromLayer = s.fromLayer;
+  const float alphaMin = s.alphaMin;
+  const float cap = 1.0f / alphaMin, tol = s.positionTolerance;
+  const float minCos = std::cos(s.normalTolerance * kPi / 180.0f);
   Buffer& accumMask = ctx.output(*this, "pt_accum_mask");
-  const bool fill = param("fill_unlisted") != 0;
+  const bool fill = s.fillUnlisted;
   const Demodulation dm{ctx.input(*this, "diffuse"), ctx.input(*this, "emission"), depth,
-                        param("demodulate") != 0};
+                        s.demodulate};
   // The mean history length (frames) over the accumulated layers' pixels with an estimate.
   std::atomic<double> historyFrames = 0, historyPixels = 0;
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {

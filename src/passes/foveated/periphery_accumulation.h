@@ -16,11 +16,20 @@
 // variance-guided weights; -1 where unknown), pt_accum_mask (pixels with an estimate),
 // pt_history (illumination rgb, frames, world position, normal).
 #pragma once
-#include "pipeline/pass.h"
+#include "pipeline/param_table.h"
 
 namespace tandem {
 
-class PeripheryAccumulationPass : public Pass {
+struct PeripheryAccumulationSettings {
+  int fromLayer = 1;
+  float alphaMin = 0.1f;
+  float positionTolerance = 0.02f;
+  float normalTolerance = 25;  // degrees
+  bool demodulate = true;
+  bool fillUnlisted = true;
+};
+
+class PeripheryAccumulationPass : public SettingsPass<PeripheryAccumulationSettings> {
  public:
   std::string type() const override { return "periphery_accumulation"; }
   std::string description() const override {
@@ -33,8 +42,10 @@ class PeripheryAccumulationPass : public Pass {
             {"pt_accum_mask", 1, BufferKind::Mask},
             {"pt_history", 10, BufferKind::List}};
   }
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
+
+ protected:
+  const ParamTable<PeripheryAccumulationSettings>& tableFor() const override;
 };
 
 }  // namespace tandem

@@ -401,8 +401,8 @@ void HeuristicPass::execute(FrameContext& ctx) {
   const size_t n = scene.objects.size();
   refreshBounds(ctx);
   // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
-  const Buffer* prevStats = ctx.previous(*this, "rt_stats");
-  const RtStats rtStats = prevStats ? readRtStats(*prevStats) : RtStats{};
+  const RtStats* prevStats = ctx.previousRecord<RtStats>(*this, "rt_stats");
+  const RtStats rtStats = prevStats ? *prevStats : RtStats{};
   // With a ms budget, costs are predicted CPU ms and T is in CPU ms (the calibration's rate is
   // CPU ms per wall ms of the RT pass; its prior, the worker count).
   const bool msBudget = s.budgetMs > 0;
@@ -418,9 +418,9 @@ void HeuristicPass::execute(FrameContext& ctx) {
   evaluated_ = evaluateObjects(scene, bounds_, ctx.camera(), pixels, selectedLast_, s.importance,
                                s.countRecursion ? &measuredRays_ : nullptr);
   // This frame's RT pass times each object and effect.
-  Buffer& request = ctx.output(*this, "rt_request");
-  request.data[0] = msBudget ? 1.0f : 0.0f;
-  request.data[1] = deadline ? float(s.budgetMs) : 0.0f;
+  RtRequest& request = ctx.outputRecord<RtRequest>(*this, "rt_request");
+  request.timeEffects = msBudget;
+  request.deadlineMs = deadline ? s.budgetMs : 0.0;
   if (!calibrationPrior_) {
     calibration_ = BudgetCalibration(double(tbb::this_task_arena::max_concurrency()));
     calibrationPrior_ = true;

@@ -22,8 +22,8 @@
 //    least relevant pixels instead of time. The calibration then learns from the cost of what was
 //    traced.
 // Inputs: object_id, rt_stats (last frame's, a history input). Outputs: heuristic_mask (3
-// channels), rt_request (1 x 1: [1 asks rt_secondary to time each object and effect, deadline ms
-// or 0]), heuristic_order (objects x 1: per effect, the node's rank by relevancy among the
+// channels), rt_request (a record: whether rt_secondary times each object and effect, and its
+// deadline), heuristic_order (objects x 1: per effect, the node's rank by relevancy among the
 // selected, 0 first; -1 not selected).
 #pragma once
 #include <array>
@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "core/buffer.h"
-#include "passes/heuristic/rt_stats.h"
+#include "passes/heuristic/rt_feedback.h"
 #include "pipeline/param_table.h"
 #include "scene/camera.h"
 #include "scene/frame_scene.h"
@@ -146,7 +146,7 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
   }
   std::vector<BufferSlot> outputs() const override {
     return {{"heuristic_mask", kEffectCount, BufferKind::Mask},
-            {"rt_request", 2, BufferKind::Mask, Extent::fixed(1, 1)},
+            rtRequestSlot(false),
             {"heuristic_order", kEffectCount, BufferKind::List, Extent::any()}};
   }
   void execute(FrameContext& ctx) override;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/buffer.h"
-#include "passes/heuristic/rt_stats.h"
+#include "passes/heuristic/rt_feedback.h"
 #include "scene/view.h"
 
 namespace tandem {

@@ -9,7 +9,7 @@
 
 #include "core/cycle_clock.h"
 #include "passes/heuristic/ranked_tiles.h"
-#include "passes/heuristic/rt_stats.h"
+#include "passes/heuristic/rt_feedback.h"
 #include "passes/heuristic/shadow_tile.h"
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
@@ -18,33 +18,30 @@
 
 namespace tandem {
 
-std::vector<ParamDesc> RTSecondaryPass::params() const {
-  std::vector<ParamDesc> p = whittedParams();
-  p.push_back({"shadow_class_light",
-               ParamType::Int,
-               -1,
-               -1,
-               1 << 20,
-               "the light shadow_class shows (-1: the shares over every light)",
-               {}});
-  p.push_back({"outside_mask_shadow",
-               ParamType::Float,
-               0,
-               0,
-               1,
-               "shadow value outside the mask (Listing 8a: 0; 1 is neutral)",
-               {}});
-  return p;
+const ParamTable<RTSecondarySettings>& RTSecondaryPass::tableFor() const {
+  using S = RTSecondarySettings;
+  static const ParamTable<S> table = [] {
+    ParamTable<S> t;
+    t.nest(&S::whitted, whittedTable())
+        .add(&S::shadowClassLight,
+             {.name = "shadow_class_light",
+              .min = -1,
+              .max = 1 << 20,
+              .doc = "the light shadow_class shows (-1: the shares over every light)"})
+        .add(&S::outsideMaskShadow,
+             {.name = "outside_mask_shadow",
+              .min = 0,
+              .max = 1,
+              .doc = "shadow value outside the mask (Listing 8a: 0; 1 is neutral)"});
+    return t;
+  }();
+  return table;
 }
 
 std::vector<BufferSlot> RTSecondaryPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
   in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
-  in.push_back({.slot = "rt_request",
-                .channels = 2,
-                .kind = BufferKind::Mask,
-                .extent = Extent::fixed(1, 1),
-                .optional = true});
+  in.push_back(rtRequestSlot(true));
   in.push_back({.slot = "heuristic_order",
                 .channels = kEffectCount,
                 .kind = BufferKind::List,
@@ -267,25 +264,25 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   const size_t objects = scene.objects.size();
   const ShadingContext shading = ShadingContext::from(scene);
-  const WhittedSettings ws = whittedSettings(*this);
+  const WhittedSettings ws = settings().whitted.settings();
   Whitted whitted(rt, scene, shading, ws);
   // Classified shadows (and culled rays) of whole tiles go structure of arrays (shadow_tile.h);
   // every shadow traced without culling keeps the per-block path, exactly as it always drew.
   const bool tiled = ws.shadows != ShadowMode::Rays || ws.shadowCull > 0;
   ShadowTally shadowTally;
-  const ShadowMaps* shadowMaps = shadowMapsFor(ctx, *this);
+  const ShadowMaps* shadowMaps = shadowMapsFor(ctx, settings().whitted);
   whitted.useShadowMaps(shadowMaps);
   whitted.countShadows(&shadowTally);
   // Classified shadows per pixel (viewer / AOV): R traced, G lit, B shadowed, as shares of the
   // lights that reach the pixel (or the one light asked for); 0 where no shadow was asked.
   Buffer* classOut = ctx.outputIfConsumed(*this, "shadow_class");
   if (classOut) std::fill(classOut->data.begin(), classOut->data.end(), 0.0f);
-  const int classLight = int(param("shadow_class_light"));
+  const int classLight = settings().shadowClassLight;
   const GBufferReader g = gbufferSource(ctx, *this);
   const Buffer& mask = ctx.input(*this, "heuristic_mask");
-  const Buffer* request = ctx.optionalInput(*this, "rt_request");
-  const bool timed = request && request->data[0] > 0.5f;
-  const double deadlineMs = request && request->channels > 1 ? request->data[1] : 0.0;
+  const RtRequest* request = ctx.inputRecord<RtRequest>(*this, "rt_request");
+  const bool timed = request && request->timeEffects;
+  const double deadlineMs = request ? request->deadlineMs : 0.0;
   tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
   const Buffer& ids = ctx.input(*this, "object_id");
   const Buffer* order = ctx.optionalInput(*this, "heuristic_order");
@@ -303,7 +300,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
                            ctx.output(*this, "traced_mask"),
                            classOut,
                            classLight,
-                           float(param("outside_mask_shadow")),
+                           settings().outsideMaskShadow,
                            timed,
                            tiled};
   const ShadowTile tileJob{g,     mask,       ids,      ctx.input(*this, "geo_normal"),
@@ -347,7 +344,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         std::max(0.0, std::chrono::duration<double, std::milli>(Clock::now() - deadline).count());
     tailMs_ = std::min(0.5 * tailMs_ + 0.5 * tail, 0.5 * deadlineMs);
   }
-  writeRtStats(stats, ctx.output(*this, "rt_stats", int(objects) + 1, 1));
+  ctx.outputRecord<RtStats>(*this, "rt_stats") = std::move(stats);
   reportShadows(ctx, *this, sum(shadowTally), double(ctx.width) * double(ctx.height));
   ctx.passRays += double(rt.raysTraced() - raysBefore);
 }

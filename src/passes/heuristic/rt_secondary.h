@@ -3,21 +3,26 @@
 // maps where they are certain, shadow rays the rest: `shadows`), reflection and refraction
 // rays with recursion (Listing 8c, rt/whitted.h). Outside the mask all three are 0 (Listing 8a;
 // Figure 5's buffers), or the shadow 1 with outside_mask_shadow = 1.
-// Inputs: G-buffer sample targets, heuristic_mask, rt_request (optional: [1 times each object and
-// effect, a deadline in ms or 0]), heuristic_order (optional: the nodes' ranks, the order tiles
+// Inputs: G-buffer sample targets, heuristic_mask, rt_request (optional record: time each object
+// and effect; a deadline), heuristic_order (optional: the nodes' ranks, the order tiles
 // are traced in under a deadline). Outputs: shadow, reflection, refraction, traced_mask (the
 // heuristic mask where it was traced: all of it, unless the deadline cut the tail), shadow_class
 // (when read: traced, lit, shadowed shares of each pixel's lights), rt_stats (what it traced, for
-// the next frame's heuristic). Parameters: whittedParams(), shadow_class_light,
+// the next frame's heuristic). Parameters: the Whitted settings, shadow_class_light,
 // outside_mask_shadow.
 #pragma once
 #include "passes/common/whitted_settings.h"
-#include "pipeline/pass.h"
 #include "rt/whitted.h"
 
 namespace tandem {
 
-class RTSecondaryPass : public Pass {
+struct RTSecondarySettings {
+  WhittedParams whitted{};
+  int shadowClassLight = -1;
+  float outsideMaskShadow = 0;
+};
+
+class RTSecondaryPass : public SettingsPass<RTSecondarySettings> {
  public:
   std::string type() const override { return "rt_secondary"; }
   std::string description() const override {
@@ -25,9 +30,11 @@ class RTSecondaryPass : public Pass {
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;
-  std::vector<ParamDesc> params() const override;
   void execute(FrameContext& ctx) override;
   void resetHistory() override { tailMs_ = 0; }
+
+ protected:
+  const ParamTable<RTSecondarySettings>& tableFor() const override;
 
  private:
   double tailMs_ = 0;  // deadline mode: smoothed time from the deadline to the pass's end

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/buffer.h"
-#include "passes/heuristic/rt_stats.h"
+#include "passes/heuristic/rt_feedback.h"
 #include "rt/whitted.h"
 #include "scene/view.h"
 #include "shading/gbuffer_sample.h"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "passes/heuristic/rt_stats.h"
+#include "passes/heuristic/rt_feedback.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"

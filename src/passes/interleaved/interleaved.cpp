@@ -96,7 +96,7 @@ const ParamTable<InterleavedSettings>& InterleavedPass::tableFor() const {
               .doc = "shift the samples by the view's sub-pixel jitter (a sequence for temporal "
                      "AA)",
               .invalidatesHistory = true})
-        .append(whittedParams());
+        .nest(&S::whitted, whittedTable());
     return t;
   }();
   return table;
@@ -145,8 +145,8 @@ void InterleavedPass::execute(FrameContext& ctx) {
           *ctx.scene,
           ShadingContext::from(*ctx.scene),
           rt,
-          whittedSettings(*this),
-          rt ? shadowMapsFor(ctx, *this) : nullptr,
+          s.whitted.settings(),
+          rt ? shadowMapsFor(ctx, s.whitted) : nullptr,
           &shadowTally};
   for (int j = 0; j < n; ++j)
     f.taus[size_t(j)] = !s.time()            ? 0.0f

@@ -28,6 +28,7 @@
 #pragma once
 #include <memory>
 
+#include "passes/common/whitted_settings.h"
 #include "pipeline/param_table.h"
 #include "raster/rasterizer.h"
 #include "raster/sample_layout.h"
@@ -59,6 +60,7 @@ struct InterleavedSettings {
   ShadingRate shadingRate = ShadingRate::Sample;
   float textureFootprint = 1;
   bool viewJitter = false;
+  WhittedParams whitted{};
   bool lens() const { return mode != Mode::MotionBlur; }
   bool time() const { return mode != Mode::Dof; }
 };

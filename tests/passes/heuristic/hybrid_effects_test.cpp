@@ -2,6 +2,7 @@
 // measurements, the ms-budget calibration and the equivalences between modes.
 #include <gtest/gtest.h>
 
+#include <any>
 #include <mutex>
 #include <random>
 
@@ -81,7 +82,7 @@ TEST(HybridEffects, RtStatsCountMaskedPixels) {
   auto r = makeRenderer(s, "hybrid-all", {"rt_secondary.shadows=rays"}, 96, 54);
   r->renderFrame(0, s.camera);
   const FrameContext& ctx = r->context();
-  const RtStats stats = readRtStats(ctx.input("rt_stats"));
+  const RtStats& stats = std::any_cast<const RtStats&>(ctx.input("rt_stats").record);
   ASSERT_EQ(stats.pixels.size(), s.objects.size());
   std::vector<uint32_t> pixels = countObjectPixels(ctx.input("object_id"), s.objects.size());
   uint64_t totalShadowRays = 0, totalPixels = 0;
@@ -96,6 +97,27 @@ TEST(HybridEffects, RtStatsCountMaskedPixels) {
   }
   EXPECT_GT(totalShadowRays, totalPixels);  // most pixels face at least one light
   EXPECT_GT(stats.ms, 0.0);
+}
+
+// The heuristic's request and rt_secondary's stats are records: the stats of the frame's pixels,
+// and the request asks for per-effect timing only with a ms budget.
+TEST(HybridEffects, FeedbackIsTypedRecords) {
+  const Scene s = makeSpheresScene();
+  auto r = test::renderOnce(s, "hybrid-budget", 48, 27, s.camera);
+  const FrameContext& ctx = r->context();
+  const RtRequest* request = std::any_cast<RtRequest>(&ctx.input("rt_request").record);
+  ASSERT_NE(request, nullptr);
+  EXPECT_TRUE(request->timeEffects);
+  EXPECT_GT(request->deadlineMs, 0.0);
+  const RtStats* stats = std::any_cast<RtStats>(&ctx.input("rt_stats").record);
+  ASSERT_NE(stats, nullptr);
+  EXPECT_EQ(stats->pixels.size(), s.objects.size());
+  EXPECT_TRUE(stats->timeEffects);
+  auto plain = test::renderOnce(s, "hybrid-all", 48, 27, s.camera);
+  const RtRequest* none = std::any_cast<RtRequest>(&plain->context().input("rt_request").record);
+  ASSERT_NE(none, nullptr);
+  EXPECT_FALSE(none->timeEffects);
+  EXPECT_EQ(none->deadlineMs, 0.0);
 }
 
 // Per-effect selection with everything selected is the paper's hybrid-all, pixel for pixel; a
@@ -134,13 +156,12 @@ TEST(HybridEffects, MsBudgetCalibratesFromTheLastRtPass) {
   ASSERT_GT(cost1, 0);
   EXPECT_LE(cost1, h.lastBudget());
   // Last frame's rt_stats is the heuristic's history input: its wall time set to 4 ms.
-  Buffer& prev = r->context().history.at("rt_stats");
-  prev.at(prev.width - 1, 0)[0] = 4.0f;
+  std::any_cast<RtStats&>(r->context().history.at("rt_stats").record).ms = 4.0;
   r->renderFrame(1, s.camera);
   EXPECT_NEAR(h.lastBudget(), 10 * cost1 / 4.0, 1e-9 * h.lastBudget());
   EXPECT_LE(h.lastSelectedCost(), h.lastBudget());
   // The RT pass timed exactly the object-effects it traced (the next frame's costs per pixel).
-  const RtStats st = readRtStats(r->context().input("rt_stats"));
+  const RtStats& st = std::any_cast<const RtStats&>(r->context().input("rt_stats").record);
   for (size_t o = 0; o < s.objects.size(); ++o)
     for (size_t e = 0; e < size_t(kEffectCount); ++e) {
       if (st.pixels[o][e] > 0)
@@ -167,8 +188,7 @@ TEST(HybridEffects, DeadlineOvercommitsAndCalibratesOnTheTracedCost) {
   const FrameContext& ctx = r->context();
   EXPECT_TRUE(sameBuffer(ctx.input("traced_mask"), ctx.input("heuristic_mask")));
   EXPECT_EQ(ctx.counters.at("rt_secondary/items_cut"), 0.0);
-  Buffer& prev = r->context().history.at("rt_stats");
-  prev.at(prev.width - 1, 0)[0] = 4.0f;
+  std::any_cast<RtStats&>(r->context().history.at("rt_stats").record).ms = 4.0;
   r->renderFrame(1, s.camera);
   // Nothing was cut, so the traced cost is the selected cost (the same pixels at the same price).
   EXPECT_NEAR(h.lastBudget(), 2 * 100000 * cost1 / 4.0, 1e-6 * h.lastBudget());
