@@ -30,7 +30,7 @@ struct FrameContext {
   int frameIndex = 0;
   int64_t serial = -1;  // counts executed frames (frameIndex may repeat, e.g. a static shot)
   uint64_t seed = 0;
-  Vec2 jitter{0, 0};              // this frame's projection jitter in pixels (every view's camera)
+  Vec2 jitter{0, 0};              // this frame's projection jitter in pixels (View::jitter)
   float textureFootprint = 1.0f;  // RenderSettings::textureFootprint
   bool historyReset = true;       // history inputs are empty this frame (first frame or a reset)
   std::map<std::string, Buffer> buffers;
@@ -48,7 +48,7 @@ struct FrameContext {
   std::set<std::string> wanted;
   std::set<std::string> consumed;  // what the passes read, set by Pipeline::execute
 
-  const Camera& camera() const { return views.front().camera; }
+  const Camera& camera() const { return views.front().camera; }  // the main view's, unjittered
   // A counter this frame reported; `fallback` where no pass reported it.
   double counter(const std::string& name, double fallback) const;
   // A counter the caller knows a pass reports (a bug when it is missing).

@@ -57,10 +57,11 @@ void Renderer::makeViews(const CameraDesc& camera, const CameraDesc& shutterClos
   for (int e = 0; e < eyes; ++e) {
     View& v = ctx_.views[size_t(e)];
     const StereoDesc& st = settings_.stereo;
-    v.camera = Camera::make(eyeCamera(camera, st, e), w, h, jitter);
-    v.unjitteredCamera = Camera::make(v.camera.desc, w, h);
+    v.camera = Camera::make(eyeCamera(camera, st, e), w, h);
+    v.jitter = jitter;
+    v.jitteredCamera = Camera::make(v.camera.desc, w, h, jitter);
     v.prevCamera = Camera::make(eyeCamera(prevDesc, st, e), w, h);
-    v.shutterCamera = Camera::make(eyeCamera(shutterClose, st, e), w, h, jitter);
+    v.shutterCamera = Camera::make(eyeCamera(shutterClose, st, e), w, h);
     v.x = e * w;
     v.y = 0;
     v.cameraMoved = std::memcmp(&v.camera.viewProjUnjittered, &v.prevCamera.viewProjUnjittered,

@@ -40,11 +40,11 @@ void WriteCameraMotionImpl(const CameraMotionTile& tile, const View& view, const
   const auto half = hn::Set(d, 0.5f), eps = hn::Set(d, 1e-8f);
   const auto width = hn::Set(d, float(prev.width)), height = hn::Set(d, float(prev.height));
   const auto laneIndex = hn::ConvertTo(d, hn::Iota(di, 0));
-  const auto jx = hn::Set(d, view.camera.jitter.x);
+  const auto jx = hn::Set(d, view.jitter.x);
   const auto objectsV = hn::Set(di, objects);
   for (int y = tile.y0; y < tile.y1; ++y) {
     const size_t row = size_t(y) * size_t(tile.stride);
-    const float pyPlus = (float(y - view.y) + 0.5f) + view.camera.jitter.y;  // pixel.y + jitter.y
+    const float pyPlus = (float(y - view.y) + 0.5f) + view.jitter.y;  // pixel.y + jitter.y
     const auto pyV = hn::Set(d, pyPlus);
     int x = tile.x0;
     for (; x + lanes <= tile.x1; x += lanes) {

@@ -87,7 +87,7 @@ inline Vec2 reprojectedMotion(const View& view, Vec3 prev, Vec2 pixel) {
   if (!projectToPixel(view.prevCamera.viewProjUnjittered, view.prevCamera, Vec4(prev, 1.0f),
                       before))
     return {0, 0};
-  return pixel + view.camera.jitter - before;
+  return pixel + view.jitter - before;
 }
 inline Vec2 motionVectorAtPixel(const FrameScene& fs, const View& view, int object, Vec3 p,
                                 Vec2 pixel) {

@@ -10,13 +10,19 @@
 namespace tandem {
 
 struct View {
-  // This frame's camera, with the frame's sub-pixel jitter (camera.jitter) when a pass asked for
-  // it: what rasterized G-buffers and their pixels' rays see.
-  Camera camera, prevCamera;
-  // The same camera without the jitter, for passes that sample the pixel area themselves (lens
-  // rays) and accumulate by jitter-free motion vectors.
-  Camera unjitteredCamera;
-  Camera shutterCamera;      // when the shutter closes (== camera without motion blur)
+  // This frame's camera, last frame's, and the one when the shutter closes (== camera without
+  // motion blur); none of them jittered.
+  Camera camera, prevCamera, shutterCamera;
+  // This frame's sub-pixel projection jitter in pixels (0 unless a pass asked for it,
+  // FrameRequest).
+  Vec2 jitter{0, 0};
+  // `camera` shifted by `jitter`: the pixel grid's primary visibility. The passes that rasterize
+  // or trace the grid's primary rays (the raster and RT G-buffers, rt_whitted) and those that
+  // rebuild a G-buffer pixel's ray or project into its image (the shading passes, rt_secondary,
+  // ss_fallback, foveated_pt) use it, so all of them see the same sub-pixel positions. Passes
+  // that sample the pixel area themselves (lens rays, the path-traced reference, interleaved
+  // samples) use `camera` and add `jitter` only where they want it.
+  Camera jitteredCamera;
   int x = 0, y = 0;          // viewport origin; its size is the camera's
   bool cameraMoved = false;  // unjittered view-projection differs from last frame's
   int width() const { return camera.width; }

@@ -271,7 +271,13 @@ TEST(TemporalHooks, JitterIsHaltonAndIdenticalInRasterAndRtGBuffers) {
     const Vec2 j = haltonJitter(1 + i % 8);  // jitter_phases = 8
     EXPECT_EQ(taa.context().jitter.x, j.x);
     EXPECT_EQ(taa.context().jitter.y, j.y);
-    EXPECT_EQ(taa.context().camera().jitter.x, j.x);
+    // The view carries the jitter and its jittered camera; its own camera stays unjittered.
+    const View& v = taa.context().views.front();
+    EXPECT_EQ(v.jitter.x, j.x);
+    EXPECT_EQ(v.jitteredCamera.jitter.x, j.x);
+    EXPECT_EQ(v.jitteredCamera.jitter.y, j.y);
+    EXPECT_EQ(v.camera.jitter.x, 0.0f);
+    EXPECT_EQ(taa.context().camera().jitter.y, 0.0f);
   }
   // Without a request there is no jitter.
   auto plain = test::renderOnce(s, "deferred", 16, 9, s.camera);

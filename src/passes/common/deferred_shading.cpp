@@ -18,7 +18,7 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
-    const Camera& cam = v.camera;
+    const Camera& cam = v.jitteredCamera;
     const bool perspective = cam.desc.projection == Projection::Perspective;
     BatchShader shader(shading, hdr);
     ShadeBatch& b = shader.batch();

@@ -43,12 +43,12 @@ void RTGBufferPass::execute(FrameContext& ctx) {
             caches.local().get(ctx.frame, uint32_t(h.object), uint32_t(h.prim), fresh).setup;
         return resolveSurfaceInline(tri, r.origin, r.dir, tuv, spread);
       }();
-      const float depth = g.wantsDepth() ? v.camera.depthOf(r.origin + r.dir * h.t) : 0.0f;
+      const float depth = g.wantsDepth() ? v.jitteredCamera.depthOf(r.origin + r.dir * h.t) : 0.0f;
       g.write(x + v.x, y + v.y, s, depth,
               g.wantsMotion() ? motionVector(ctx.frame, v, s.object, s.position) : Vec2{0, 0});
     };
     rays +=
-        tracePrimaryTile(v.camera, rt, fx0 - v.x, fy0 - v.y, fx1 - v.x, fy1 - v.y,
+        tracePrimaryTile(v.jitteredCamera, rt, fx0 - v.x, fy0 - v.y, fx1 - v.x, fy1 - v.y,
                          [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
                            for (int k = 0; k < n; ++k) pixel(px[k], py[k], rs[k], hits[k]);
                          });

@@ -52,7 +52,7 @@ void VBufferShadingPass::execute(FrameContext& ctx) {
     }
     void sky(int x, int y) {
       Vec3 o, d;
-      v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+      v.jitteredCamera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
       hdr.setRgb(x, y, scene.skyRadiance(d));
     }
   };

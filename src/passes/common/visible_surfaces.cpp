@@ -8,7 +8,7 @@ void VisibleSurfaces::rasterize(FrameContext& ctx) {
   RasterStats total;
   for (size_t i = 0; i < ctx.views.size(); ++i) {
     RasterStats s;
-    rasterizer_.render(ctx.frame, ctx.views[i].camera, visibility_[i], &s);
+    rasterizer_.render(ctx.frame, ctx.views[i].jitteredCamera, visibility_[i], &s);
     total.trianglesIn += s.trianglesIn;
     total.trianglesCulled += s.trianglesCulled;
     total.trianglesClipped += s.trianglesClipped;

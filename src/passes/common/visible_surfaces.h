@@ -42,7 +42,7 @@ void VisibleSurfaces::resolveTile(const FrameContext& ctx, const View& v, int x0
                                   Background&& background) const {
   const VisibilityBuffer& vis = visibility_[size_t(&v - ctx.views.data())];
   const FrameScene& fs = ctx.frame;
-  const Camera& cam = v.camera;
+  const Camera& cam = v.jitteredCamera;
   const bool perspective = cam.desc.projection == Projection::Perspective;
   const float spread = ctx.pixelSpread(v);  // texture level of detail: the pixel's cone
   for (int y = y0; y < y1; ++y) {

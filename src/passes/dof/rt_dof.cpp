@@ -196,7 +196,7 @@ void RTDofPass::execute(FrameContext& ctx) {
   // reprojects by motion vectors that carry no jitter, so a jittered view would blur it. One
   // camera per view (stereo: both eyes in one dispatch).
   std::vector<Camera> cams;
-  for (const View& v : ctx.views) cams.push_back(v.unjitteredCamera);
+  for (const View& v : ctx.views) cams.push_back(v.camera);
   const float scale = float(ctx.width) / float(w);  // frame pixels per mask pixel
   RayTracer& rt = ctx.rayTracer();
   const uint64_t before = rt.raysTraced();

@@ -88,7 +88,7 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
       double lum2 = 0;  // the samples' squared luminances
       if (depth.at(x, y)[0] <= 0.0f) {
         Vec3 o, d;
-        v.camera.generateRay(ex + 0.5f, ey + 0.5f, o, d);
+        v.jitteredCamera.generateRay(ex + 0.5f, ey + 0.5f, o, d);
         sum = ctx.scene->skyRadiance(d) * float(spp);
       } else {
         SurfaceSample s;

@@ -83,7 +83,7 @@ struct ShadowPixel {
 // front faces hide where the ray would leave the object.
 Vec3 marchScreen(const Frame& f, const View& v, Vec3 p, Vec3 r, int steps, float thickness,
                  int self) {
-  const Camera& cam = v.camera;
+  const Camera& cam = v.jitteredCamera;
   // Clip coordinates and view depth are affine in t along the ray: one matrix product each for
   // the start and the direction, then a few multiply-adds a step.
   const Vec4 c0 = cam.viewProj * Vec4(p, 1.0f), cr = cam.viewProj * Vec4(r, 0.0f);
@@ -268,7 +268,7 @@ void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, i
       const bool shadow = job.shadows && m[kShadow] < 0.5f;
       if (!reflect && !refract && !shadow) continue;
       Vec3 o, d;
-      v.camera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+      v.jitteredCamera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
       if (shadow) shadowed.push_back({x, y, d});
       if (!reflect && !refract) continue;
       const Vec3 p = f.position.rgb(x, y);

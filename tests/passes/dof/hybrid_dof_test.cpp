@@ -40,7 +40,7 @@ FrameContext context(int w, int h, const CameraDesc& d) {
   ctx.width = w;
   ctx.height = h;
   View v;
-  v.camera = v.prevCamera = v.shutterCamera = v.unjitteredCamera = Camera::make(d, w, h);
+  v.camera = v.prevCamera = v.shutterCamera = v.jitteredCamera = Camera::make(d, w, h);
   ctx.views.push_back(v);
   return ctx;
 }

@@ -33,7 +33,7 @@ FrameContext frame(int w, int h) {
   d.position = {0, 0, 0};
   d.lookAt = {0, 0, -1};
   View v;
-  v.camera = v.prevCamera = v.shutterCamera = v.unjitteredCamera = Camera::make(d, w, h);
+  v.camera = v.prevCamera = v.shutterCamera = v.jitteredCamera = Camera::make(d, w, h);
   ctx.views.push_back(v);
   return ctx;
 }
