@@ -60,8 +60,7 @@ void AccumulationPass::execute(FrameContext& ctx) {
     for (const TimeLensPair& p : pairs) {
       const float tau = time ? p.tau : 0.0f;
       // The camera along its shutter path, then moved to the lens point.
-      const Camera cam =
-          cameraForPair(v, p, time, lens, aa ? v.jitter + p.jitter : v.jitter);
+      const Camera cam = cameraForPair(v, p, time, lens, aa ? v.jitter + p.jitter : v.jitter);
       auto t0 = Clock::now();
       RasterStats stats;
       rasterizer_.render(ctx.frame, cam, visibility_, &stats, time ? tau : -1.0f);

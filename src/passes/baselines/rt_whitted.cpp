@@ -30,7 +30,8 @@ void RTWhittedPass::execute(FrameContext& ctx) {
   for (const View& v : ctx.views) {
     const float spread = ctx.pixelSpread(v);  // the pixel's cone picks texture LOD
     tracePrimaryBlocks(
-        v.jitteredCamera, rt, [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
+        v.jitteredCamera, rt,
+        [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
           // The block's surfaces are shaded together: shadow rays as packets, one batch.
           SurfaceSample s[8];
           Vec3 d[8], rgb[8];

@@ -203,8 +203,7 @@ void SecondaryTrace::traceBlock(const View& v, int bx, int by, int x1, int y1, i
       b.hit[n] = ((!tiled && b.want[n][0]) || b.want[n][1] || b.want[n][2]) && g.read(x, y, b.s[n]);
       Vec3 origin;
       if (b.hit[n])
-        v.jitteredCamera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, origin,
-                                     b.d[n]);
+        v.jitteredCamera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, origin, b.d[n]);
       b.px[n] = x;
       b.py[n] = y;
       ++b.n;

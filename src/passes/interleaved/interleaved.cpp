@@ -181,8 +181,7 @@ void InterleavedPass::renderView(FrameContext& ctx, const Frame& f, const View& 
   for (int j = 0; j < n; ++j) {
     TimeLensPair p = f.pairs[size_t(j)];
     p.tau = f.taus[size_t(j)];
-    cams.push_back(
-        cameraForPair(v, p, s.time(), s.lens(), s.viewJitter ? v.jitter : Vec2{0, 0}));
+    cams.push_back(cameraForPair(v, p, s.time(), s.lens(), s.viewJitter ? v.jitter : Vec2{0, 0}));
   }
 
   // 0. Which samples are needed: those of pixels within the filter's reach of the mask.
