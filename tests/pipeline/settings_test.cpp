@@ -31,12 +31,10 @@ struct Outer {
 };
 
 const ParamTable<Inner>& innerTable() {
-  static const ParamTable<Inner> t = [] {
-    ParamTable<Inner> i;
-    i.add(&Inner::depth, {.name = "depth", .min = 1, .max = 64, .doc = "d"})
-        .add(&Inner::cutoff, {.name = "cutoff", .min = 0, .max = 1, .doc = "c"});
-    return i;
-  }();
+  static const ParamTable<Inner> t =
+      ParamTable<Inner>()
+          .add(&Inner::depth, {.name = "depth", .min = 1, .max = 64, .doc = "d"})
+          .add(&Inner::cutoff, {.name = "cutoff", .min = 0, .max = 1, .doc = "c"});
   return t;
 }
 
@@ -48,14 +46,12 @@ class OuterPass : public SettingsPass<Outer> {
 
  protected:
   const ParamTable<Outer>& tableFor() const override {
-    static const ParamTable<Outer> t = [] {
-      ParamTable<Outer> o;
-      o.add(&Outer::weight, {.name = "weight", .min = 0, .max = 1, .doc = "w"})
-          .add(&Outer::on, {.name = "on", .doc = "o"})
-          .add(&Outer::mode, {.name = "mode", .doc = "m", .choices = {"a", "b", "c"}})
-          .nest(&Outer::inner, innerTable());
-      return o;
-    }();
+    static const ParamTable<Outer> t =
+        ParamTable<Outer>()
+            .add(&Outer::weight, {.name = "weight", .min = 0, .max = 1, .doc = "w"})
+            .add(&Outer::on, {.name = "on", .doc = "o"})
+            .add(&Outer::mode, {.name = "mode", .doc = "m", .choices = {"a", "b", "c"}})
+            .nest(&Outer::inner, innerTable());
     return t;
   }
 };

@@ -18,26 +18,24 @@ namespace tandem {
 
 const ParamTable<AccumulationSettings>& AccumulationPass::tableFor() const {
   using S = AccumulationSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::samples, {.name = "samples",
-                        .min = 1,
-                        .max = 4096,
-                        .doc = "rasterized images averaged",
-                        .invalidatesHistory = true})
-        .add(&S::mode, {.name = "mode",
-                        .doc = "what the samples vary",
-                        .choices = {"dof", "motion_blur", "both"},
-                        .invalidatesHistory = true})
-        .add(&S::antialias, {.name = "antialias", .doc = "jitter each image within the pixel"})
-        .add(&S::shading,
-             {.name = "shading",
-              .doc = "whitted: ray-traced shadows, mirrors, glass (as interleaved_*); local: "
-                     "Blinn-Phong without shadows",
-              .choices = {"whitted", "local"},
-              .invalidatesHistory = true});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::samples, {.name = "samples",
+                             .min = 1,
+                             .max = 4096,
+                             .doc = "rasterized images averaged",
+                             .invalidatesHistory = true})
+          .add(&S::mode, {.name = "mode",
+                          .doc = "what the samples vary",
+                          .choices = {"dof", "motion_blur", "both"},
+                          .invalidatesHistory = true})
+          .add(&S::antialias, {.name = "antialias", .doc = "jitter each image within the pixel"})
+          .add(&S::shading,
+               {.name = "shading",
+                .doc = "whitted: ray-traced shadows, mirrors, glass (as interleaved_*); local: "
+                       "Blinn-Phong without shadows",
+                .choices = {"whitted", "local"},
+                .invalidatesHistory = true});
   return table;
 }
 

@@ -7,40 +7,40 @@ namespace tandem {
 
 const ParamTable<PTReferenceSettings>& PTReferencePass::tableFor() const {
   using S = PTReferenceSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::spp, {.name = "spp", .min = 1, .max = 1 << 20, .doc = "target samples per pixel"})
-        .add(&S::timeLimit, {.name = "time_limit",
-                             .min = 0,
-                             .max = 1e7,
-                             .doc = "seconds; > 0 stops at the last batch that fits"})
-        .add(&S::maxDepth, {.name = "max_depth",
-                            .min = 1,
-                            .max = 1024,
-                            .doc = "maximum path length in bounces",
-                            .invalidatesHistory = true})
-        .add(&S::progress, {.name = "progress", .doc = "progress bar on a terminal's stderr"})
-        .add(&S::accumulate, {.name = "accumulate",
-                              .doc = "keep converging over frames while nothing changes (viewer)"})
-        .add(&S::frameSpp, {.name = "frame_spp",
-                            .min = 1,
-                            .max = 1024,
-                            .doc = "accumulate: samples added per frame"})
-        .add(&S::integrator,
-             {.name = "integrator",
-              .doc = "path: path tracing (global illumination); whitted: distributed ray tracing "
-                     "of the hybrids' shading (shadows, mirrors, glass; the same light transport "
-                     "as rt-only); diffuse-gi: the foveated pipelines' path tracer, converged",
-              .choices = {"path", "whitted", "diffuse-gi"},
-              .invalidatesHistory = true})
-        .add(&S::whittedDepth,
-             {.name = "whitted_depth",
-              .min = 1,
-              .max = 64,
-              .doc = "whitted: recursion depth of secondary rays (rt_whitted's max_depth)",
-              .invalidatesHistory = true});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::spp,
+               {.name = "spp", .min = 1, .max = 1 << 20, .doc = "target samples per pixel"})
+          .add(&S::timeLimit, {.name = "time_limit",
+                               .min = 0,
+                               .max = 1e7,
+                               .doc = "seconds; > 0 stops at the last batch that fits"})
+          .add(&S::maxDepth, {.name = "max_depth",
+                              .min = 1,
+                              .max = 1024,
+                              .doc = "maximum path length in bounces",
+                              .invalidatesHistory = true})
+          .add(&S::progress, {.name = "progress", .doc = "progress bar on a terminal's stderr"})
+          .add(&S::accumulate,
+               {.name = "accumulate",
+                .doc = "keep converging over frames while nothing changes (viewer)"})
+          .add(&S::frameSpp, {.name = "frame_spp",
+                              .min = 1,
+                              .max = 1024,
+                              .doc = "accumulate: samples added per frame"})
+          .add(&S::integrator,
+               {.name = "integrator",
+                .doc = "path: path tracing (global illumination); whitted: distributed ray tracing "
+                       "of the hybrids' shading (shadows, mirrors, glass; the same light transport "
+                       "as rt-only); diffuse-gi: the foveated pipelines' path tracer, converged",
+                .choices = {"path", "whitted", "diffuse-gi"},
+                .invalidatesHistory = true})
+          .add(&S::whittedDepth,
+               {.name = "whitted_depth",
+                .min = 1,
+                .max = 64,
+                .doc = "whitted: recursion depth of secondary rays (rt_whitted's max_depth)",
+                .invalidatesHistory = true});
   return table;
 }
 

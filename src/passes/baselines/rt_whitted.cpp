@@ -9,11 +9,8 @@
 namespace tandem {
 
 const ParamTable<RTWhittedSettings>& RTWhittedPass::tableFor() const {
-  static const ParamTable<RTWhittedSettings> table = [] {
-    ParamTable<RTWhittedSettings> t;
-    t.nest(&RTWhittedSettings::whitted, whittedTable());
-    return t;
-  }();
+  static const ParamTable<RTWhittedSettings> table =
+      ParamTable<RTWhittedSettings>().nest(&RTWhittedSettings::whitted, whittedTable());
   return table;
 }
 

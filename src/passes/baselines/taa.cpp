@@ -26,32 +26,31 @@ std::vector<BufferSlot> TAAPass::inputs() const {
 
 const ParamTable<TAASettings>& TAAPass::tableFor() const {
   using S = TAASettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::alpha, {.name = "alpha", .min = 0.01, .max = 1, .doc = "weight of the current frame"})
-        .add(&S::jitterPhases, {.name = "jitter_phases",
-                                .min = 1,
-                                .max = 256,
-                                .doc = "length of the Halton (2,3) jitter cycle"})
-        .add(&S::motionAlpha, {.name = "motion_alpha",
-                               .min = 0.01,
-                               .max = 1,
-                               .doc = "weight of the current frame for pixels moving "
-                                      "motion_pixels or more per frame"})
-        .add(&S::motionPixels,
-             {.name = "motion_pixels",
-              .min = 0.1,
-              .max = 1000,
-              .doc = "speed (pixels per frame) at which the weight reaches motion_alpha"})
-        .add(&S::clamp, {.name = "clamp", .doc = "clamp history to the YCoCg neighbourhood box"})
-        .add(
-            &S::filter,
-            {.name = "filter", .doc = "history resampling", .choices = {"bilinear", "catmull_rom"}})
-        .add(&S::converge, {.name = "converge",
-                            .doc = "average the first frames after a reset equally (weight 1/n "
-                                   "until it falls to alpha)"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::alpha,
+               {.name = "alpha", .min = 0.01, .max = 1, .doc = "weight of the current frame"})
+          .add(&S::jitterPhases, {.name = "jitter_phases",
+                                  .min = 1,
+                                  .max = 256,
+                                  .doc = "length of the Halton (2,3) jitter cycle"})
+          .add(&S::motionAlpha, {.name = "motion_alpha",
+                                 .min = 0.01,
+                                 .max = 1,
+                                 .doc = "weight of the current frame for pixels moving "
+                                        "motion_pixels or more per frame"})
+          .add(&S::motionPixels,
+               {.name = "motion_pixels",
+                .min = 0.1,
+                .max = 1000,
+                .doc = "speed (pixels per frame) at which the weight reaches motion_alpha"})
+          .add(&S::clamp, {.name = "clamp", .doc = "clamp history to the YCoCg neighbourhood box"})
+          .add(&S::filter, {.name = "filter",
+                            .doc = "history resampling",
+                            .choices = {"bilinear", "catmull_rom"}})
+          .add(&S::converge, {.name = "converge",
+                              .doc = "average the first frames after a reset equally (weight 1/n "
+                                     "until it falls to alpha)"});
   return table;
 }
 

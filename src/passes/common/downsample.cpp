@@ -7,12 +7,8 @@ namespace tandem {
 
 const ParamTable<DownsampleSettings>& DownsamplePass::tableFor() const {
   using S = DownsampleSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::filter,
-          {.name = "filter", .doc = "reduction filter", .choices = {"box", "bilinear"}});
-    return t;
-  }();
+  static const ParamTable<S> table = ParamTable<S>().add(
+      &S::filter, {.name = "filter", .doc = "reduction filter", .choices = {"box", "bilinear"}});
   return table;
 }
 

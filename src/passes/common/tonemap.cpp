@@ -8,14 +8,12 @@ namespace tandem {
 
 const ParamTable<TonemapSettings>& TonemapPass::tableFor() const {
   using S = TonemapSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::exposure,
-          {.name = "exposure", .min = -20, .max = 20, .doc = "exposure in stops (scale 2^EV)"})
-        .add(&S::op,
-             {.name = "operator", .doc = "tone curve", .choices = {"clamp", "reinhard", "aces"}});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::exposure,
+               {.name = "exposure", .min = -20, .max = 20, .doc = "exposure in stops (scale 2^EV)"})
+          .add(&S::op,
+               {.name = "operator", .doc = "tone curve", .choices = {"clamp", "reinhard", "aces"}});
   return table;
 }
 

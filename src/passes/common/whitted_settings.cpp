@@ -6,42 +6,43 @@ namespace tandem {
 
 const ParamTable<WhittedParams>& whittedTable() {
   using S = WhittedParams;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::maxDepth, {.name = "max_depth",
-                         .min = 1,
-                         .max = 64,
-                         .doc = "maximum recursion depth of secondary rays"})
-        .add(&S::importanceCutoff, {.name = "importance_cutoff",
-                                    .min = 0,
-                                    .max = 1,
-                                    .doc = "stop recursing when a ray's weight falls below this"})
-        .add(&S::shadowAttenuation,
-             {.name = "shadow_attenuation",
-              .doc = "occluder colour for Listing 8b: textured (as the G-buffer) or the base "
-                     "material's",
-              .choices = {"textured", "base"}})
-        .add(&S::shadeAtMaxDepth,
-             {.name = "shade_at_max_depth",
-              .doc = "at max depth shade pure mirrors / clear glass with Blinn-Phong (Listing 8c: "
-                     "0)"})
-        .add(&S::shadows,
-             {.name = "shadows",
-              .doc = "shadows: classified (shadow maps decide where certain, rays the rest), rays "
-                     "(every shadow traced) or maps (PCF shadow maps only)",
-              .choices = {"classified", "rays", "maps"}})
-        .add(&S::shadowCull,
-             {.name = "shadow_cull",
-              .min = 0,
-              .max = 1,
-              .doc = "no shadow query for a light below this fraction of the surface's unshadowed "
-                     "light (0: only lights facing away or out of reach)"})
-        .add(&S::shadowMapSize, {.name = "shadow_map_size",
-                                 .min = 64,
-                                 .max = 8192,
-                                 .doc = "shadow map resolution for classified and map shadows"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::maxDepth, {.name = "max_depth",
+                              .min = 1,
+                              .max = 64,
+                              .doc = "maximum recursion depth of secondary rays"})
+          .add(&S::importanceCutoff, {.name = "importance_cutoff",
+                                      .min = 0,
+                                      .max = 1,
+                                      .doc = "stop recursing when a ray's weight falls below this"})
+          .add(&S::shadowAttenuation,
+               {.name = "shadow_attenuation",
+                .doc = "occluder colour for Listing 8b: textured (as the G-buffer) or the base "
+                       "material's",
+                .choices = {"textured", "base"}})
+          .add(
+              &S::shadeAtMaxDepth,
+              {.name = "shade_at_max_depth",
+               .doc = "at max depth shade pure mirrors / clear glass with Blinn-Phong (Listing 8c: "
+                      "0)"})
+          .add(
+              &S::shadows,
+              {.name = "shadows",
+               .doc = "shadows: classified (shadow maps decide where certain, rays the rest), rays "
+                      "(every shadow traced) or maps (PCF shadow maps only)",
+               .choices = {"classified", "rays", "maps"}})
+          .add(
+              &S::shadowCull,
+              {.name = "shadow_cull",
+               .min = 0,
+               .max = 1,
+               .doc = "no shadow query for a light below this fraction of the surface's unshadowed "
+                      "light (0: only lights facing away or out of reach)"})
+          .add(&S::shadowMapSize, {.name = "shadow_map_size",
+                                   .min = 64,
+                                   .max = 8192,
+                                   .doc = "shadow map resolution for classified and map shadows"});
   return table;
 }
 

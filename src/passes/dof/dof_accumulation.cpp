@@ -37,28 +37,26 @@ std::vector<BufferSlot> DofAccumulationPass::outputs() const {
 
 const ParamTable<DofAccumulationSettings>& DofAccumulationPass::tableFor() const {
   using S = DofAccumulationSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::historyWeight,
-          {.name = "history_weight",
-           .min = 0,
-           .max = 0.999,
-           .doc = "exponential moving average: weight of the history (the paper: 0.95)"})
-        .add(&S::motionPixels,
-             {.name = "motion_pixels",
-              .min = 0,
-              .max = 1000,
-              .doc = "a pixel moving this many frame pixels uses this frame's hit ratio"})
-        .add(&S::adaptiveAlpha,
-             {.name = "adaptive_alpha",
-              .doc = "per-pixel blend factor from the temporal gradient (Schied 2018; beyond the "
-                     "paper)"})
-        .add(&S::varianceBlur, {.name = "variance_blur",
-                                .min = 0,
-                                .max = 16,
-                                .doc = "σ of the variance's Gaussian blur"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::historyWeight,
+               {.name = "history_weight",
+                .min = 0,
+                .max = 0.999,
+                .doc = "exponential moving average: weight of the history (the paper: 0.95)"})
+          .add(&S::motionPixels,
+               {.name = "motion_pixels",
+                .min = 0,
+                .max = 1000,
+                .doc = "a pixel moving this many frame pixels uses this frame's hit ratio"})
+          .add(&S::adaptiveAlpha,
+               {.name = "adaptive_alpha",
+                .doc = "per-pixel blend factor from the temporal gradient (Schied 2018; beyond the "
+                       "paper)"})
+          .add(&S::varianceBlur, {.name = "variance_blur",
+                                  .min = 0,
+                                  .max = 16,
+                                  .doc = "σ of the variance's Gaussian blur"});
   return table;
 }
 

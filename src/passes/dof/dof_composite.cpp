@@ -12,32 +12,31 @@ namespace tandem {
 
 const ParamTable<DofCompositeSettings>& DofCompositePass::tableFor() const {
   using S = DofCompositeSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::mode,
-          {.name = "mode",
-           .doc = "hybrid: eq. 7; rt: the ray-traced colour wherever there is one (rt-dof)",
-           .choices = {"hybrid", "rt"}})
-        .add(&S::farBlend, {.name = "far_blend",
-                            .min = 0.001,
-                            .max = 1,
-                            .doc = "eq. 7: smoothstep(0, far_blend, h)"})
-        .add(&S::bokeh, {.name = "bokeh", .doc = "near field: post-process colour on bright bokeh"})
-        .add(&S::silhouette,
-             {.name = "silhouette",
-              .doc = "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) "
-                     "or sharp_background: the raster colour and the traced near field by hit "
-                     "ratio",
-              .choices = {"eq7", "sharp_background"}})
-        .add(&S::fineCoc,
-             {.name = "fine_coc",
-              .min = 0,
-              .max = 64,
-              .doc = "out of focus with no foreground over the pixel: below this |CoC| (px) the "
-                     "sharp image gathered at full resolution instead of the upsampled rays / "
-                     "gather (0 = off)"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::mode,
+               {.name = "mode",
+                .doc = "hybrid: eq. 7; rt: the ray-traced colour wherever there is one (rt-dof)",
+                .choices = {"hybrid", "rt"}})
+          .add(&S::farBlend, {.name = "far_blend",
+                              .min = 0.001,
+                              .max = 1,
+                              .doc = "eq. 7: smoothstep(0, far_blend, h)"})
+          .add(&S::bokeh,
+               {.name = "bokeh", .doc = "near field: post-process colour on bright bokeh"})
+          .add(&S::silhouette,
+               {.name = "silhouette",
+                .doc = "an in-focus pixel under a blurred foreground's rim: eq7 (as the far field) "
+                       "or sharp_background: the raster colour and the traced near field by hit "
+                       "ratio",
+                .choices = {"eq7", "sharp_background"}})
+          .add(&S::fineCoc,
+               {.name = "fine_coc",
+                .min = 0,
+                .max = 64,
+                .doc = "out of focus with no foreground over the pixel: below this |CoC| (px) the "
+                       "sharp image gathered at full resolution instead of the upsampled rays / "
+                       "gather (0 = off)"});
   return table;
 }
 

@@ -12,16 +12,15 @@ namespace tandem {
 
 const ParamTable<DofReconstructionSettings>& DofReconstructionPass::tableFor() const {
   using S = DofReconstructionSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(
-         &S::varianceWeight,
-         {.name = "variance_weight", .min = 0, .max = 1e9, .doc = "eq. 5: b = clamp(σ²·w, 0, 0.9)"})
-        .add(&S::lodScale,
-             {.name = "lod_scale", .min = 0, .max = 10, .doc = "eq. 8: lod = clamp(c_t·k, 0, 3)"})
-        .add(&S::median, {.name = "median", .doc = "3x3 median before the reconstruction"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::varianceWeight, {.name = "variance_weight",
+                                    .min = 0,
+                                    .max = 1e9,
+                                    .doc = "eq. 5: b = clamp(σ²·w, 0, 0.9)"})
+          .add(&S::lodScale,
+               {.name = "lod_scale", .min = 0, .max = 10, .doc = "eq. 8: lod = clamp(c_t·k, 0, 3)"})
+          .add(&S::median, {.name = "median", .doc = "3x3 median before the reconstruction"});
   return table;
 }
 

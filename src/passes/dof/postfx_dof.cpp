@@ -16,31 +16,28 @@ using dof::saturate;
 
 const ParamTable<PostfxDofSettings>& PostfxDofPass::tableFor() const {
   using S = PostfxDofSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(
-         &S::depthRange,
-         {.name = "depth_range",
-          .min = 0,
-          .max = 1e6,
-          .doc = "metres: a tap this much nearer than the centre is foreground (the paper: 10 cm)"})
-        .add(&S::specularThreshold,
-             {.name = "specular_threshold",
-              .min = 0,
-              .max = 1,
-              .doc = "specular luminance from which a sample counts towards the bokeh intensity"})
-        .add(&S::bokehLuminance,
-             {.name = "bokeh_luminance",
-              .min = 0,
-              .max = 1e6,
-              .doc = "luminance from which a high-specular sample is a bright highlight (bokeh)"})
-        .add(&S::polygon,
-             {.name = "polygon",
-              .doc = "polygonal aperture (apertureBlades >= 3) in the gather kernel (beyond the "
-                     "paper)"})
-        .add(&S::median, {.name = "median", .doc = "3x3 median post-filter"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::depthRange, {.name = "depth_range",
+                                .min = 0,
+                                .max = 1e6,
+                                .doc = "metres: a tap this much nearer than the centre is "
+                                       "foreground (the paper: 10 cm)"})
+          .add(&S::specularThreshold,
+               {.name = "specular_threshold",
+                .min = 0,
+                .max = 1,
+                .doc = "specular luminance from which a sample counts towards the bokeh intensity"})
+          .add(&S::bokehLuminance,
+               {.name = "bokeh_luminance",
+                .min = 0,
+                .max = 1e6,
+                .doc = "luminance from which a high-specular sample is a bright highlight (bokeh)"})
+          .add(&S::polygon,
+               {.name = "polygon",
+                .doc = "polygonal aperture (apertureBlades >= 3) in the gather kernel (beyond the "
+                       "paper)"})
+          .add(&S::median, {.name = "median", .doc = "3x3 median post-filter"});
   return table;
 }
 

@@ -26,36 +26,35 @@ std::vector<BufferSlot> RayMaskPass::inputs() const {
 
 const ParamTable<RayMaskSettings>& RayMaskPass::tableFor() const {
   using S = RayMaskSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::m,
-          {.name = "m", .min = 0, .max = 1024, .doc = "ray budget: most lens rays per pixel"})
-        .add(
-            &S::s,
-            {.name = "s", .min = 0, .max = 1, .doc = "eq. 2: scale of the depth + normal gradient"})
-        .add(&S::varianceWeight, {.name = "variance_weight",
-                                  .min = 0,
-                                  .max = 1e9,
-                                  .doc = "eq. 4: weight of the accumulated luminance variance"})
-        .add(&S::dilate, {.name = "dilate",
-                          .doc = "one ray within the near field's CoC radius around it (beyond "
-                                 "the paper, Fig. 8b)"})
-        .add(&S::mode, {.name = "mode",
-                        .doc = "adaptive: eq. 2-4; all: m rays in every pixel (rt-dof)",
-                        .choices = {"adaptive", "all"}})
-        .add(&S::fineCoc,
-             {.name = "fine_coc",
-              .min = 0,
-              .max = 64,
-              .doc = "no rays where dof_composite gathers the sharp image instead (|CoC| below "
-                     "half of this, no foreground over the pixel: keep equal to "
-                     "dof_composite.fine_coc; 0 = off)"})
-        .add(&S::resolution, {.name = "resolution",
-                              .doc = "of the mask and the ray-traced DoF (the paper: half)",
-                              .choices = {"half", "full"},
-                              .invalidatesHistory = true});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::m,
+               {.name = "m", .min = 0, .max = 1024, .doc = "ray budget: most lens rays per pixel"})
+          .add(&S::s, {.name = "s",
+                       .min = 0,
+                       .max = 1,
+                       .doc = "eq. 2: scale of the depth + normal gradient"})
+          .add(&S::varianceWeight, {.name = "variance_weight",
+                                    .min = 0,
+                                    .max = 1e9,
+                                    .doc = "eq. 4: weight of the accumulated luminance variance"})
+          .add(&S::dilate, {.name = "dilate",
+                            .doc = "one ray within the near field's CoC radius around it (beyond "
+                                   "the paper, Fig. 8b)"})
+          .add(&S::mode, {.name = "mode",
+                          .doc = "adaptive: eq. 2-4; all: m rays in every pixel (rt-dof)",
+                          .choices = {"adaptive", "all"}})
+          .add(&S::fineCoc,
+               {.name = "fine_coc",
+                .min = 0,
+                .max = 64,
+                .doc = "no rays where dof_composite gathers the sharp image instead (|CoC| below "
+                       "half of this, no foreground over the pixel: keep equal to "
+                       "dof_composite.fine_coc; 0 = off)"})
+          .add(&S::resolution, {.name = "resolution",
+                                .doc = "of the mask and the ray-traced DoF (the paper: half)",
+                                .choices = {"half", "full"},
+                                .invalidatesHistory = true});
   return table;
 }
 

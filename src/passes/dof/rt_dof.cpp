@@ -17,14 +17,12 @@ namespace tandem {
 
 const ParamTable<RTDofSettings>& RTDofPass::tableFor() const {
   using S = RTDofSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.nest(&S::whitted, whittedTable())
-        .add(&S::reuseRaster, {.name = "reuse_raster",
-                               .doc = "hits the sharp image shows take its colour instead of "
-                                      "being shaded (beyond the paper)"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .nest(&S::whitted, whittedTable())
+          .add(&S::reuseRaster, {.name = "reuse_raster",
+                                 .doc = "hits the sharp image shows take its colour instead of "
+                                        "being shaded (beyond the paper)"});
   return table;
 }
 

@@ -26,14 +26,11 @@ std::vector<BufferSlot> FoveatedPTPass::inputs() const {
 
 const ParamTable<FoveatedPTSettings>& FoveatedPTPass::tableFor() const {
   using S = FoveatedPTSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::lightSelection, {.name = "light_selection",
-                               .doc = "uniform: any light alike (the thesis); grid: by estimated "
-                                      "irradiance where the path is",
-                               .choices = {"uniform", "grid"}});
-    return t;
-  }();
+  static const ParamTable<S> table = ParamTable<S>().add(
+      &S::lightSelection, {.name = "light_selection",
+                           .doc = "uniform: any light alike (the thesis); grid: by estimated "
+                                  "irradiance where the path is",
+                           .choices = {"uniform", "grid"}});
   return table;
 }
 

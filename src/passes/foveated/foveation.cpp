@@ -8,54 +8,54 @@ namespace tandem {
 
 const ParamTable<FoveationSettings>& FoveationPass::tableFor() const {
   using S = FoveationSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::mode, {.name = "mode",
-                     .doc = "foveated: three layers; full: every pixel (Base)",
-                     .choices = {"foveated", "full"}})
-        .add(&S::r0,
-             {.name = "r0", .min = 0, .max = 16384, .doc = "inner (fovea) radius in pixels"})
-        .add(&S::r1, {.name = "r1",
-                      .min = 0,
-                      .max = 16384,
-                      .doc = "middle ring's outer radius in pixels (>= r0)"})
-        .add(&S::p, {.name = "p",
-                     .min = 0,
-                     .max = 1,
-                     .doc = "middle ring's probability at r1 (falls linearly from 1 at r0)"})
-        .add(&S::outerP, {.name = "outer_p",
-                          .min = -1,
-                          .max = 1,
-                          .doc = "outer layer's probability; -1: p (the thesis' 1 - p at p = 0.5)"})
-        .add(&S::sppInner, {.name = "spp_inner",
-                            .min = 1,
-                            .max = 1024,
-                            .doc = "samples per listed pixel, inner layer"})
-        .add(&S::sppMiddle, {.name = "spp_middle",
-                             .min = 1,
-                             .max = 1024,
-                             .doc = "samples per listed pixel, middle ring"})
-        .add(&S::sppOuter, {.name = "spp_outer",
-                            .min = 1,
-                            .max = 1024,
-                            .doc = "samples per listed pixel, outer layer"})
-        .add(&S::gaze, {.name = "gaze",
-                        .doc = "trace: the scene's gazeTrace at the frame time when it has one; "
-                               "fixed: gaze_x, gaze_y",
-                        .choices = {"trace", "fixed"}})
-        .add(&S::gazeX, {.name = "gaze_x",
-                         .min = 0,
-                         .max = 1,
-                         .doc = "gaze point, fraction of the eye's width"})
-        .add(&S::gazeY, {.name = "gaze_y",
-                         .min = 0,
-                         .max = 1,
-                         .doc = "gaze point, fraction of the eye's height"})
-        .add(&S::scaleRadii, {.name = "scale_radii",
-                              .doc = "radii are for 1080 rows: scale them to the eye's height"})
-        .add(&S::seed, {.name = "seed", .min = 0, .max = 1e9, .doc = "seed of the selection toss"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::mode, {.name = "mode",
+                          .doc = "foveated: three layers; full: every pixel (Base)",
+                          .choices = {"foveated", "full"}})
+          .add(&S::r0,
+               {.name = "r0", .min = 0, .max = 16384, .doc = "inner (fovea) radius in pixels"})
+          .add(&S::r1, {.name = "r1",
+                        .min = 0,
+                        .max = 16384,
+                        .doc = "middle ring's outer radius in pixels (>= r0)"})
+          .add(&S::p, {.name = "p",
+                       .min = 0,
+                       .max = 1,
+                       .doc = "middle ring's probability at r1 (falls linearly from 1 at r0)"})
+          .add(&S::outerP,
+               {.name = "outer_p",
+                .min = -1,
+                .max = 1,
+                .doc = "outer layer's probability; -1: p (the thesis' 1 - p at p = 0.5)"})
+          .add(&S::sppInner, {.name = "spp_inner",
+                              .min = 1,
+                              .max = 1024,
+                              .doc = "samples per listed pixel, inner layer"})
+          .add(&S::sppMiddle, {.name = "spp_middle",
+                               .min = 1,
+                               .max = 1024,
+                               .doc = "samples per listed pixel, middle ring"})
+          .add(&S::sppOuter, {.name = "spp_outer",
+                              .min = 1,
+                              .max = 1024,
+                              .doc = "samples per listed pixel, outer layer"})
+          .add(&S::gaze, {.name = "gaze",
+                          .doc = "trace: the scene's gazeTrace at the frame time when it has one; "
+                                 "fixed: gaze_x, gaze_y",
+                          .choices = {"trace", "fixed"}})
+          .add(&S::gazeX, {.name = "gaze_x",
+                           .min = 0,
+                           .max = 1,
+                           .doc = "gaze point, fraction of the eye's width"})
+          .add(&S::gazeY, {.name = "gaze_y",
+                           .min = 0,
+                           .max = 1,
+                           .doc = "gaze point, fraction of the eye's height"})
+          .add(&S::scaleRadii, {.name = "scale_radii",
+                                .doc = "radii are for 1080 rows: scale them to the eye's height"})
+          .add(&S::seed,
+               {.name = "seed", .min = 0, .max = 1e9, .doc = "seed of the selection toss"});
   return table;
 }
 

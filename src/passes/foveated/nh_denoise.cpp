@@ -206,60 +206,60 @@ std::vector<BufferSlot> NHDenoisePass::inputs() const {
 
 const ParamTable<NHDenoiseSettings>& NHDenoisePass::tableFor() const {
   using S = NHDenoiseSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::regions, {.name = "regions",
-                        .doc = "one: whole frame (Base); two: inner + rest (NH2LD); three: NH3LD",
-                        .choices = {"one", "two", "three"}})
-        .add(&S::levelsInner, {.name = "levels_inner",
-                               .min = 0,
-                               .max = 10,
-                               .doc = "M: levels of the inner layer (regions two, three)"})
-        .add(&S::levelsMiddle, {.name = "levels_middle",
-                                .min = 0,
-                                .max = 10,
-                                .doc = "N: levels of the middle ring (regions three)"})
-        .add(&S::levelsOuter,
-             {.name = "levels_outer",
-              .min = 0,
-              .max = 10,
-              .doc = "P: levels of the outer layer (two: middle + outer; one: the frame)"})
-        .add(&S::sigmaColor, {.name = "sigma_color",
-                              .min = 0.001,
-                              .max = 1000,
-                              .doc = "colour edge-stopping σ, relative to mean luminance"})
-        .add(&S::sigmaNormal,
-             {.name = "sigma_normal", .min = 0.001, .max = 10, .doc = "normal edge-stopping σ"})
-        .add(&S::sigmaPosition, {.name = "sigma_position",
-                                 .min = 0.0001,
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::regions,
+               {.name = "regions",
+                .doc = "one: whole frame (Base); two: inner + rest (NH2LD); three: NH3LD",
+                .choices = {"one", "two", "three"}})
+          .add(&S::levelsInner, {.name = "levels_inner",
+                                 .min = 0,
                                  .max = 10,
-                                 .doc = "position edge-stopping σ, relative to eye distance"})
-        .add(&S::demodulate,
-             {.name = "demodulate", .doc = "filter illumination (divided by the diffuse albedo)"})
-        .add(&S::colorWeight,
-             {.name = "color_weight",
-              .doc = "mean: σ_c x mean luminance, halved per level (Dammertz); variance: σ_v x "
-                     "each pixel's own noise, from pt_variance (beyond the thesis)",
-              .choices = {"mean", "variance"}})
-        .add(&S::sigmaVariance,
-             {.name = "sigma_variance",
-              .min = 0.01,
-              .max = 100,
-              .doc = "variance: colour edge-stopping σ in standard deviations of the pixel's "
-                     "estimate"})
-        .add(&S::levelsFrom,
-             {.name = "levels_from",
-              .doc = "fixed: the level counts above; variance: per region from its measured noise "
-                     "(beyond the thesis)",
-              .choices = {"fixed", "variance"}})
-        .add(&S::targetVariance,
-             {.name = "target_variance",
-              .min = 1e-6,
-              .max = 10,
-              .doc = "variance: the relative noise variance per pixel area each region is "
-                     "filtered down to"});
-    return t;
-  }();
+                                 .doc = "M: levels of the inner layer (regions two, three)"})
+          .add(&S::levelsMiddle, {.name = "levels_middle",
+                                  .min = 0,
+                                  .max = 10,
+                                  .doc = "N: levels of the middle ring (regions three)"})
+          .add(&S::levelsOuter,
+               {.name = "levels_outer",
+                .min = 0,
+                .max = 10,
+                .doc = "P: levels of the outer layer (two: middle + outer; one: the frame)"})
+          .add(&S::sigmaColor, {.name = "sigma_color",
+                                .min = 0.001,
+                                .max = 1000,
+                                .doc = "colour edge-stopping σ, relative to mean luminance"})
+          .add(&S::sigmaNormal,
+               {.name = "sigma_normal", .min = 0.001, .max = 10, .doc = "normal edge-stopping σ"})
+          .add(&S::sigmaPosition, {.name = "sigma_position",
+                                   .min = 0.0001,
+                                   .max = 10,
+                                   .doc = "position edge-stopping σ, relative to eye distance"})
+          .add(&S::demodulate,
+               {.name = "demodulate", .doc = "filter illumination (divided by the diffuse albedo)"})
+          .add(&S::colorWeight,
+               {.name = "color_weight",
+                .doc = "mean: σ_c x mean luminance, halved per level (Dammertz); variance: σ_v x "
+                       "each pixel's own noise, from pt_variance (beyond the thesis)",
+                .choices = {"mean", "variance"}})
+          .add(&S::sigmaVariance,
+               {.name = "sigma_variance",
+                .min = 0.01,
+                .max = 100,
+                .doc = "variance: colour edge-stopping σ in standard deviations of the pixel's "
+                       "estimate"})
+          .add(
+              &S::levelsFrom,
+              {.name = "levels_from",
+               .doc = "fixed: the level counts above; variance: per region from its measured noise "
+                      "(beyond the thesis)",
+               .choices = {"fixed", "variance"}})
+          .add(&S::targetVariance,
+               {.name = "target_variance",
+                .min = 1e-6,
+                .max = 10,
+                .doc = "variance: the relative noise variance per pixel area each region is "
+                       "filtered down to"});
   return table;
 }
 

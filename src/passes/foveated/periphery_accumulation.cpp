@@ -30,33 +30,34 @@ std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
 
 const ParamTable<PeripheryAccumulationSettings>& PeripheryAccumulationPass::tableFor() const {
   using S = PeripheryAccumulationSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::fromLayer, {.name = "from_layer",
-                          .min = 0,
-                          .max = 3,
-                          .doc = "first layer accumulated (0 inner, 1 middle, 2 outer; 3: none)"})
-        .add(&S::alphaMin, {.name = "alpha_min",
-                            .min = 0.01,
-                            .max = 1,
-                            .doc = "smallest weight of this frame (the history's length)"})
-        .add(&S::positionTolerance, {.name = "position_tolerance",
-                                     .min = 0.0001,
-                                     .max = 1,
-                                     .doc = "same surface: world distance over eye distance"})
-        .add(&S::normalTolerance,
-             {.name = "normal_tolerance",
-              .min = 0,
-              .max = 180,
-              .doc = "same surface: largest angle (degrees) between the normals"})
-        .add(&S::demodulate,
-             {.name = "demodulate",
-              .doc = "accumulate illumination (divided by the diffuse albedo): texture never lags"})
-        .add(&S::fillUnlisted,
-             {.name = "fill_unlisted",
-              .doc = "unlisted pixels take their reprojected history (pt_accum_mask marks them)"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::fromLayer,
+               {.name = "from_layer",
+                .min = 0,
+                .max = 3,
+                .doc = "first layer accumulated (0 inner, 1 middle, 2 outer; 3: none)"})
+          .add(&S::alphaMin, {.name = "alpha_min",
+                              .min = 0.01,
+                              .max = 1,
+                              .doc = "smallest weight of this frame (the history's length)"})
+          .add(&S::positionTolerance, {.name = "position_tolerance",
+                                       .min = 0.0001,
+                                       .max = 1,
+                                       .doc = "same surface: world distance over eye distance"})
+          .add(&S::normalTolerance,
+               {.name = "normal_tolerance",
+                .min = 0,
+                .max = 180,
+                .doc = "same surface: largest angle (degrees) between the normals"})
+          .add(&S::demodulate,
+               {.name = "demodulate",
+                .doc =
+                    "accumulate illumination (divided by the diffuse albedo): texture never lags"})
+          .add(
+              &S::fillUnlisted,
+              {.name = "fill_unlisted",
+               .doc = "unlisted pixels take their reprojected history (pt_accum_mask marks them)"});
   return table;
 }
 

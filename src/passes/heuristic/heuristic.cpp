@@ -184,49 +184,48 @@ double BudgetCalibration::unitsPerMs() const {
 
 const ParamTable<HeuristicSettings>& HeuristicPass::tableFor() const {
   using S = HeuristicSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::budget, {.name = "budget",
-                       .min = 0,
-                       .max = 1e15,
-                       .doc = "T: ray-tracing budget in cost units (visible pixels x rays x E)"})
-        .add(&S::importance,
-             {.name = "importance",
-              .min = 0,
-              .max = 1e12,
-              .doc = "I: relevancy bonus for objects selected last frame (stability)"})
-        .add(&S::selectAll,
-             {.name = "select_all", .doc = "select every visible object (no heuristic)"})
-        .add(&S::shadows,
-             {.name = "shadows",
-              .doc = "shadows: selected with their object within the budget (seed 002), or every "
-                     "visible object's traced (classified shadows), the budget left to "
-                     "reflections and refractions",
-              .choices = {"budget", "all"}})
-        .add(&S::budgetMs,
-             {.name = "budget_ms",
-              .min = 0,
-              .max = 1e6,
-              .doc = "RT budget in ms; T is calibrated from measured RT time (0 = use budget)"})
-        .add(&S::perEffect,
-             {.name = "per_effect",
-              .doc = "select shadows, reflections, refractions separately per object"})
-        .add(&S::partialObjects, {.name = "partial_objects",
-                                  .doc = "ms budget: spend what is left on the central part of "
-                                         "the next object that does not fit"})
-        .add(&S::countRecursion,
-             {.name = "count_recursion",
-              .doc = "cost from the rays actually traced per pixel, recursion included"})
-        .add(&S::deadline,
-             {.name = "deadline",
-              .doc = "ms budget: rt_secondary stops at the budget, most relevant pixels first"})
-        .add(&S::overcommit, {.name = "overcommit",
-                              .min = 1,
-                              .max = 4,
-                              .doc = "deadline: select this many times the budget (the deadline "
-                                     "cuts the least relevant)"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::budget,
+               {.name = "budget",
+                .min = 0,
+                .max = 1e15,
+                .doc = "T: ray-tracing budget in cost units (visible pixels x rays x E)"})
+          .add(&S::importance,
+               {.name = "importance",
+                .min = 0,
+                .max = 1e12,
+                .doc = "I: relevancy bonus for objects selected last frame (stability)"})
+          .add(&S::selectAll,
+               {.name = "select_all", .doc = "select every visible object (no heuristic)"})
+          .add(&S::shadows,
+               {.name = "shadows",
+                .doc = "shadows: selected with their object within the budget (seed 002), or every "
+                       "visible object's traced (classified shadows), the budget left to "
+                       "reflections and refractions",
+                .choices = {"budget", "all"}})
+          .add(&S::budgetMs,
+               {.name = "budget_ms",
+                .min = 0,
+                .max = 1e6,
+                .doc = "RT budget in ms; T is calibrated from measured RT time (0 = use budget)"})
+          .add(&S::perEffect,
+               {.name = "per_effect",
+                .doc = "select shadows, reflections, refractions separately per object"})
+          .add(&S::partialObjects, {.name = "partial_objects",
+                                    .doc = "ms budget: spend what is left on the central part of "
+                                           "the next object that does not fit"})
+          .add(&S::countRecursion,
+               {.name = "count_recursion",
+                .doc = "cost from the rays actually traced per pixel, recursion included"})
+          .add(&S::deadline,
+               {.name = "deadline",
+                .doc = "ms budget: rt_secondary stops at the budget, most relevant pixels first"})
+          .add(&S::overcommit, {.name = "overcommit",
+                                .min = 1,
+                                .max = 4,
+                                .doc = "deadline: select this many times the budget (the deadline "
+                                       "cuts the least relevant)"});
   return table;
 }
 

@@ -20,21 +20,19 @@ namespace tandem {
 
 const ParamTable<RTSecondarySettings>& RTSecondaryPass::tableFor() const {
   using S = RTSecondarySettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.nest(&S::whitted, whittedTable())
-        .add(&S::shadowClassLight,
-             {.name = "shadow_class_light",
-              .min = -1,
-              .max = 1 << 20,
-              .doc = "the light shadow_class shows (-1: the shares over every light)"})
-        .add(&S::outsideMaskShadow,
-             {.name = "outside_mask_shadow",
-              .min = 0,
-              .max = 1,
-              .doc = "shadow value outside the mask (Listing 8a: 0; 1 is neutral)"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .nest(&S::whitted, whittedTable())
+          .add(&S::shadowClassLight,
+               {.name = "shadow_class_light",
+                .min = -1,
+                .max = 1 << 20,
+                .doc = "the light shadow_class shows (-1: the shares over every light)"})
+          .add(&S::outsideMaskShadow,
+               {.name = "outside_mask_shadow",
+                .min = 0,
+                .max = 1,
+                .doc = "shadow value outside the mask (Listing 8a: 0; 1 is neutral)"});
   return table;
 }
 

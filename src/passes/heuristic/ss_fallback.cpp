@@ -17,42 +17,41 @@ using FallbackMode = FallbackSettings::Mode;
 
 const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
   using S = FallbackSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::mode, {.name = "mode",
-                     .doc = "unselected reflections/refractions: off (seed 002: black), sky, "
-                            "screen space, per-object reflection probes",
-                     .choices = {"off", "environment", "screen_space", "probe"}})
-        .add(&S::shadows,
-             {.name = "shadows",
-              .doc = "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
-              .choices = {"off", "shadow_map"}})
-        .add(&S::shadowMapSize,
-             {.name = "shadow_map_size", .min = 64, .max = 8192, .doc = "shadow map resolution"})
-        .add(&S::probeSize, {.name = "probe_size",
-                             .min = 8,
-                             .max = 1024,
-                             .doc = "reflection probe face resolution"})
-        .add(&S::maxProbes,
-             {.name = "max_probes",
-              .min = 0,
-              .max = 4096,
-              .doc = "most objects with a probe (the largest on screen; others show the sky)"})
-        .add(
-            &S::probeRefresh,
-            {.name = "probe_refresh",
-             .min = 0,
-             .max = 1024,
-             .doc = "probes redrawn per frame when geometry moved (oldest first; new ones always)"})
-        .add(&S::steps,
-             {.name = "steps", .min = 1, .max = 512, .doc = "march steps along the reflected ray"})
-        .add(&S::thickness,
-             {.name = "thickness",
-              .min = 0,
-              .max = 100,
-              .doc = "depth a surface is taken to have, as a fraction of the distance marched"});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::mode, {.name = "mode",
+                          .doc = "unselected reflections/refractions: off (seed 002: black), sky, "
+                                 "screen space, per-object reflection probes",
+                          .choices = {"off", "environment", "screen_space", "probe"}})
+          .add(&S::shadows,
+               {.name = "shadows",
+                .doc = "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
+                .choices = {"off", "shadow_map"}})
+          .add(&S::shadowMapSize,
+               {.name = "shadow_map_size", .min = 64, .max = 8192, .doc = "shadow map resolution"})
+          .add(&S::probeSize, {.name = "probe_size",
+                               .min = 8,
+                               .max = 1024,
+                               .doc = "reflection probe face resolution"})
+          .add(&S::maxProbes,
+               {.name = "max_probes",
+                .min = 0,
+                .max = 4096,
+                .doc = "most objects with a probe (the largest on screen; others show the sky)"})
+          .add(&S::probeRefresh,
+               {.name = "probe_refresh",
+                .min = 0,
+                .max = 1024,
+                .doc =
+                    "probes redrawn per frame when geometry moved (oldest first; new ones always)"})
+          .add(
+              &S::steps,
+              {.name = "steps", .min = 1, .max = 512, .doc = "march steps along the reflected ray"})
+          .add(&S::thickness,
+               {.name = "thickness",
+                .min = 0,
+                .max = 100,
+                .doc = "depth a surface is taken to have, as a fraction of the distance marched"});
   return table;
 }
 

@@ -28,77 +28,75 @@ float blackmanHarris(float t) {
 
 const ParamTable<InterleavedSettings>& InterleavedPass::tableFor() const {
   using S = InterleavedSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::samples, {.name = "samples",
-                        .min = 1,
-                        .max = 4096,
-                        .doc = "N: (time, lens) pairs in T (passes)",
-                        .invalidatesHistory = true})
-        .add(&S::spp, {.name = "spp",
-                       .min = 1,
-                       .max = 64,
-                       .doc = "k: samples per pixel (N must be a multiple)",
-                       .invalidatesHistory = true})
-        .add(&S::scheme,
-             {.name = "scheme",
-              .doc = "how samples take pairs of T",
-              .choices = {"independent", "stratified", "random_tiles", "colored_corner"},
-              .invalidatesHistory = true})
-        .add(&S::mode, {.name = "mode",
-                        .doc = "what the pairs vary",
-                        .choices = {"dof", "motion_blur", "both"},
-                        .invalidatesHistory = true})
-        .add(&S::correlated, {.name = "correlated",
-                              .doc = "pair the i-th time with the i-th lens point (interval "
-                                     "methods' compromise: strobes)",
-                              .invalidatesHistory = true})
-        .add(&S::jitter, {.name = "jitter",
-                          .doc = "jitter samples inside their strata",
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::samples, {.name = "samples",
+                             .min = 1,
+                             .max = 4096,
+                             .doc = "N: (time, lens) pairs in T (passes)",
+                             .invalidatesHistory = true})
+          .add(&S::spp, {.name = "spp",
+                         .min = 1,
+                         .max = 64,
+                         .doc = "k: samples per pixel (N must be a multiple)",
+                         .invalidatesHistory = true})
+          .add(&S::scheme,
+               {.name = "scheme",
+                .doc = "how samples take pairs of T",
+                .choices = {"independent", "stratified", "random_tiles", "colored_corner"},
+                .invalidatesHistory = true})
+          .add(&S::mode, {.name = "mode",
+                          .doc = "what the pairs vary",
+                          .choices = {"dof", "motion_blur", "both"},
                           .invalidatesHistory = true})
-        .add(&S::filter, {.name = "filter",
-                          .doc = "pixel reconstruction filter (box: the reference's pixel area)",
-                          .choices = {"box", "blackman_harris"},
-                          .invalidatesHistory = true})
-        .add(&S::filterRadius, {.name = "filter_radius",
-                                .min = 0.5,
-                                .max = 4,
-                                .doc = "filter radius in pixels",
+          .add(&S::correlated, {.name = "correlated",
+                                .doc = "pair the i-th time with the i-th lens point (interval "
+                                       "methods' compromise: strobes)",
                                 .invalidatesHistory = true})
-        .add(&S::shading,
-             {.name = "shading",
-              .doc = "whitted: ray-traced shadows, mirrors, glass; local: Blinn-Phong without "
-                     "shadows",
-              .choices = {"whitted", "local"},
-              .invalidatesHistory = true})
-        .add(&S::shutterTime,
-             {.name = "shutter_time",
-              .min = -1,
-              .max = 1,
-              .doc = "every pair at this shutter fraction (a sharp image; -1: the pairs' own "
-                     "times)",
-              .invalidatesHistory = true})
-        .add(&S::shadingRate,
-             {.name = "shading_rate",
-              .doc = "sample: every sample shaded; pixel: once per pixel and surface seen "
-                     "(MSAA-style)",
-              .choices = {"sample", "pixel"},
-              .invalidatesHistory = true})
-        .add(&S::textureFootprint,
-             {.name = "texture_footprint",
-              .min = 0.0625,
-              .max = 4,
-              .doc = "scale of a sample's texture filter footprint (0.5 = mip bias -1, as "
-                     "temporal AA uses: the frames together sample each pixel more finely)",
-              .invalidatesHistory = true})
-        .add(&S::viewJitter,
-             {.name = "view_jitter",
-              .doc = "shift the samples by the view's sub-pixel jitter (a sequence for temporal "
-                     "AA)",
-              .invalidatesHistory = true})
-        .nest(&S::whitted, whittedTable());
-    return t;
-  }();
+          .add(&S::jitter, {.name = "jitter",
+                            .doc = "jitter samples inside their strata",
+                            .invalidatesHistory = true})
+          .add(&S::filter, {.name = "filter",
+                            .doc = "pixel reconstruction filter (box: the reference's pixel area)",
+                            .choices = {"box", "blackman_harris"},
+                            .invalidatesHistory = true})
+          .add(&S::filterRadius, {.name = "filter_radius",
+                                  .min = 0.5,
+                                  .max = 4,
+                                  .doc = "filter radius in pixels",
+                                  .invalidatesHistory = true})
+          .add(&S::shading,
+               {.name = "shading",
+                .doc = "whitted: ray-traced shadows, mirrors, glass; local: Blinn-Phong without "
+                       "shadows",
+                .choices = {"whitted", "local"},
+                .invalidatesHistory = true})
+          .add(&S::shutterTime,
+               {.name = "shutter_time",
+                .min = -1,
+                .max = 1,
+                .doc = "every pair at this shutter fraction (a sharp image; -1: the pairs' own "
+                       "times)",
+                .invalidatesHistory = true})
+          .add(&S::shadingRate,
+               {.name = "shading_rate",
+                .doc = "sample: every sample shaded; pixel: once per pixel and surface seen "
+                       "(MSAA-style)",
+                .choices = {"sample", "pixel"},
+                .invalidatesHistory = true})
+          .add(&S::textureFootprint,
+               {.name = "texture_footprint",
+                .min = 0.0625,
+                .max = 4,
+                .doc = "scale of a sample's texture filter footprint (0.5 = mip bias -1, as "
+                       "temporal AA uses: the frames together sample each pixel more finely)",
+                .invalidatesHistory = true})
+          .add(&S::viewJitter,
+               {.name = "view_jitter",
+                .doc = "shift the samples by the view's sub-pixel jitter (a sequence for temporal "
+                       "AA)",
+                .invalidatesHistory = true})
+          .nest(&S::whitted, whittedTable());
   return table;
 }
 

@@ -10,29 +10,30 @@ namespace tandem {
 
 const ParamTable<PostfxMotionBlurSettings>& PostfxMotionBlurPass::tableFor() const {
   using S = PostfxMotionBlurSettings;
-  static const ParamTable<S> table = [] {
-    ParamTable<S> t;
-    t.add(&S::tileSize, {.name = "tile_size",
-                         .min = 2,
-                         .max = 128,
-                         .doc = "K: tile size and largest blur radius (px)"})
-        .add(&S::samples,
-             {.name = "samples", .min = 3, .max = 101, .doc = "S: gather samples per pixel (odd)"})
-        .add(
-            &S::softZ,
-            {.name = "soft_z", .min = 0.001, .max = 100, .doc = "soft depth comparison extent (m)"})
-        .add(&S::maskThreshold,
-             {.name = "mask_threshold",
-              .min = 0,
-              .max = 100,
-              .doc = "mask tiles whose neighbourhood's blur radii differ by more than this (px)"})
-        .add(&S::mask, {.name = "mask",
-                        .doc = "spread: radii anywhere in the 3 x 3 tiles differ; edges: adjacent "
-                               "pixels' radii jump (a motion boundary) somewhere in them, so "
-                               "smooth motion (a camera pan's parallax) stays out",
-                        .choices = {"spread", "edges"}});
-    return t;
-  }();
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::tileSize, {.name = "tile_size",
+                              .min = 2,
+                              .max = 128,
+                              .doc = "K: tile size and largest blur radius (px)"})
+          .add(
+              &S::samples,
+              {.name = "samples", .min = 3, .max = 101, .doc = "S: gather samples per pixel (odd)"})
+          .add(&S::softZ, {.name = "soft_z",
+                           .min = 0.001,
+                           .max = 100,
+                           .doc = "soft depth comparison extent (m)"})
+          .add(&S::maskThreshold,
+               {.name = "mask_threshold",
+                .min = 0,
+                .max = 100,
+                .doc = "mask tiles whose neighbourhood's blur radii differ by more than this (px)"})
+          .add(&S::mask,
+               {.name = "mask",
+                .doc = "spread: radii anywhere in the 3 x 3 tiles differ; edges: adjacent "
+                       "pixels' radii jump (a motion boundary) somewhere in them, so "
+                       "smooth motion (a camera pan's parallax) stays out",
+                .choices = {"spread", "edges"}});
   return table;
 }
 
