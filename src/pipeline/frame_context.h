@@ -20,7 +20,6 @@
 namespace tandem {
 
 class Pass;
-class SampleCluster;
 
 struct FrameContext {
   const Scene* scene = nullptr;
@@ -40,7 +39,6 @@ struct FrameContext {
   // Figures passes report for the frame ("spp", "raster/triangles_in", ...); cleared each frame.
   // Passes write them; readers use counter() (reading with operator[] would insert the name).
   std::map<std::string, double> counters;
-  SampleCluster* cluster = nullptr;  // distributed (MPI) reference rendering; null: one process
   // Outputs nothing reads may be skipped: with keepAllOutputs off, a pass may leave out an
   // output that no pass reads (this frame or as history), that is not the pipeline's output and
   // that the caller does not list in `wanted` (AOVs written, the viewer's shown buffer).

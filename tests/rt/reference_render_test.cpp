@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "eval/metrics/metrics.h"
+#include "passes/baselines/pt_reference.h"
 #include "rt/reference_render.h"
 #include "scene/loaders.h"
 #include "scene/primitives.h"
@@ -22,7 +23,8 @@ std::unique_ptr<Renderer> reference(const Scene& s, const CameraDesc& cam, int w
   p.setParam("pt_reference.spp=" + std::to_string(spp), "test");
   auto r = std::make_unique<Renderer>(
       s, std::move(p), RenderSettings{.width = w, .height = h, .seed = seed, .shutter = shutter});
-  r->context().cluster = cluster;
+  for (auto& pass : r->pipeline().passes)
+    if (auto* pt = dynamic_cast<PTReferencePass*>(pass.get())) pt->distribute(cluster);
   r->renderFrameAt(0, 0.0f, cam, close ? *close : cam);
   return r;
 }

@@ -7,6 +7,7 @@
 
 #include "core/file_commit.h"
 #include "core/image_io.h"
+#include "passes/baselines/pt_reference.h"
 #include "pipeline/renderer.h"
 #include "scene/scene_hash.h"
 
@@ -82,7 +83,8 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
       .width = job.width, .height = job.height, .seed = s.seed, .shutter = job.shutter};
   rs.stereo = job.stereo;
   Renderer r(*job.scene, std::move(p), rs);
-  r.context().cluster = cluster;
+  for (auto& pass : r.pipeline().passes)
+    if (auto* pt = dynamic_cast<PTReferencePass*>(pass.get())) pt->distribute(cluster);
   const auto start = Clock::now();
   FrameTimings ft = r.renderFrameAt(0, job.time, job.camera, job.shutterCamera);
   img.seconds = msSince(start) * 1e-3;

@@ -58,7 +58,7 @@ void PTReferencePass::execute(FrameContext& ctx) {
   ref.progress = s.progress;
   ref.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);
   SampleCluster single;
-  SampleCluster& cluster = ctx.cluster ? *ctx.cluster : single;
+  SampleCluster& cluster = cluster_ ? *cluster_ : single;
   const bool accumulate = s.accumulate;
   if (accumulate) {
     // Samples continue by index, so the frame number must not change the sequence.

@@ -35,6 +35,9 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
   }
   void execute(FrameContext& ctx) override;
   void resetHistory() override { sums_.clear(); }
+  // Splits the samples over `cluster`'s processes (MPI: every rank renders its rows, the image
+  // is the same); null: this process alone.
+  void distribute(SampleCluster* cluster) { cluster_ = cluster; }
 
  protected:
   const ParamTable<PTReferenceSettings>& tableFor() const override;
@@ -42,6 +45,7 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
  private:
   std::vector<SampleSums> sums_;  // per view, carried across frames in accumulate mode
   uint64_t geometryVersion_ = ~0ull;
+  SampleCluster* cluster_ = nullptr;
 };
 
 }  // namespace tandem
