@@ -15,19 +15,14 @@ const ParamTable<RTWhittedSettings>& RTWhittedPass::tableFor() const {
 }
 
 void RTWhittedPass::execute(FrameContext& ctx) {
-  RayTracer& rt = ctx.rayTracer();
-  const uint64_t before = rt.raysTraced();
+  WhittedFrame wf(ctx, settings().whitted);
   const Scene& scene = *ctx.scene;
-  const ShadingContext shading = ShadingContext::from(scene);
-  Whitted whitted(rt, scene, shading, settings().whitted.settings());
-  ShadowTally tally;
-  prepareShadows(ctx, settings().whitted, whitted, &tally);
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& ids = ctx.output(*this, "object_id");
   for (const View& v : ctx.views) {
     const float spread = ctx.pixelSpread(v);  // the pixel's cone picks texture LOD
     tracePrimaryBlocks(
-        v.jitteredCamera, rt,
+        v.jitteredCamera, wf.rt,
         [&](int n, const int* px, const int* py, const Ray* rs, const Hit* hits) {
           // The block's surfaces are shaded together: shadow rays as packets, one batch.
           SurfaceSample s[8];
@@ -47,13 +42,11 @@ void RTWhittedPass::execute(FrameContext& ctx) {
             d[m] = rs[k].dir;
             at[m++] = k;
           }
-          whitted.shadePrimary8(s, d, m, rgb);
+          wf.whitted.shadePrimary8(s, d, m, rgb);
           for (int j = 0; j < m; ++j) hdr.setRgb(px[at[j]] + v.x, py[at[j]] + v.y, rgb[j]);
         });
   }
-  reportShadows(ctx, *this, sum(tally), double(ctx.width) * double(ctx.height));
-  // Primary rays are counted by the tracer too, so the delta covers every ray of the pass.
-  ctx.passRays += double(rt.raysTraced() - before);
+  wf.finish(ctx, *this, double(ctx.width) * double(ctx.height));
 }
 
 }  // namespace tandem

@@ -67,10 +67,18 @@ const ShadowMaps* shadowMapsFor(FrameContext& ctx, const WhittedParams& w) {
   return maps;
 }
 
-void prepareShadows(FrameContext& ctx, const WhittedParams& p, Whitted& whitted,
-                    ShadowTally* tally) {
-  whitted.countShadows(tally);
+WhittedFrame::WhittedFrame(FrameContext& ctx, const WhittedParams& p)
+    : rt(ctx.rayTracer()),
+      shading(ShadingContext::from(*ctx.scene)),
+      whitted(rt, *ctx.scene, shading, p.settings()),
+      raysBefore_(rt.raysTraced()) {
+  whitted.countShadows(&tally);
   whitted.useShadowMaps(shadowMapsFor(ctx, p));
+}
+
+void WhittedFrame::finish(FrameContext& ctx, const Pass& pass, double pixels) {
+  reportShadows(ctx, pass, sum(tally), pixels);
+  ctx.passRays += double(rt.raysTraced() - raysBefore_);
 }
 
 void reportShadows(FrameContext& ctx, const Pass& p, const ShadowCounts& c, double pixels) {

@@ -28,9 +28,26 @@ const ParamTable<WhittedParams>& whittedTable();
 // The frame's shadow maps when `w` uses them (drawn or brought up to date here; a pass part
 // "shadow_maps" times that), else null.
 const ShadowMaps* shadowMapsFor(FrameContext& ctx, const WhittedParams& w);
-// Hands `whitted` those maps and the tally to count its shadow queries into.
-void prepareShadows(FrameContext& ctx, const WhittedParams& p, Whitted& whitted,
-                    ShadowTally* tally);
+
+// One frame of a pass that shades with Whitted rays: the shading context, the tracer with the
+// pass's settings and the frame's shadow maps, and the tally of its shadow queries. finish()
+// reports the shadow counters and every ray the pass traced (primary rays included).
+class WhittedFrame {
+ public:
+  WhittedFrame(FrameContext& ctx, const WhittedParams& p);
+  WhittedFrame(const WhittedFrame&) = delete;  // the tracer points at the shading context
+  WhittedFrame& operator=(const WhittedFrame&) = delete;
+  // `pixels`: the pass's shaded pixels (the shadow counters are shares per pixel).
+  void finish(FrameContext& ctx, const Pass& pass, double pixels);
+
+  RayTracer& rt;
+  const ShadingContext shading;
+  Whitted whitted;
+  ShadowTally tally;
+
+ private:
+  uint64_t raysBefore_;
+};
 
 // Counters of one pass's shadow queries ("<label>/shadow_rays_per_pixel", "/shadow_traced",
 // "/shadow_culled": shares of the light-surface pairs; pixels: the pass's shaded pixels).

@@ -196,13 +196,7 @@ void RTDofPass::execute(FrameContext& ctx) {
   std::vector<Camera> cams;
   for (const View& v : ctx.views) cams.push_back(v.camera);
   const float scale = float(ctx.width) / float(w);  // frame pixels per mask pixel
-  RayTracer& rt = ctx.rayTracer();
-  const uint64_t before = rt.raysTraced();
-  const Scene& scene = *ctx.scene;
-  const ShadingContext shading = ShadingContext::from(scene);
-  Whitted whitted(rt, scene, shading, settings().whitted.settings());
-  ShadowTally tally;
-  prepareShadows(ctx, settings().whitted, whitted, &tally);
+  WhittedFrame wf(ctx, settings().whitted);
   const ThinLens lens = ThinLens::of(cams.front());  // the same lens in every view
   const float nearT = cams.front().desc.nearPlane;
   const Buffer* sharp = ctx.optionalInput(*this, "hdr");
@@ -213,9 +207,9 @@ void RTDofPass::execute(FrameContext& ctx) {
       ctx,
       std::move(cams),
       mask,
-      scene,
-      rt,
-      whitted,
+      *ctx.scene,
+      wf.rt,
+      wf.whitted,
       lens,
       scale,
       ctx.pixelSpread(ctx.views.front()) * scale,
@@ -235,8 +229,7 @@ void RTDofPass::execute(FrameContext& ctx) {
         writePixel(sums[size_t((y - y0) * tw + (x - x0))], x, y, nearOut, farOut, hitOut,
                    farPosOut);
   });
-  reportShadows(ctx, *this, sum(tally), double(w) * double(h));
-  ctx.passRays += double(rt.raysTraced() - before);
+  wf.finish(ctx, *this, double(w) * double(h));
   double lensRays = 0;
   for (size_t i = 0; i < mask.pixelCount(); ++i) lensRays += mask.data[i];
   ctx.counters["rt_dof/lens_rays"] = lensRays;
