@@ -4,8 +4,11 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "core/math.h"
+#include "pipeline/pass.h"
 
 namespace tandem::dof {
 
@@ -24,6 +27,14 @@ struct RtChannels {
 constexpr int kLayerCoc = 3, kLayerChannels = 4;
 constexpr int kHitNearShare = 0, kHitRays = 1, kHitChannels = 2;
 constexpr int kFarPositionValid = 3, kFarPositionChannels = 4;
+
+// `fine_coc`, declared by dof_composite (below this |CoC| in frame pixels it gathers the sharp
+// image at full resolution) and by ray_mask (which then traces no rays there): one range and
+// default, so the two stay set alike unless a pipeline sets them apart.
+constexpr float kFineCocDefault = 12;
+inline ParamDesc fineCocParam(std::string doc) {
+  return {.name = "fine_coc", .min = 0, .max = 64, .doc = std::move(doc)};
+}
 
 // A hit ratio or foreground share below this is no silhouette (the noise floor of a few rays).
 constexpr float kSilhouette = 0.02f;

@@ -31,12 +31,10 @@ const ParamTable<DofCompositeSettings>& DofCompositePass::tableFor() const {
                        "ratio",
                 .choices = {"eq7", "sharp_background"}})
           .add(&S::fineCoc,
-               {.name = "fine_coc",
-                .min = 0,
-                .max = 64,
-                .doc = "out of focus with no foreground over the pixel: below this |CoC| (px) the "
-                       "sharp image gathered at full resolution instead of the upsampled rays / "
-                       "gather (0 = off)"});
+               dof::fineCocParam(
+                   "out of focus with no foreground over the pixel: below this |CoC| (px) the "
+                   "sharp image gathered at full resolution instead of the upsampled rays / "
+                   "gather (0 = off)"));
   return table;
 }
 

@@ -34,7 +34,7 @@ struct DofCompositeSettings {
   float farBlend = 0.3f;
   bool bokeh = true;
   Silhouette silhouette = Silhouette::SharpBackground;
-  float fineCoc = 12;  // frame pixels
+  float fineCoc = dof::kFineCocDefault;  // frame pixels
 };
 
 class DofCompositePass : public SettingsPass<DofCompositeSettings> {

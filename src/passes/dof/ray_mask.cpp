@@ -45,12 +45,10 @@ const ParamTable<RayMaskSettings>& RayMaskPass::tableFor() const {
                           .doc = "adaptive: eq. 2-4; all: m rays in every pixel (rt-dof)",
                           .choices = {"adaptive", "all"}})
           .add(&S::fineCoc,
-               {.name = "fine_coc",
-                .min = 0,
-                .max = 64,
-                .doc = "no rays where dof_composite gathers the sharp image instead (|CoC| below "
-                       "half of this, no foreground over the pixel: keep equal to "
-                       "dof_composite.fine_coc; 0 = off)"})
+               dof::fineCocParam(
+                   "no rays where dof_composite gathers the sharp image instead (|CoC| below "
+                   "half of this, no foreground over the pixel: keep equal to "
+                   "dof_composite.fine_coc; 0 = off)"))
           .add(&S::resolution, {.name = "resolution",
                                 .doc = "of the mask and the ray-traced DoF (the paper: half)",
                                 .choices = {"half", "full"},

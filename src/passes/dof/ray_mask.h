@@ -16,6 +16,7 @@
 // dof_variance. Output: ray_mask (rays per pixel, at half the frame's resolution or the frame's:
 // `resolution`).
 #pragma once
+#include "passes/dof/dof_common.h"
 #include "pipeline/param_table.h"
 
 namespace tandem {
@@ -28,7 +29,7 @@ struct RayMaskSettings {
   float varianceWeight = 100000;
   bool dilate = false;
   Mode mode = Mode::Adaptive;
-  float fineCoc = 12;
+  float fineCoc = dof::kFineCocDefault;
   Resolution resolution = Resolution::Half;
 };
 
