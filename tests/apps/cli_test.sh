@@ -246,6 +246,10 @@ echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "pairCounts": [6],
 expect_error "interleaved experiment bad N" "pairCounts / sweepSpp" "$T" experiment "$D/badil.json" --out "$D/err/exp"
 echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "sequenceFrames": 1}' > "$D/badseq.json"
 expect_error "interleaved experiment bad sequence" "sequenceFrames" "$T" experiment "$D/badseq.json" --out "$D/err/exp"
+expect_error "a heuristic flag for another runner" "--static-frames" "$T" experiment hybrid-dof \
+  --static-frames 3 --out "$D/err/exp"
+expect_error "--path-frames for the DoF runner" "--path-frames" "$T" experiment hybrid-dof \
+  --path-frames 3 --out "$D/err/exp"
 
 if [ $fail -ne 0 ]; then echo "cli tests failed"; exit 1; fi
 echo "cli tests passed"

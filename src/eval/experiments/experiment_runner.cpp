@@ -51,93 +51,130 @@ std::string experimentOutDir(const ExperimentRequest& r) {
   return r.o.out.empty() ? "out/experiment-" + resolveExperiment(r.name).stem().string() : r.o.out;
 }
 
+namespace {
+
+// The command line's overrides of an experiment file, each applied only where it was given.
+struct Overrides {
+  const ExperimentRequest& r;
+  const fs::path& file;
+  std::string out() const {
+    return r.o.out.empty() ? "out/experiment-" + file.stem().string() : r.o.out;
+  }
+  std::string cache() const { return r.o.noCache ? "" : r.o.cache; }
+  void size(int& width, int& height) const {
+    if (r.o.width) width = r.o.width;
+    if (r.o.height) height = r.o.height;
+  }
+  void warmup(int& v) const { v = r.o.warmup >= 0 ? r.o.warmup : v; }
+  void frames(int& v) const { v = r.o.frames ? r.o.frames : v; }
+  void spp(int& v) const { v = r.o.spp ? r.o.spp : v; }
+  void scenes(std::vector<std::string>& v) const { v = r.o.scenes.empty() ? v : r.o.scenes; }
+  void noScenes(const std::string& what) const {
+    if (!r.o.scenes.empty()) throw InputError("command line", "--scenes", "not for " + what);
+  }
+};
+
+int heuristic(const nlohmann::json& j, const Overrides& v) {
+  HeuristicExperimentOptions o = heuristicOptionsFromJson(j, v.file.string());
+  o.out = v.out();
+  v.scenes(o.scenes);
+  v.size(o.width, o.height);
+  v.warmup(o.warmup);
+  const ExperimentRequest& r = v.r;  // the heuristic's own overrides, range-checked by it
+  if (r.staticFrames != -1) o.staticFrames = r.staticFrames;
+  if (r.pathFrames != -1) o.pathFrames = r.pathFrames;
+  if (r.budget >= 0) o.budget = r.budget;
+  if (r.budgetMs >= 0) o.budgetMs = r.budgetMs;
+  o.threads = r.threads;
+  return runHeuristicExperiment(o);
+}
+
+int taa(const nlohmann::json& j, const Overrides& v) {
+  TaaExperimentOptions o = taaOptionsFromJson(j, v.file.string());
+  o.out = v.out();
+  v.scenes(o.scenes);
+  v.size(o.width, o.height);
+  v.frames(o.staticFrames);
+  if (v.r.pathFrames != -1) o.pathFrames = v.r.pathFrames;
+  return runTaaExperiment(o);
+}
+
+int hybridDof(const nlohmann::json& j, const Overrides& v) {
+  DofExperimentOptions o = dofOptionsFromJson(j, v.file.string());
+  o.out = v.out();
+  o.cache = v.cache();
+  v.size(o.width, o.height);
+  v.warmup(o.warmup);
+  v.frames(o.frames);
+  v.spp(o.referenceSpp);
+  v.spp(o.pathReferenceSpp);
+  return runDofExperiment(o);
+}
+
+int foveated(const nlohmann::json& j, const Overrides& v) {
+  FoveatedExperimentOptions o = foveatedOptionsFromJson(j, v.file.string());
+  o.out = v.out();
+  o.cache = v.cache();
+  v.size(o.qualityWidth, o.qualityHeight);
+  v.warmup(o.warmup);
+  v.frames(o.fhdFrames);
+  v.frames(o.quest2Frames);
+  v.spp(o.referenceSpp);
+  return runFoveatedExperiment(o);
+}
+
+int interleaved(const nlohmann::json& j, const Overrides& v) {
+  InterleavedExperimentOptions o = interleavedOptionsFromJson(j, v.file.string());
+  o.out = v.out();
+  o.cache = v.cache();
+  v.size(o.width, o.height);
+  v.warmup(o.timingWarmup);
+  v.frames(o.timingFrames);
+  v.spp(o.referenceSpp);
+  v.noScenes("interleaved");
+  return runInterleavedExperiment(o);
+}
+
+int gallery(const nlohmann::json& j, const Overrides& v) {
+  GalleryOptions o = galleryOptionsFromJson(j, v.file.string());
+  o.out = v.out();
+  v.size(o.width, o.height);
+  if (v.r.o.frames) {
+    o.frames = v.r.o.frames;
+    for (GalleryRow& row : o.rows) row.frames = 0;  // --frames sets every row's
+  }
+  v.noScenes("a gallery");
+  o.cache = v.cache();
+  for (GalleryRow& row : o.rows) v.spp(row.groundTruth.spp);
+  return runGallery(o);
+}
+
+}  // namespace
+
 int runExperiment(const ExperimentRequest& r) {
   const fs::path file = resolveExperiment(r.name);
   std::ifstream in(file);
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw InputError(file.string(), "", "not a JSON object");
   const std::string runner = j.value("runner", "sweep");
-  if (runner == "heuristic") {
-    HeuristicExperimentOptions ho = heuristicOptionsFromJson(j, file.string());
-    ho.out = r.o.out.empty() ? "out/experiment-" + file.stem().string() : r.o.out;
-    if (!r.o.scenes.empty()) ho.scenes = r.o.scenes;
-    if (r.o.width) ho.width = r.o.width;
-    if (r.o.height) ho.height = r.o.height;
-    if (r.o.warmup >= 0) ho.warmup = r.o.warmup;
-    if (r.staticFrames != -1) ho.staticFrames = r.staticFrames;  // range-checked by the runner
-    if (r.pathFrames != -1) ho.pathFrames = r.pathFrames;
-    if (r.budget >= 0) ho.budget = r.budget;
-    if (r.budgetMs >= 0) ho.budgetMs = r.budgetMs;
-    ho.threads = r.threads;
-    return runHeuristicExperiment(ho);
-  }
-  if (runner == "taa") {
-    TaaExperimentOptions to = taaOptionsFromJson(j, file.string());
-    to.out = r.o.out.empty() ? "out/experiment-" + file.stem().string() : r.o.out;
-    if (!r.o.scenes.empty()) to.scenes = r.o.scenes;
-    if (r.o.width) to.width = r.o.width;
-    if (r.o.height) to.height = r.o.height;
-    if (r.o.frames) to.staticFrames = r.o.frames;
-    if (r.pathFrames != -1) to.pathFrames = r.pathFrames;
-    return runTaaExperiment(to);
-  }
-  if (runner == "hybrid-dof") {
-    DofExperimentOptions d = dofOptionsFromJson(j, file.string());
-    d.out = r.o.out.empty() ? "out/experiment-" + file.stem().string() : r.o.out;
-    d.cache = r.o.noCache ? "" : r.o.cache;
-    if (r.o.width) d.width = r.o.width;
-    if (r.o.height) d.height = r.o.height;
-    if (r.o.warmup >= 0) d.warmup = r.o.warmup;
-    if (r.o.frames) d.frames = r.o.frames;
-    if (r.o.spp) d.referenceSpp = d.pathReferenceSpp = r.o.spp;
-    return runDofExperiment(d);
-  }
-  if (runner == "foveated") {
-    FoveatedExperimentOptions fo = foveatedOptionsFromJson(j, file.string());
-    fo.out = r.o.out.empty() ? "out/experiment-" + file.stem().string() : r.o.out;
-    fo.cache = r.o.noCache ? "" : r.o.cache;
-    if (r.o.width) fo.qualityWidth = r.o.width;
-    if (r.o.height) fo.qualityHeight = r.o.height;
-    if (r.o.warmup >= 0) fo.warmup = r.o.warmup;
-    if (r.o.frames) fo.fhdFrames = fo.quest2Frames = r.o.frames;
-    if (r.o.spp) fo.referenceSpp = r.o.spp;
-    return runFoveatedExperiment(fo);
-  }
-  if (runner == "interleaved") {
-    InterleavedExperimentOptions io = interleavedOptionsFromJson(j, file.string());
-    io.out = r.o.out.empty() ? "out/experiment-" + file.stem().string() : r.o.out;
-    io.cache = r.o.noCache ? "" : r.o.cache;
-    if (r.o.width) io.width = r.o.width;
-    if (r.o.height) io.height = r.o.height;
-    if (r.o.warmup >= 0) io.timingWarmup = r.o.warmup;
-    if (r.o.frames) io.timingFrames = r.o.frames;
-    if (r.o.spp) io.referenceSpp = r.o.spp;
-    if (!r.o.scenes.empty()) throw InputError("command line", "--scenes", "not for interleaved");
-    return runInterleavedExperiment(io);
-  }
-  if (runner == "gallery") {
-    GalleryOptions go = galleryOptionsFromJson(j, file.string());
-    go.out = r.o.out.empty() ? "out/experiment-" + file.stem().string() : r.o.out;
-    if (r.o.width) go.width = r.o.width;
-    if (r.o.height) go.height = r.o.height;
-    if (r.o.frames) {
-      go.frames = r.o.frames;
-      for (GalleryRow& row : go.rows) row.frames = 0;  // --frames sets every row's
-    }
-    if (!r.o.scenes.empty()) throw InputError("command line", "--scenes", "not for a gallery");
-    go.cache = r.o.noCache ? "" : r.o.cache;
-    if (r.o.spp)
-      for (GalleryRow& row : go.rows) row.groundTruth.spp = r.o.spp;
-    return runGallery(go);
-  }
+  const Overrides v{r, file};
+  // The flags of one runner are an error elsewhere, not silently ignored.
+  if (runner != "heuristic" && (r.staticFrames != -1 || r.budget >= 0 || r.budgetMs >= 0))
+    throw InputError("command line", "--static-frames/--budget/--budget-ms",
+                     "apply to the heuristic runner only");
+  if (runner != "heuristic" && runner != "taa" && r.pathFrames != -1)
+    throw InputError("command line", "--path-frames", "applies to the heuristic and taa runners");
+  if (runner == "heuristic") return heuristic(j, v);
+  if (runner == "taa") return taa(j, v);
+  if (runner == "hybrid-dof") return hybridDof(j, v);
+  if (runner == "foveated") return foveated(j, v);
+  if (runner == "interleaved") return interleaved(j, v);
+  if (runner == "gallery") return gallery(j, v);
   if (runner != "sweep")
     throw InputError(file.string(), "runner",
                      "'" + runner +
                          "' is not sweep, heuristic, taa, hybrid-dof, foveated, interleaved or "
                          "gallery");
-  if (r.staticFrames != -1 || r.pathFrames != -1 || r.budget >= 0 || r.budgetMs >= 0)
-    throw InputError("command line", "--static-frames/--path-frames/--r.budget/--r.budget-ms",
-                     "apply to the heuristic runner only");
   return runSweepExperiment(j, file.string(), r.o);
 }
 
