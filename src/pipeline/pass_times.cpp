@@ -15,7 +15,10 @@ PassTimes::PassTimes(const Pipeline& pipeline, std::map<std::string, double> msB
     : pipeline_(pipeline), ms_(std::move(msByRow)) {}
 
 PassTimes::PassTimes(const Pipeline& pipeline, const FrameTimings& frame) : pipeline_(pipeline) {
-  for (const PassTiming& t : frame.passes) ms_[t.name] += t.ms;
+  for (const PassTiming& t : frame.passes) {
+    ms_[t.name] += t.ms;
+    rays_[t.name] += t.rays;
+  }
 }
 
 bool PassTimes::has(const std::string& type) const {
@@ -36,6 +39,16 @@ double PassTimes::ofType(const std::string& type) const {
   for (size_t i = 0; i < pipeline_.passes.size(); ++i)
     if (pipeline_.passes[i]->type() == type) ms += ofPass(i);
   return ms;
+}
+
+double PassTimes::raysOf(const std::string& type) const {
+  double rays = 0;
+  for (const auto& p : pipeline_.passes) {
+    if (p->type() != type) continue;
+    auto it = rays_.find(rowOf(*p));
+    if (it != rays_.end()) rays += it->second;
+  }
+  return rays;
 }
 
 double PassTimes::partOf(const std::string& type, const std::string& part) const {

@@ -24,13 +24,15 @@ class PassTimes {
   // A part the passes of `type` report ("visibility"), summed; 0 where none reported it.
   double partOf(const std::string& type, const std::string& part) const;
   bool has(const std::string& type) const;
+  // The rays the passes of `type` traced (one frame's rows only; 0 from medians).
+  double raysOf(const std::string& type) const;
   // Every row renamed by type: "type" for a pass, "type/part" for its parts (instances of one
   // type summed); rows of no pass ("scene_update", "history") keep their names.
   std::map<std::string, double> byType() const;
 
  private:
   const Pipeline& pipeline_;
-  std::map<std::string, double> ms_;
+  std::map<std::string, double> ms_, rays_;
 };
 
 }  // namespace tandem

@@ -221,11 +221,13 @@ TEST(Records, CarryTypedValuesThisFrameAndAsHistory) {
 TEST(PassTimesTest, FindsPassesByType) {
   const Pipeline p = Pipeline::load("hybrid-dof");
   FrameTimings ft;
-  ft.passes = {{"scene_update", 0.5, 0},       {"taa_raster", 1, 0}, {"rt_dof", 4, 0},
+  ft.passes = {{"scene_update", 0.5, 0},       {"taa_raster", 1, 0}, {"rt_dof", 4, 1000},
                {"rt_dof/shadow_maps", 1.5, 0}, {"taa_final", 2, 0},  {"history", 0.25, 0}};
   const PassTimes t(p, ft);
   EXPECT_EQ(t.ofType("taa"), 3.0);
   EXPECT_EQ(t.ofType("rt_dof"), 4.0);
+  EXPECT_EQ(t.raysOf("rt_dof"), 1000.0);
+  EXPECT_EQ(t.raysOf("taa"), 0.0);
   EXPECT_EQ(t.ofType("tonemap"), 0.0);  // in the pipeline, not timed here
   EXPECT_EQ(t.partOf("rt_dof", "shadow_maps"), 1.5);
   EXPECT_EQ(t.partOf("rt_dof", "nothing"), 0.0);

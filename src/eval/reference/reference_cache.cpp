@@ -8,6 +8,7 @@
 #include "core/file_commit.h"
 #include "core/image_io.h"
 #include "passes/baselines/pt_reference.h"
+#include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/scene_hash.h"
 
@@ -89,9 +90,9 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   FrameTimings ft = r.renderFrameAt(0, job.time, job.camera, job.shutterCamera);
   img.seconds = msSince(start) * 1e-3;
   // Throughput counts the sampling only (not the BVH build), as Embree's benchmark does.
-  for (const PassTiming& t : ft.passes)
-    if (t.name == "pt_reference/sampling")
-      img.rays = uint64_t(t.rays), img.samplingSeconds = t.ms * 1e-3;
+  const PassTimes times(r.pipeline(), ft);
+  img.rays = uint64_t(times.raysOf("pt_reference"));
+  img.samplingSeconds = times.partOf("pt_reference", "sampling") * 1e-3;
   img.spp = int(r.context().counter("spp"));
   img.hdr = r.context().input("hdr");
   img.variance = r.context().input("variance");
