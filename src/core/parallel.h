@@ -4,6 +4,9 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cstddef>
+
 namespace tandem {
 
 constexpr int kTileSize = 32;
@@ -20,6 +23,19 @@ template <class Body>
 void parallelRange(size_t n, Body&& body, size_t grain = 1024) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain),
                     [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
+}
+
+// body(begin, end) once per fixed block [k block, (k + 1) block) of [0, n) (the last one
+// shorter), blocks in parallel. parallelRange's chunks end where the scheduler split the range,
+// differently from run to run; these blocks are the same every run, so work grouped within one
+// (8-wide packets and shading batches) and its floating-point results are deterministic.
+template <class Body>
+void parallelBlocks(size_t n, size_t block, Body&& body) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + block - 1) / block),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t k = r.begin(); k < r.end(); ++k)
+                        body(k * block, std::min(n, (k + 1) * block));
+                    });
 }
 
 // body(y) once per row y in [0, height), rows handed out in groups of `grain`.

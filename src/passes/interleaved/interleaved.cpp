@@ -288,49 +288,46 @@ void InterleavedPass::shadeSamples(FrameContext& ctx, const Frame& f, const View
       whitted->useShadowMaps(f.shadowMaps);
       whitted->countShadows(f.tally);
     }
-    parallelRange(
-        size_t(e - b),
-        [&](size_t s0, size_t s1) {
-          SurfaceSample s[8];
-          Vec3 d[8], out[8];
-          uint32_t at[8];
-          int m = 0;
-          auto flush = [&] {
-            if (m == 0) return;
-            if (whitted) {
-              whitted->shadePrimary8(s, d, m, out);
-            } else {
-              // Local shading: the same kernel as shadeBlinnPhong, 8 lanes at once.
-              ShadeBatch batch;
-              batch.count = m;
-              for (int q = 0; q < m; ++q) batch.set(q, s[q], -d[q]);
-              shadeBatch(batch, f.shading);
-              for (int q = 0; q < m; ++q) out[q] = batch.result(q);
-            }
-            for (int q = 0; q < m; ++q) {
-              colour_[at[q]] = out[q];
-              position_[at[q]] = s[q].position;
-            }
-            m = 0;
-          };
-          for (size_t q = b + s0; q < b + s1; ++q) {
-            const uint32_t id = L.ids[q];
-            if ((active && !active[id]) || (perPixel && rep_[id] != id)) continue;
-            Vec3 o, dir;
-            cam.generateRay(L.pos[id].x, L.pos[id].y, o, dir);
-            if (vis_.object[id] == kNoObject) {
-              colour_[id] = scene.skyRadiance(dir);
-              continue;
-            }
-            s[m] = resolveSurface(ctx.frame, int(vis_.object[id]), int(vis_.prim[id]), o, dir, tau,
-                                  nullptr, spread);
-            d[m] = dir;
-            at[m++] = id;
-            if (m == 8) flush();
-          }
-          flush();
-        },
-        256);
+    parallelBlocks(size_t(e - b), 256, [&](size_t s0, size_t s1) {
+      SurfaceSample s[8];
+      Vec3 d[8], out[8];
+      uint32_t at[8];
+      int m = 0;
+      auto flush = [&] {
+        if (m == 0) return;
+        if (whitted) {
+          whitted->shadePrimary8(s, d, m, out);
+        } else {
+          // Local shading: the same kernel as shadeBlinnPhong, 8 lanes at once.
+          ShadeBatch batch;
+          batch.count = m;
+          for (int q = 0; q < m; ++q) batch.set(q, s[q], -d[q]);
+          shadeBatch(batch, f.shading);
+          for (int q = 0; q < m; ++q) out[q] = batch.result(q);
+        }
+        for (int q = 0; q < m; ++q) {
+          colour_[at[q]] = out[q];
+          position_[at[q]] = s[q].position;
+        }
+        m = 0;
+      };
+      for (size_t q = b + s0; q < b + s1; ++q) {
+        const uint32_t id = L.ids[q];
+        if ((active && !active[id]) || (perPixel && rep_[id] != id)) continue;
+        Vec3 o, dir;
+        cam.generateRay(L.pos[id].x, L.pos[id].y, o, dir);
+        if (vis_.object[id] == kNoObject) {
+          colour_[id] = scene.skyRadiance(dir);
+          continue;
+        }
+        s[m] = resolveSurface(ctx.frame, int(vis_.object[id]), int(vis_.prim[id]), o, dir, tau,
+                              nullptr, spread);
+        d[m] = dir;
+        at[m++] = id;
+        if (m == 8) flush();
+      }
+      flush();
+    });
   }
   if (perPixel)
     parallelRange(L.sampleCount(), [&](size_t b, size_t e) {
