@@ -74,12 +74,30 @@ struct Overrides {
   }
 };
 
-int heuristic(const nlohmann::json& j, const Overrides& v) {
-  HeuristicExperimentOptions o = heuristicOptionsFromJson(j, v.file.string());
+// Where a runner's options take the common flags (null or empty: the runner has no such setting).
+template <class O>
+struct Targets {
+  int O::*width = nullptr;
+  int O::*height = nullptr;
+  int O::*warmup = nullptr;
+  std::vector<int O::*> frames{}, spp{};
+};
+
+template <class O>
+O withOverrides(O o, const Overrides& v, const Targets<O>& t) {
   o.out = v.out();
+  if (t.width) v.size(o.*t.width, o.*t.height);
+  if (t.warmup) v.warmup(o.*t.warmup);
+  for (int O::*f : t.frames) v.frames(o.*f);
+  for (int O::*s : t.spp) v.spp(o.*s);
+  return o;
+}
+
+int heuristic(const nlohmann::json& j, const Overrides& v) {
+  using O = HeuristicExperimentOptions;
+  O o = withOverrides(heuristicOptionsFromJson(j, v.file.string()), v,
+                      {.width = &O::width, .height = &O::height, .warmup = &O::warmup});
   v.scenes(o.scenes);
-  v.size(o.width, o.height);
-  v.warmup(o.warmup);
   const ExperimentRequest& r = v.r;  // the heuristic's own overrides, range-checked by it
   if (r.staticFrames != -1) o.staticFrames = r.staticFrames;
   if (r.pathFrames != -1) o.pathFrames = r.pathFrames;
@@ -90,60 +108,60 @@ int heuristic(const nlohmann::json& j, const Overrides& v) {
 }
 
 int taa(const nlohmann::json& j, const Overrides& v) {
-  TaaExperimentOptions o = taaOptionsFromJson(j, v.file.string());
-  o.out = v.out();
+  using O = TaaExperimentOptions;
+  O o = withOverrides(taaOptionsFromJson(j, v.file.string()), v,
+                      {.width = &O::width, .height = &O::height, .frames = {&O::staticFrames}});
   v.scenes(o.scenes);
-  v.size(o.width, o.height);
-  v.frames(o.staticFrames);
   if (v.r.pathFrames != -1) o.pathFrames = v.r.pathFrames;
   return runTaaExperiment(o);
 }
 
 int hybridDof(const nlohmann::json& j, const Overrides& v) {
-  DofExperimentOptions o = dofOptionsFromJson(j, v.file.string());
-  o.out = v.out();
+  using O = DofExperimentOptions;
+  O o = withOverrides(dofOptionsFromJson(j, v.file.string()), v,
+                      {.width = &O::width,
+                       .height = &O::height,
+                       .warmup = &O::warmup,
+                       .frames = {&O::frames},
+                       .spp = {&O::referenceSpp, &O::pathReferenceSpp}});
   o.cache = v.cache();
-  v.size(o.width, o.height);
-  v.warmup(o.warmup);
-  v.frames(o.frames);
-  v.spp(o.referenceSpp);
-  v.spp(o.pathReferenceSpp);
   return runDofExperiment(o);
 }
 
 int foveated(const nlohmann::json& j, const Overrides& v) {
-  FoveatedExperimentOptions o = foveatedOptionsFromJson(j, v.file.string());
-  o.out = v.out();
+  using O = FoveatedExperimentOptions;
+  O o = withOverrides(foveatedOptionsFromJson(j, v.file.string()), v,
+                      {.width = &O::qualityWidth,
+                       .height = &O::qualityHeight,
+                       .warmup = &O::warmup,
+                       .frames = {&O::fhdFrames, &O::quest2Frames},
+                       .spp = {&O::referenceSpp}});
   o.cache = v.cache();
-  v.size(o.qualityWidth, o.qualityHeight);
-  v.warmup(o.warmup);
-  v.frames(o.fhdFrames);
-  v.frames(o.quest2Frames);
-  v.spp(o.referenceSpp);
   return runFoveatedExperiment(o);
 }
 
 int interleaved(const nlohmann::json& j, const Overrides& v) {
-  InterleavedExperimentOptions o = interleavedOptionsFromJson(j, v.file.string());
-  o.out = v.out();
-  o.cache = v.cache();
-  v.size(o.width, o.height);
-  v.warmup(o.timingWarmup);
-  v.frames(o.timingFrames);
-  v.spp(o.referenceSpp);
   v.noScenes("interleaved");
+  using O = InterleavedExperimentOptions;
+  O o = withOverrides(interleavedOptionsFromJson(j, v.file.string()), v,
+                      {.width = &O::width,
+                       .height = &O::height,
+                       .warmup = &O::timingWarmup,
+                       .frames = {&O::timingFrames},
+                       .spp = {&O::referenceSpp}});
+  o.cache = v.cache();
   return runInterleavedExperiment(o);
 }
 
 int gallery(const nlohmann::json& j, const Overrides& v) {
-  GalleryOptions o = galleryOptionsFromJson(j, v.file.string());
-  o.out = v.out();
-  v.size(o.width, o.height);
+  v.noScenes("a gallery");
+  using O = GalleryOptions;
+  O o = withOverrides(galleryOptionsFromJson(j, v.file.string()), v,
+                      {.width = &O::width, .height = &O::height});
   if (v.r.o.frames) {
     o.frames = v.r.o.frames;
     for (GalleryRow& row : o.rows) row.frames = 0;  // --frames sets every row's
   }
-  v.noScenes("a gallery");
   o.cache = v.cache();
   for (GalleryRow& row : o.rows) v.spp(row.groundTruth.spp);
   return runGallery(o);
