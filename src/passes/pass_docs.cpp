@@ -117,7 +117,7 @@ std::string pipelinePasses(const Pipeline& pl) {
   std::ostringstream s;
   for (size_t i = 0; i < pl.passes.size(); ++i) {
     const Pass& p = *pl.passes[i];
-    s << (i ? " → `" : "`") << (p.label.empty() ? p.type() : p.label) << "`";
+    s << (i ? " → `" : "`") << p.name() << "`";
     std::vector<std::string> set;
     if (!p.label.empty() && p.label != p.type()) set.push_back(p.type());
     for (const ParamDesc& d : p.params())

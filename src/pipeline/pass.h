@@ -61,6 +61,9 @@ class Pass {
   std::map<std::string, std::string> bindings;
   const std::string& bufferName(const std::string& slot) const;
   std::string label;  // instance name for timings (defaults to type)
+  // The label, or the type when the pipeline gave none: what timing rows, counters and --set
+  // call this pass.
+  std::string name() const { return label.empty() ? type() : label; }
   // A disabled pass is bypassed: each output takes the first input with the same channel count
   // (tonemap off shows the raw HDR), or zeros when there is none.
   bool enabled = true;

@@ -5,12 +5,6 @@
 
 namespace tandem {
 
-namespace {
-std::string rowOf(const Pass& p) {
-  return p.label.empty() ? p.type() : p.label;
-}
-}  // namespace
-
 PassTimes::PassTimes(const Pipeline& pipeline, std::map<std::string, double> msByRow)
     : pipeline_(pipeline), ms_(std::move(msByRow)) {}
 
@@ -28,7 +22,7 @@ bool PassTimes::has(const std::string& type) const {
 }
 
 double PassTimes::ofPass(size_t index) const {
-  auto it = ms_.find(rowOf(*pipeline_.passes.at(index)));
+  auto it = ms_.find(pipeline_.passes.at(index)->name());
   return it == ms_.end() ? 0.0 : it->second;
 }
 
@@ -45,7 +39,7 @@ double PassTimes::raysOf(const std::string& type) const {
   double rays = 0;
   for (const auto& p : pipeline_.passes) {
     if (p->type() != type) continue;
-    auto it = rays_.find(rowOf(*p));
+    auto it = rays_.find(p->name());
     if (it != rays_.end()) rays += it->second;
   }
   return rays;
@@ -55,7 +49,7 @@ double PassTimes::partOf(const std::string& type, const std::string& part) const
   double ms = 0;
   for (const auto& p : pipeline_.passes) {
     if (p->type() != type) continue;
-    auto it = ms_.find(rowOf(*p) + "/" + part);
+    auto it = ms_.find(p->name() + "/" + part);
     if (it != ms_.end()) ms += it->second;
   }
   return ms;
@@ -63,7 +57,7 @@ double PassTimes::partOf(const std::string& type, const std::string& part) const
 
 std::map<std::string, double> PassTimes::byType() const {
   std::map<std::string, std::string> typeOf;  // row label -> pass type
-  for (const auto& p : pipeline_.passes) typeOf[rowOf(*p)] = p->type();
+  for (const auto& p : pipeline_.passes) typeOf[p->name()] = p->type();
   std::map<std::string, double> out;
   for (const auto& [row, ms] : ms_) {
     const size_t slash = row.find('/');

@@ -78,7 +78,7 @@ void Pipeline::setParam(const std::string& assignment, const std::string& source
   if (value.is_discarded()) value = text;  // an enum choice given bare
   bool found = false;
   for (auto& p : passes) {
-    if ((p->label.empty() ? p->type() : p->label) != label) continue;
+    if (p->name() != label) continue;
     found = true;
     try {
       setPassParam(*p, name, value);
@@ -276,7 +276,7 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
       p->execute(ctx);
     else
       bypass(*p, ctx);
-    const std::string label = p->label.empty() ? p->type() : p->label;
+    const std::string label = p->name();
     ft.passes.push_back({label, msSince(t0), ctx.passRays});
     // Parts are reported after their pass and are not added to the frame total again.
     for (PassTiming& part : ctx.passParts)

@@ -16,10 +16,6 @@ std::string slotText(const BufferSlot& s) {
   return t.str();
 }
 
-std::string label(const Pass& p) {
-  return p.label.empty() ? p.type() : p.label;
-}
-
 }  // namespace
 
 std::string describePipeline(const Pipeline& p) {
@@ -27,8 +23,8 @@ std::string describePipeline(const Pipeline& p) {
   o << "pipeline " << p.name << ": " << p.passes.size() << " passes, output '" << p.output << "'\n";
   for (size_t i = 0; i < p.passes.size(); ++i) {
     const Pass& pass = *p.passes[i];
-    o << "\n" << i + 1 << ". " << label(pass);
-    if (label(pass) != pass.type()) o << " (" << pass.type() << ")";
+    o << "\n" << i + 1 << ". " << pass.name();
+    if (pass.name() != pass.type()) o << " (" << pass.type() << ")";
     if (!pass.enabled) o << " [disabled]";
     o << "\n";
     for (const BufferSlot& in : pass.inputs()) {
@@ -60,8 +56,8 @@ std::string pipelineDot(const Pipeline& p) {
   };
   for (size_t i = 0; i < p.passes.size(); ++i) {
     const Pass& pass = *p.passes[i];
-    o << "  p" << i << " [shape=box, style=filled, fillcolor=\"#dde6f0\", label=\"" << label(pass);
-    if (label(pass) != pass.type()) o << "\\n(" << pass.type() << ")";
+    o << "  p" << i << " [shape=box, style=filled, fillcolor=\"#dde6f0\", label=\"" << pass.name();
+    if (pass.name() != pass.type()) o << "\\n(" << pass.type() << ")";
     o << "\"];\n";
     for (const BufferSlot& out : pass.outputs()) {
       buffer(pass.bufferName(out.slot), out);

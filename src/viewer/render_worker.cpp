@@ -16,7 +16,7 @@ PipelineModel PipelineModel::from(const Pipeline& p, const std::string& source) 
   m.source = source;
   for (const auto& pass : p.passes) {
     PassModel pm;
-    pm.label = pass->label.empty() ? pass->type() : pass->label;
+    pm.label = pass->name();
     pm.type = pass->type();
     pm.enabled = pass->enabled;
     for (const ParamDesc& d : pass->params()) pm.values[d.name] = pass->param(d.name);

@@ -82,7 +82,7 @@ void WhittedFrame::finish(FrameContext& ctx, const Pass& pass, double pixels) {
 }
 
 void reportShadows(FrameContext& ctx, const Pass& p, const ShadowCounts& c, double pixels) {
-  const std::string key = (p.label.empty() ? p.type() : p.label) + "/";
+  const std::string key = p.name() + "/";
   const double pairs = double(std::max<uint64_t>(c.pairs(), 1));
   ctx.counters[key + "shadow_rays_per_pixel"] = double(c.traced) / std::max(pixels, 1.0);
   ctx.counters[key + "shadow_traced"] = double(c.traced) / pairs;
