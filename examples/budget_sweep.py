@@ -1,4 +1,4 @@
-"""Seed 002's time-quality trade: hybrid-heuristic at several budgets T against rt-only (the same
+"""Walewski et al. 2019's time-quality trade: hybrid-heuristic at several budgets T against rt-only (the same
 shading, every ray traced), plotted as ms per frame against SSIM. The README's Python example."""
 import matplotlib
 matplotlib.use("Agg")

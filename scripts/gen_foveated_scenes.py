@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes scenes/foveated_pink_room.json and scenes/foveated_forest.json, the interior and the
-outdoor scene of seed 004's Table 3 kind, from built-in shapes only (the statue is the
+outdoor scene of Peres 2022's Table 3 kind, from built-in shapes only (the statue is the
 procedural trefoil knot, so the scene needs no file outside the repository).
 Deterministic: re-running gives the same files."""
 import json

@@ -89,7 +89,7 @@ void addSceneOptions(CLI::App* app, RenderOptions& o) {
   app->add_option_function<std::string>(
       "--resolution",
       [&o](const std::string& name) {
-        // Seed 004's Table 2 sizes are per eye of a head-mounted display: stereo.
+        // Peres 2022's Table 2 sizes are per eye of a head-mounted display: stereo.
         if (name == "fhd") {
           o.width = 960, o.height = 1080, o.stereo = true;
         } else if (name == "quest2") {

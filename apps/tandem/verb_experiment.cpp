@@ -1,10 +1,10 @@
 // tandem experiment NAME: regenerates an experiment in one command. An experiment is data: a
 // JSON file (experiments/NAME.json in the source tree, or any path) whose "runner" picks the
 // procedure — "sweep" (scenes x pipelines x a parameter sweep against cached references),
-// "heuristic" (seed 002's Tables 5 and 6 and the ms-budget tracking), "taa" (TAA against a
-// supersampled render), "hybrid-dof" (seed 000's Table 2 and Figures 6-7), "foveated" (seed 004)
-// or "interleaved" (seed 003). Command-line options
-// override the file's settings. Every run writes results.md, CSV, PNG plots and index.html.
+// "heuristic" (Walewski et al. 2019's Tables 5 and 6 and the ms-budget tracking), "taa" (TAA
+// against a supersampled render), "hybrid-dof" (Tan et al. 2022's Table 2 and Figures 6-7),
+// "foveated" (Peres 2022) or "interleaved" (Foster 2015). Command-line options override the file's
+// settings. Every run writes results.md, CSV, PNG plots and index.html.
 #include <cstdio>
 #include <memory>
 

@@ -200,7 +200,7 @@ void handleInput(GLFWwindow* window, ViewerState& s, RenderWorker& worker, float
   }
   ptr.lastX = mx, ptr.lastY = my;
 
-  // Gaze (seed 004): the middle mouse button held puts the fovea under the cursor, in whichever
+  // Gaze (Peres 2022): the middle mouse button held puts the fovea under the cursor, in whichever
   // eye it points at (the distribution is rebuilt only when the point moves).
   if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS && !io.WantCaptureMouse) {
     int ww = 1, wh = 1;

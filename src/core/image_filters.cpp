@@ -83,7 +83,7 @@ namespace {
 
 // The median of nine values by a fixed network of 19 compare-exchanges (min/max, no branches):
 // the exchange network of Smith 1996 ("Implementing median filters in XC4000E FPGAs"), which
-// seed 000 §3.1.3 uses on the GPU.
+// Tan et al. 2022 §3.1.3 uses on the GPU.
 inline float median9(float p[9]) {
   auto sort = [](float& a, float& b) {
     const float lo = std::min(a, b), hi = std::max(a, b);

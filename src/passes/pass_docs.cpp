@@ -27,10 +27,11 @@ const char* kIntro =
 const char* kTechniques[][2] = {
     {"common", "Common passes (G-buffers, shading, tone mapping)"},
     {"baselines", "Baselines (full ray tracing, the path-traced reference, TAA, accumulation)"},
-    {"heuristic", "Heuristic hybrid rendering (seed 002)"},
-    {"dof", "Hybrid depth of field (seed 000)"},
-    {"foveated", "Foveated stereo path tracing (seed 004)"},
-    {"interleaved", "Interleaved sampling and hybrid motion blur (seed 003)"}};
+    {"heuristic", "Heuristic hybrid rendering (Walewski et al. 2019)"},
+    {"dof", "Hybrid depth of field (Tan et al. 2022)"},
+    {"foveated", "Foveated stereo path tracing (Peres 2022)"},
+    {"interleaved",
+     "Interleaved sampling (Foster 2015, after Fatahalian et al. 2009) and hybrid motion blur"}};
 
 std::string number(double v) {
   char b[32];

@@ -19,6 +19,7 @@
 #include "passes/dof/postfx_dof.h"
 #include "passes/dof/ray_mask.h"
 #include "passes/dof/rt_dof.h"
+#include "passes/foveated/direct_light.h"
 #include "passes/foveated/foveated_pt.h"
 #include "passes/foveated/foveation.h"
 #include "passes/foveated/nh_denoise.h"
@@ -29,6 +30,7 @@
 #include "passes/heuristic/ss_fallback.h"
 #include "passes/interleaved/interleaved_raster.h"
 #include "passes/interleaved/interleaved_rt.h"
+#include "passes/interleaved/mb_composite.h"
 #include "passes/interleaved/postfx_motion_blur.h"
 #include "pipeline/pipeline.h"
 
@@ -66,6 +68,7 @@ const std::vector<PassEntry>& passRegistry() {
                                                 entry<DofCompositePass>("dof"),
                                                 entry<FoveationPass>("foveated"),
                                                 entry<FoveatedPTPass>("foveated"),
+                                                entry<DirectLightPass>("foveated"),
                                                 entry<NHDenoisePass>("foveated"),
                                                 entry<PeripheryAccumulationPass>("foveated"),
                                                 entry<InterleavedRasterPass>("interleaved"),

@@ -1,5 +1,7 @@
 #include "pipeline/frame_context.h"
 
+#include <stdexcept>
+
 #include "shading/surface_resolve.h"
 
 #include "pipeline/pass.h"
@@ -25,9 +27,32 @@ ShadowMaps& FrameContext::shadowMaps(int resolution) {
   return *m;
 }
 
+namespace {
+
+enum class Access { Input, History, Output };
+
+// The declaration of `slot` as `pass` uses it; a logic_error naming both when there is none.
+BufferSlot declared(const Pass& pass, const std::string& slot, Access access) {
+  const std::optional<BufferSlot> s =
+      access == Access::Output ? pass.outputSlot(slot) : pass.inputSlot(slot);
+  const char* as = access == Access::Output    ? "output"
+                   : access == Access::History ? "history input"
+                                               : "input";
+  if (!s)
+    throw std::logic_error("pass '" + pass.name() + "' uses slot '" + slot +
+                           "', which it does not declare as an " + as);
+  if (access != Access::Output && s->history != (access == Access::History))
+    throw std::logic_error("pass '" + pass.name() + "' reads slot '" + slot + "' as " +
+                           (s->history ? "this frame's value" : "last frame's value") +
+                           ", but declares it as " +
+                           (s->history ? "a history input" : "this frame's input"));
+  return *s;
+}
+
+}  // namespace
+
 Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, int h) {
-  const std::optional<BufferSlot> s = pass.outputSlot(slot);
-  TANDEM_ASSERT(s.has_value());  // a pass writes only the slots it declares
+  const std::optional<BufferSlot> s = declared(pass, slot, Access::Output);
   if (s->extent.scale != Extent::Scale::Any) s->extent.resolve(width, height, w, h);
   Buffer& b = buffers[pass.bufferName(slot)];
   if (b.width != w || b.height != h || b.channels != s->channels) b = Buffer(w, h, s->channels);
@@ -47,6 +72,7 @@ double FrameContext::counter(const std::string& name) const {
 }
 
 bool FrameContext::isConsumed(const Pass& pass, const std::string& slot) const {
+  declared(pass, slot, Access::Output);
   const std::string& name = pass.bufferName(slot);
   return keepAllOutputs || consumed.count(name) || wanted.count(name);
 }
@@ -58,22 +84,26 @@ Buffer* FrameContext::outputIfConsumed(const Pass& pass, const std::string& slot
 }
 
 const Buffer& FrameContext::input(const Pass& pass, const std::string& slot) const {
+  declared(pass, slot, Access::Input);
   return input(pass.bufferName(slot));
 }
 
 const Buffer* FrameContext::previous(const Pass& pass, const std::string& slot) const {
+  declared(pass, slot, Access::History);
   auto it = history.find(pass.bufferName(slot));
   return it == history.end() ? nullptr : &it->second;
 }
 
 const Buffer* FrameContext::optionalInput(const Pass& pass, const std::string& slot) const {
+  declared(pass, slot, Access::Input);
   auto it = buffers.find(pass.bufferName(slot));
   return it == buffers.end() ? nullptr : &it->second;
 }
 
 const Buffer& FrameContext::input(const std::string& name) const {
   auto it = buffers.find(name);
-  TANDEM_ASSERT(it != buffers.end());  // wiring was checked when the pipeline loaded
+  // Wiring was checked when the pipeline loaded: a missing buffer is a read nobody declared.
+  if (it == buffers.end()) throw std::logic_error("no buffer '" + name + "' in this frame");
   return it->second;
 }
 

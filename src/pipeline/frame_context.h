@@ -45,6 +45,10 @@ struct FrameContext {
   bool keepAllOutputs = true;
   std::set<std::string> wanted;
   std::set<std::string> consumed;  // what the passes read, set by Pipeline::execute
+  // Checking mode (tests): each pass runs seeing only the buffers it declares (inputs, history
+  // inputs, outputs), as a second device holding only what was moved to it would, and may leave
+  // behind only its declared outputs; anything else is a logic_error naming the pass and buffer.
+  bool isolatePasses = false;
 
   const Camera& camera() const { return views.front().camera; }  // the main view's, unjittered
   // A counter this frame reported; `fallback` where no pass reported it.
@@ -71,6 +75,8 @@ struct FrameContext {
   // Whether anything reads `pass`'s output slot (always true with keepAllOutputs).
   bool isConsumed(const Pass& pass, const std::string& slot) const;
   // The buffer bound to an input slot (this frame's, checked by the pipeline's validation).
+  // input, optionalInput, previous and output reject (logic_error naming the pass and slot) a
+  // slot the pass does not declare as such: a misspelt slot never reads as "absent".
   const Buffer& input(const Pass& pass, const std::string& slot) const;
   // Last frame's value of a history input slot; null after a reset or before it exists.
   const Buffer* previous(const Pass& pass, const std::string& slot) const;

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
+#include <stdexcept>
 
 #include "core/image_io.h"
 #include "pipeline/frame_context.h"
@@ -248,6 +250,44 @@ void bypass(const Pass& p, FrameContext& ctx) {
       out.fill(0.0f);
   }
 }
+
+// Checking mode (FrameContext::isolatePasses): `run` sees only the buffers `p` declares, this
+// frame's and last frame's, and may leave behind only them; the rest is put back afterwards.
+template <class Run>
+void runIsolated(const Pass& p, FrameContext& ctx, Run&& run) {
+  std::set<std::string> mine, myHistory;
+  for (const BufferSlot& s : p.inputs())
+    (s.history ? myHistory : mine).insert(p.bufferName(s.slot));
+  for (const BufferSlot& s : p.outputs()) mine.insert(p.bufferName(s.slot));
+  const auto setAside = [](std::map<std::string, Buffer>& from, const std::set<std::string>& keep) {
+    std::map<std::string, Buffer> aside;
+    for (auto it = from.begin(); it != from.end();) {
+      const auto next = std::next(it);
+      if (!keep.count(it->first)) aside.insert(from.extract(it));
+      it = next;
+    }
+    return aside;
+  };
+  std::map<std::string, Buffer> others = setAside(ctx.buffers, mine);
+  std::map<std::string, Buffer> otherHistory = setAside(ctx.history, myHistory);
+  const auto putBack = [&] {
+    ctx.buffers.merge(others);
+    ctx.history.merge(otherHistory);
+  };
+  try {
+    run();
+  } catch (...) {
+    putBack();
+    throw;
+  }
+  for (const auto& [name, buffer] : ctx.buffers)
+    if (!mine.count(name)) {
+      putBack();
+      throw std::logic_error("pass '" + p.name() + "' wrote buffer '" + name +
+                             "', which it does not declare");
+    }
+  putBack();
+}
 }  // namespace
 
 FrameTimings Pipeline::execute(FrameContext& ctx) {
@@ -272,10 +312,16 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     ctx.passRays = 0;
     ctx.passParts.clear();
     auto t0 = Clock::now();
-    if (p->enabled)
-      p->execute(ctx);
+    const auto run = [&] {
+      if (p->enabled)
+        p->execute(ctx);
+      else
+        bypass(*p, ctx);
+    };
+    if (ctx.isolatePasses)
+      runIsolated(*p, ctx, run);
     else
-      bypass(*p, ctx);
+      run();
     const std::string label = p->name();
     ft.passes.push_back({label, msSince(t0), ctx.passRays});
     // Parts are reported after their pass and are not added to the frame total again.

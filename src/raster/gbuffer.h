@@ -1,5 +1,5 @@
-// The G-buffer (seed 002 Table 2, extended): named frame buffers written by the raster and the
-// ray-traced G-buffer passes alike, from the same SurfaceSample.
+// The G-buffer (Walewski et al. 2019 Table 2, extended): named frame buffers written by the raster
+// and the ray-traced G-buffer passes alike, from the same SurfaceSample.
 //
 //   depth        1  reversed-Z depth (1 near plane, 0 background)
 //   position     3  world position

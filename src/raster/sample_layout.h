@@ -1,7 +1,7 @@
 // The samples of one image for interleaved sampling: k per pixel on a grid of strata, each with a
 // position and the (time, lens) pair of T it takes, grouped by pair and by cell (a tile's screen
-// area) for the rasterizer's and the ray tracer's passes. The sampling schemes compared by seed
-// 003's experiment differ only in how pairs are handed to strata.
+// area) for the rasterizer's and the ray tracer's passes. The sampling schemes compared by Foster
+// 2015's experiment differ only in how pairs are handed to strata.
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -1,5 +1,5 @@
-// Interleaved sampling for depth of field and motion blur (seed 003, Aqsis 2.0; Fatahalian et al.
-// 2009; Lagae & Dutré 2006): the set T of a frame's N (time, lens) pairs and the sample tiles
+// Interleaved sampling for depth of field and motion blur (Foster 2015, Aqsis 2.0; Fatahalian et
+// al. 2009; Lagae & Dutré 2006): the set T of a frame's N (time, lens) pairs and the sample tiles
 // that hand them out.
 //
 // A tile holds N samples on a regular grid of screen strata (k per pixel, N / k pixels) and uses

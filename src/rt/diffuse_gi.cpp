@@ -118,6 +118,41 @@ Vec3 DiffuseGI::reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, fl
   return sum + emitted(hs, wh) + albedo(hs) * oneLight(hs, nh, u2.x, time, rays);
 }
 
+Vec3 DiffuseGI::brightestDirect(const SurfaceSample& s, Vec3 wo, int count, float time,
+                                uint64_t& rays) const {
+  const Vec3 n = dot(s.normal, wo) < 0.0f ? -s.normal : s.normal;
+  // Each light's unshadowed contribution (no ray yet); the `count` largest are traced.
+  struct Candidate {
+    float luminance;
+    int light;
+    LightSample sample;
+  };
+  thread_local std::vector<Candidate> candidates;  // no allocation per pixel
+  candidates.clear();
+  for (int i : lights_) {
+    const LightSample ls = sampleLight(shading_.lights[size_t(i)], s.position);
+    const float cosI = dot(n, ls.wi);
+    if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
+    candidates.push_back({luminance(ls.radiance) * cosI, i, ls});
+  }
+  const size_t k = std::min(candidates.size(), size_t(std::max(count, 0)));
+  std::partial_sort(candidates.begin(), candidates.begin() + ptrdiff_t(k), candidates.end(),
+                    [](const Candidate& a, const Candidate& b) {
+                      return a.luminance != b.luminance ? a.luminance > b.luminance
+                                                        : a.light < b.light;
+                    });
+  Vec3 sum(0.0f);
+  for (size_t c = 0; c < k; ++c) {
+    const LightSample& ls = candidates[c].sample;
+    if (scene_.lights[size_t(candidates[c].light)].castsShadows) {
+      ++rays;
+      if (rt_.occluded(shadowRayTowards(s, ls, time))) continue;
+    }
+    sum += ls.radiance * (dot(n, ls.wi) / kPi);
+  }
+  return sum;
+}
+
 Vec3 DiffuseGI::radiance(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
                          uint64_t& rays) const {
   return emitted(s, wo) + albedo(s) * reflected(s, wo, rng, time, rays);

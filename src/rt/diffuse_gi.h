@@ -1,4 +1,4 @@
-// The foveated path tracer's light transport (seed 004 §4.3, Wyman et al. 2018's diffuse global
+// The foveated path tracer's light transport (Peres 2022 §4.3, Wyman et al. 2018's diffuse global
 // illumination): at the primary surface one shadow ray to a light chosen at random (next-event
 // estimation; uniformly as in the thesis, or by a LightGrid's estimate of each light's irradiance
 // there), one cosine-weighted indirect ray, and at the indirect hit its emission
@@ -36,6 +36,12 @@ class DiffuseGI {
   // rays it traced to `rays`.
   Vec3 reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
                  uint64_t& rays) const;
+  // The direct light of the `count` lights that give s the most unshadowed light, each with its
+  // shadow ray, in reflected()'s units (irradiance / π; no albedo): what reflected()'s next-event
+  // estimate averages to for those lights, without its light-selection noise. The rest of the
+  // light (other lights, the bounce) is left to the paths.
+  Vec3 brightestDirect(const SurfaceSample& s, Vec3 wo, int count, float time,
+                       uint64_t& rays) const;
   // The whole outgoing radiance: emission + albedo x reflected().
   Vec3 radiance(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
                 uint64_t& rays) const;

@@ -1,4 +1,4 @@
-// Light selection for next-event estimation among many lights (beyond seed 004, whose path tracer
+// Light selection for next-event estimation among many lights (beyond Peres 2022, whose path tracer
 // picks a light uniformly): a uniform grid over the scene's bounds holds, per cell, a
 // distribution over the lights proportional to an estimate of each light's unshadowed irradiance
 // in the cell. A point light's estimate uses its distance from the cell's centre, never less

@@ -41,10 +41,10 @@ class RayTracer {
 
   Hit intersect(const Ray& r, bool cullBackfaces = false) const;
   bool occluded(const Ray& r) const;
-  // Shadow ray (seed 002 Listing 8b): the product over occluders of transparency x (1 - diffuse),
-  // skipping materials that do not cast shadows; 0 once an opaque occluder is met. `textured`:
-  // the occluder's diffuse colour at the hit, textures included (what the G-buffer would hold);
-  // otherwise the material's base diffuse colour.
+  // Shadow ray (Walewski et al. 2019 Listing 8b): the product over occluders of transparency x (1 -
+  // diffuse), skipping materials that do not cast shadows; 0 once an opaque occluder is met.
+  // `textured`: the occluder's diffuse colour at the hit, textures included (what the G-buffer
+  // would hold); otherwise the material's base diffuse colour.
   Vec3 transmittance(const Ray& r, bool textured = true) const;
   // Up to 8 shadow rays in one coherent Embree packet: out[i] = transmittance(rays[i]) for the
   // lanes with active[i] (others untouched). Each lane attenuates on its own (Listing 8b).

@@ -40,8 +40,8 @@ class SampleCluster {
 // ray tracing (Cook et al. 1984) of the hybrids' own shading — the one Blinn-Phong function with
 // ray-traced shadows, mirror and glass recursion (rt-only's and hybrid-all's light transport) —
 // so a technique's error against it measures the technique (depth of field, motion blur), not a
-// difference of light transport (seed 000 §5.1 compares against exactly this).
-// DiffuseGI: seed 004's foveated path tracer (rt/diffuse_gi.h: one random-light shadow ray, one
+// difference of light transport (Tan et al. 2022 §5.1 compares against exactly this).
+// DiffuseGI: Peres 2022's foveated path tracer (rt/diffuse_gi.h: one random-light shadow ray, one
 // cosine bounce, Lambert) through pixel centres of a pinhole, as its 1-spp G-buffer sees them:
 // the converged image of the foveated pipelines without foveation or denoising (§6's reference).
 enum class Integrator { Path, Whitted, DiffuseGI };

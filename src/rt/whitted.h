@@ -1,6 +1,6 @@
-// Whitted-style secondary effects of seed 002 §3.3 (Listings 8a-8d), shared by the hybrid
-// rt_secondary pass (starting from G-buffer samples) and the rt_whitted pass (starting from camera
-// rays), so the two produce the same image wherever the same objects are ray traced.
+// Whitted-style secondary effects of Walewski et al. 2019 §3.3 (Listings 8a-8d), shared by the
+// hybrid rt_secondary pass (starting from G-buffer samples) and the rt_whitted pass (starting from
+// camera rays), so the two produce the same image wherever the same objects are ray traced.
 //  - shadow rays to every light, attenuated through transparent occluders (Listing 8b);
 //  - reflection and refraction rays (Snell; total internal reflection falls back to reflection);
 //  - recursion in hit shading with an importance cutoff and a maximum depth (Listing 8c);

@@ -10,7 +10,7 @@ namespace tandem {
 
 struct Transform {
   Vec3 position{0, 0, 0};
-  Vec3 rotationDeg{0, 0, 0};  // Euler X, Y, Z in degrees (seed 002)
+  Vec3 rotationDeg{0, 0, 0};  // Euler X, Y, Z in degrees (Walewski et al. 2019)
   Vec3 scale{1, 1, 1};
   Mat4 matrix() const {
     return Mat4::translate(position) * Mat4::eulerXYZ(rotationDeg) * Mat4::scale(scale);
@@ -27,7 +27,7 @@ struct CameraKey {
   Vec3 position, lookAt;
 };
 
-// A gaze point (fraction of the eye's viewport, 0,0 top left) at a time: seed 004's fovea
+// A gaze point (fraction of the eye's viewport, 0,0 top left) at a time: Peres 2022's fovea
 // follows it (scene file "gazeTrace").
 struct GazeKey {
   float time = 0;

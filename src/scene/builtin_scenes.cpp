@@ -147,7 +147,7 @@ Scene makeSpheresScene() {
       }
       std::string name = "sphere" + std::to_string(j * 5 + i);
       int obj = s.addObject(name, sphere, mat, xform({-6.0f + 3.0f * i, 1.0f, -6.0f + 3.0f * j}));
-      // Seed 002 §4: reflective and refractive objects are set as relevant.
+      // Walewski et al. 2019 §4: reflective and refractive objects are set as relevant.
       if (kind < 2) s.objects[size_t(obj)].heuristic.K = 4;
     }
   // The middle sphere bobs up and down so motion vectors have something to show.

@@ -1,5 +1,5 @@
 // Camera: perspective (vertical FoV) or orthographic, reversed-Z depth, sub-pixel jitter for
-// TAA, and the thin-lens parameters of seed 000 eq. 6 (the reference path tracer samples the
+// TAA, and the thin-lens parameters of Tan et al. 2022 eq. 6 (the reference path tracer samples the
 // lens; the DoF passes will use them too).
 #pragma once
 #include "core/math.h"
@@ -25,7 +25,7 @@ struct CameraDesc {
   float apertureRotationDeg = 0;  // rotation of the polygon about the view axis
 };
 
-// A stereo pair (seed 004): two eyes `ipd` metres apart along the camera's right axis, looking
+// A stereo pair (Peres 2022): two eyes `ipd` metres apart along the camera's right axis, looking
 // along parallel axes, or converged (toed in) on the point `convergence` metres ahead.
 struct StereoDesc {
   bool enabled = false;
@@ -62,7 +62,7 @@ struct Camera {
   // The same ray with a direction not normalised (perspective: forward + offsets, so affine in
   // px and py; the raster resolve steps it across a row).
   void generateRayUnnormalized(float px, float py, Vec3& origin, Vec3& dir) const;
-  // Thin-lens ray (seed 000 §3.2.2): from a point of the aperture disk (diameter
+  // Thin-lens ray (Tan et al. 2022 §3.2.2): from a point of the aperture disk (diameter
   // apertureDiameter, picked by u1, u2 in [0,1)) through the point of the focus plane
   // (focusDistance along the view axis) that the pinhole ray of (px, py) meets. A point on the
   // focus plane stays sharp; one at depth z spreads over a disk of diameter

@@ -1,4 +1,4 @@
-// Tandem's material: every property of seed 002 Table 1 plus what glTF/OBJ need.
+// Tandem's material: every property of Walewski et al. 2019 Table 1 plus what glTF/OBJ need.
 // Colours are linear RGB. Texture indices are -1 when absent.
 #pragma once
 #include <cmath>

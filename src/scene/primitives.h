@@ -1,5 +1,6 @@
-// Procedural meshes: seed 002's plane, cube and UV sphere (slices x stacks), plus the shapes the
-// built-in scenes are made of. All are unit-sized around the origin, with normals, UVs, tangents.
+// Procedural meshes: Walewski et al. 2019's plane, cube and UV sphere (slices x stacks), plus the
+// shapes the built-in scenes are made of. All are unit-sized around the origin, with normals, UVs,
+// tangents.
 #pragma once
 #include "scene/mesh.h"
 

@@ -15,7 +15,7 @@
 namespace tandem {
 
 struct HeuristicParams {
-  float K = 1.0f;  // static relevancy (seed 002 Table 3)
+  float K = 1.0f;  // static relevancy (Walewski et al. 2019 Table 3)
   float E = 1.0f;  // estimated cost of the object's effects
 };
 

@@ -1,6 +1,6 @@
 // Tandem scene files (JSON): primitives and model files placed with transforms, materials with
-// every property of seed 002 Table 1, lights, environment, camera, camera path, animation and
-// heuristic parameters. The format is documented in docs/scene-format.md.
+// every property of Walewski et al. 2019 Table 1, lights, environment, camera, camera path,
+// animation and heuristic parameters. The format is documented in docs/scene-format.md.
 #include <filesystem>
 #include <map>
 
@@ -122,7 +122,7 @@ int materialRef(FileCtx& c, JsonFields& f, const std::string& key) {
   return c.scene.addMaterial(readMaterial(c, v, "inline", f.field(key)));
 }
 
-// Seed 002 Table 3's per-object K (relevancy weight) and E (cost weight).
+// Walewski et al. 2019 Table 3's per-object K (relevancy weight) and E (cost weight).
 HeuristicParams readHeuristic(const FileCtx& c, const Json& j, const std::string& where) {
   JsonFields hf(j, c.path, where);
   HeuristicParams h;

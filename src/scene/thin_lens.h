@@ -1,5 +1,5 @@
-// The camera's thin lens as the depth-of-field passes see it (seed 000 §3.3, eq. 6): the signed
-// circle of confusion (CoC) of a point in pixels, and the zone of focus. One lens for every
+// The camera's thin lens as the depth-of-field passes see it (Tan et al. 2022 §3.3, eq. 6): the
+// signed circle of confusion (CoC) of a point in pixels, and the zone of focus. One lens for every
 // pass: the CoC here is exactly the spread of Camera::generateThinLensRay's rays (the reference
 // renderer's and rt_dof's), because it is derived from the same aperture, focus distance and
 // projection. Eq. 6 writes the sensor term as a·f / ((d − f)·w_s / w_i); for a sensor that fills

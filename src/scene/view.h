@@ -1,6 +1,6 @@
 // A view of the frame: one camera (this frame's, last frame's and the one at shutter close) and
 // the viewport it fills in the frame's buffers. A plain render has one view; stereo has two side
-// by side (seed 004's dual screen). Pixel (x, y) of a frame-extent buffer belongs to the view
+// by side (Peres 2022's dual screen). Pixel (x, y) of a frame-extent buffer belongs to the view
 // whose viewport holds it; its camera sees it at (x - view.x, y - view.y).
 #pragma once
 #include <vector>

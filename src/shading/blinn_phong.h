@@ -1,6 +1,6 @@
-// The one shading function (seed 002 Listing 5): emission + global ambient x ambient + the sum
-// over every directional, point and spot light of Blinn-Phong diffuse and specular terms, with
-// distance attenuation and spot-cone falloff. Used by deferred shading and by every ray hit.
+// The one shading function (Walewski et al. 2019 Listing 5): emission + global ambient x ambient +
+// the sum over every directional, point and spot light of Blinn-Phong diffuse and specular terms,
+// with distance attenuation and spot-cone falloff. Used by deferred shading and by every ray hit.
 //
 // Units: the diffuse term carries the Lambertian 1/pi and the specular lobe is the normalised
 // Blinn-Phong (n + 8) / (8 pi), so light intensities are physical and later path-traced

@@ -79,7 +79,7 @@ check "shipped scene file renders" "[ -s $D/cb.png ]"
   --aov heuristic_mask --out "$D/hb/" >/dev/null
 check "--set and the effect mask AOV" "[ -s $D/hb/spheres_hybrid-budget_heuristic_mask.png ]"
 
-# The seed 002 experiment, tiny: every table, CSV and image it promises.
+# The Walewski et al. 2019 experiment, tiny: every table, CSV and image it promises.
 "$T" experiment heuristic --scenes spheres,"$SRC/scenes/cornell_spheres.json" --width 64 --height 36 \
   --warmup 1 --static-frames 1 --path-frames 3 --out "$D/exp" >/dev/null
 check "experiment writes results.md with Tables 5 and 6" \

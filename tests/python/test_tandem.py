@@ -241,11 +241,11 @@ def test_readme_example_is_the_budget_sweep_script_and_runs():
     assert out.count("SSIM") == 5
 
 
-@pytest.mark.parametrize("script", ["seed002_table5.py", "seed000_table2.py", "seed004_table5.py",
-                                    "seed003_motion_blur.py"])
+@pytest.mark.parametrize("script", ["walewski2019_table5.py", "tan2022_table2.py", "peres2022_table5.py",
+                                    "foster2015_motion_blur.py"])
 def test_seed_examples_print_their_table(script):
     args = ["--width", "48", "--height", "27", "--frames", "2"]
-    if script != "seed002_table5.py":
+    if script != "walewski2019_table5.py":
         args += ["--spp", "2"]
     _, out = run_example(script, *args)
     rows = [line for line in out.splitlines() if line.startswith("| ") and "---" not in line]

@@ -1,4 +1,4 @@
-// Interleaved sampling's tiles (seed 003): each tile uses every pair of T once, coloured corners
+// Interleaved sampling's tiles (Foster 2015): each tile uses every pair of T once, coloured corners
 // and edges match wherever the hash puts them, samples sit in their strata, generation is
 // deterministic, the optimisation beats random tiles, and the sparse rasterizer agrees with the
 // dense one.

@@ -222,7 +222,7 @@ TEST(BadInput, ObjectHeuristics) {
                   {"objectHeuristics", "expected an object"});
 }
 
-// Bad lens values (seed 000's thin lens) name the field.
+// Bad lens values (Tan et al. 2022's thin lens) name the field.
 TEST(BadInput, LensFields) {
   expectLoadError("l1.json", R"({"objects": [{"shape": "cube"}], "camera": {"aperture": -0.1}})",
                   {"camera.aperture"});

@@ -472,7 +472,7 @@ int runDofExperiment(const DofExperimentOptions& o) {
   for (const std::string& s : o.shots) scenes.push_back(loadScene(s));
   for (const char* p : {"hybrid-dof", "postfx-dof", "rt-dof", "deferred"}) Pipeline::load(p);
   fs::create_directories(o.out);
-  ExperimentReport report(o.out, "Seed 000: hybrid depth of field");
+  ExperimentReport report(o.out, "Tan et al. 2022: hybrid depth of field");
   table2(o, scenes, report);
   // Figures 6 and 7 on one shot, against the same-shading reference.
   const size_t figShot = o.figureShot >= 0 ? size_t(o.figureShot) : scenes.size() - 1;

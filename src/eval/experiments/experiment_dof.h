@@ -1,4 +1,4 @@
-// `tandem experiment hybrid-dof`: seed 000's evaluation, reproduced in kind.
+// `tandem experiment hybrid-dof`: Tan et al. 2022's evaluation, reproduced in kind.
 //  - Table 2 shape: ms per pass group (sharp image, post-process, G-buffer & σ² (ray mask), ray
 //    trace, accumulation, median + reconstruction, composite, final TAA, others) of hybrid-dof on
 //    the BG / M / FG shots at m = 1, 30, 50, with the deferred frame of the same shot beside it;

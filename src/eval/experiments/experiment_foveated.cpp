@@ -66,7 +66,9 @@ Resolution resolutionNamed(const std::string& n) {
 }
 
 // The thesis' three configurations and, beyond it, NH3LD with the periphery accumulated over
-// frames (periphery_accumulation) and NH3LD with its level counts from the measured noise.
+// frames (periphery_accumulation) and NH3LD with its level counts from the measured noise. Every
+// row but the labelled ones filters only what direct_light's noise-free direct light leaves
+// (nh_denoise.split = direct).
 struct Config {
   const char *pipeline, *label, *file;
   std::vector<std::string> sets;
@@ -94,16 +96,17 @@ const std::vector<Config>& configs() {
        "nh3ld-varweight",
        {"nh_denoise.color_weight=variance"},
        5},
-      // The thesis' own estimator: lights picked uniformly.
+      // The thesis' own estimator and filter: lights picked uniformly, the whole estimate
+      // filtered (no direct_light split).
       {"foveated-base",
-       "Base, lights picked uniformly (the thesis)",
+       "Base, the thesis (lights picked uniformly, no direct split)",
        "base-uniform",
-       {"foveated_pt.light_selection=uniform"},
+       {"foveated_pt.light_selection=uniform", "nh_denoise.split=none"},
        7},
       {"foveated-nh3ld",
-       "NH3LD, lights picked uniformly (the thesis)",
+       "NH3LD, the thesis (lights picked uniformly, no direct split)",
        "nh3ld-uniform",
-       {"foveated_pt.light_selection=uniform"},
+       {"foveated_pt.light_selection=uniform", "nh_denoise.split=none"},
        7},
       // Both of the above beyond-the-thesis options of NH3LD together.
       {"foveated-nh3ld-temporal",
@@ -111,6 +114,23 @@ const std::vector<Config>& configs() {
        "nh3ld-temporal-variance",
        {"nh_denoise.levels_from=variance"},
        0,
+       true},
+      // The thesis' filter on the grid's estimate: the whole estimate filtered.
+      {"foveated-base",
+       "Base, the thesis' filter (no direct split)",
+       "base-nosplit",
+       {"nh_denoise.split=none"},
+       10},
+      {"foveated-nh3ld",
+       "NH3LD, the thesis' filter (no direct split)",
+       "nh3ld-nosplit",
+       {"nh_denoise.split=none"},
+       10},
+      {"foveated-nh3ld-temporal",
+       "NH3LD + temporal, levels from variance, no direct split",
+       "nh3ld-temporal-variance-nosplit",
+       {"nh_denoise.levels_from=variance", "nh_denoise.split=none"},
+       10,
        true}};
   return c;
 }
@@ -436,7 +456,7 @@ int runFoveatedExperiment(const FoveatedExperimentOptions& o) {
   for (const Config& c : configs()) Pipeline::load(c.pipeline);
   fs::create_directories(o.out);
   ExperimentReport report(o.out,
-                          "Seed 004: foveated stereo path tracing, non-homogeneous denoising");
+                          "Peres 2022: foveated stereo path tracing, non-homogeneous denoising");
   table2(o, report);
   const std::vector<double> speedups = table4(o, scenes, report);
   const std::string summary = table5(o, scenes, report);

@@ -1,4 +1,4 @@
-// `tandem experiment foveated`: seed 004's evaluation (§6), reproduced in kind.
+// `tandem experiment foveated`: Peres 2022's evaluation (§6), reproduced in kind.
 //  - Table 2: the region distribution (radius, area, the thesis' samples = area x spp, spp) of
 //    each resolution, with the pixels and samples actually listed after the selection toss;
 //  - Table 4 shape: mean ms per frame along each scene's camera path and the speed-up of NH2LD

@@ -425,7 +425,8 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   writeCsvs(results, o, dir);
 
   // The Markdown report: the paper's table layout (rows = measures, columns = scenes).
-  ExperimentReport report(dir, "Heuristic hybrid rendering (seed 002): experiment results");
+  ExperimentReport report(dir,
+                          "Heuristic hybrid rendering (Walewski et al. 2019): experiment results");
   std::ostringstream md;
   const std::string settings =
       std::to_string(o.width) + "x" + std::to_string(o.height) +

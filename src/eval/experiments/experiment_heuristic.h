@@ -1,4 +1,4 @@
-// `tandem experiment heuristic`: seed 002's experiments, regenerated in one command.
+// `tandem experiment heuristic`: Walewski et al. 2019's experiments, regenerated in one command.
 //  - Table 5 shape: a static shot of each scene; RAST, HEUR, RAYT and FRAME ms (medians) for
 //    hybrid-heuristic, FRAME for rt-only, their ratio, and SSIM/PSNR of hybrid-heuristic
 //    against hybrid-all (what the budget costs in quality).

@@ -453,7 +453,7 @@ void strobingTable(const InterleavedExperimentOptions& o, const std::vector<Shot
   report.table("strobing", {"variant", "N", "RMSE", "SSIM", "FLIP"}, rows);
 }
 
-// Hybrid motion blur (seed 000's future work) against post-process only and full interleaved
+// Hybrid motion blur (Tan et al. 2022's future work) against post-process only and full interleaved
 // sampling, on every scene without depth of field.
 void hybridMotionBlurTable(const InterleavedExperimentOptions& o, const std::vector<Shot>& shots,
                            ExperimentReport& report) {
@@ -525,7 +525,7 @@ void hybridMotionBlurTable(const InterleavedExperimentOptions& o, const std::vec
   }
   report.markdown(
       "### Hybrid motion blur\n\nPost-process only: a sharp mid-shutter image (1 jittered "
-      "sample per pixel, accumulated over frames by temporal AA as seed 000 does; the same "
+      "sample per pixel, accumulated over frames by temporal AA as Tan et al. 2022 does; the same "
       "shading) blurred by McGuire et al.'s reconstruction filter (tile max velocity, gather). "
       "Hybrid: the same, with interleaved samples (N 16, k 4) inside the mask of tiles whose "
       "neighbourhood mixes motions, lerped by the mask; the row without TAA anti-aliases its "
@@ -549,7 +549,7 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
     shots.push_back(shotOf(o.scenes[i], o.sceneLabels[i], o.shutter));
   fs::create_directories(o.out);
   ExperimentReport report(o.out,
-                          "Seed 003: interleaved sampling for depth of field and motion blur");
+                          "Foster 2015: interleaved sampling for depth of field and motion blur");
   tileQualityTable(report);
   const std::vector<Buffer> refs = references(o, shots, report);
   errorTables(o, shots, refs, report);

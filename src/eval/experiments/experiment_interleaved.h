@@ -1,4 +1,4 @@
-// `tandem experiment interleaved`: seed 003's interleaved sampling, measured.
+// `tandem experiment interleaved`: Foster 2015's interleaved sampling, measured.
 //  - tile quality: minimum and mean distance between samples of similar times, per-footprint
 //    discrepancy of times and lens positions, random against colored-corner tiles, per (N, k);
 //  - error against the same-shading reference (pt_reference integrator=whitted at the same

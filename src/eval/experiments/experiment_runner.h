@@ -1,8 +1,8 @@
 // Running an experiment by name: experiments/NAME.json in the source tree (or any JSON file),
 // whose "runner" picks the procedure — "sweep" (scenes x pipelines x a parameter sweep against
-// cached references), "heuristic" (seed 002), "taa", "hybrid-dof" (seed 000), "foveated"
-// (seed 004), "interleaved" (seed 003) or "gallery" (the demo). The request's overrides replace
-// the file's settings. `tandem experiment` and the Python module both call it.
+// cached references), "heuristic" (Walewski et al. 2019), "taa", "hybrid-dof" (Tan et al. 2022),
+// "foveated" (Peres 2022), "interleaved" (Foster 2015) or "gallery" (the demo). The request's
+// overrides replace the file's settings. `tandem experiment` and the Python module both call it.
 #pragma once
 #include <filesystem>
 #include <string>

@@ -1,6 +1,6 @@
 // rt_whitted: Whitted ray tracing from the camera with the same effects for every pixel, no
-// rasterization and no heuristic (seed 002's "RAYT ONLY"); primary rays as rt_gbuffer traces them.
-// Output: hdr. Parameters: the Whitted settings, every shadow traced by default.
+// rasterization and no heuristic (Walewski et al. 2019's "RAYT ONLY"); primary rays as rt_gbuffer
+// traces them. Output: hdr. Parameters: the Whitted settings, every shadow traced by default.
 #pragma once
 #include "passes/common/whitted_settings.h"
 

@@ -1,6 +1,6 @@
-// deferred_shading: seed 002 Listing 5 over the G-buffer, through the one shading function
-// (shading/blinn_phong.h); background pixels show the skybox along the camera ray.
-// Inputs: position, normal, geo_normal, diffuse, specular, emission, ambient, optical, object_id,
+// deferred_shading: Walewski et al. 2019 Listing 5 over the G-buffer, through the one shading
+// function (shading/blinn_phong.h); background pixels show the skybox along the camera ray. Inputs:
+// position, normal, geo_normal, diffuse, specular, emission, ambient, optical, object_id,
 // material_id. Output: hdr (linear radiance). Parameters: none.
 #pragma once
 #include "pipeline/pass.h"

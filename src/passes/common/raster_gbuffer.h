@@ -1,6 +1,6 @@
 // raster_gbuffer: rasterizes the frame's scene into the visibility buffer, then resolves each
-// covered pixel once into the G-buffer (seed 002 §3.1, Listings 1-3). Inputs: none (scene).
-// Outputs: the G-buffer targets (raster/gbuffer.h). Parameters: none.
+// covered pixel once into the G-buffer (Walewski et al. 2019 §3.1, Listings 1-3). Inputs: none
+// (scene). Outputs: the G-buffer targets (raster/gbuffer.h). Parameters: none.
 #pragma once
 #include "passes/common/gbuffer_writer.h"
 #include "passes/common/visible_surfaces.h"

@@ -22,7 +22,7 @@ void RTGBufferPass::execute(FrameContext& ctx) {
   GBufferView g = gbufferTargets(ctx, *this);
   // Each worker's recently set-up triangles (neighbouring rays mostly hit the same ones).
   tbb::enumerable_thread_specific<TriangleSetupCache<>> caches;
-  // Both eyes of a stereo frame in one parallel dispatch (seed 004 §5.1's single ray-generation
+  // Both eyes of a stereo frame in one parallel dispatch (Peres 2022 §5.1's single ray-generation
   // pass over the dual screen); tiles never straddle the eyes.
   std::atomic<uint64_t> rays{0};
   parallelViewTiles(ctx.views, [&](const View& v, int fx0, int fy0, int fx1, int fy1) {

@@ -1,5 +1,5 @@
-// dof_accumulation: temporal accumulation of the ray-traced DoF (seed 000 §3.2.3), at the ray
-// mask's resolution. The near and far fields are accumulated apart, each premultiplied by its
+// dof_accumulation: temporal accumulation of the ray-traced DoF (Tan et al. 2022 §3.2.3), at the
+// ray mask's resolution. The near and far fields are accumulated apart, each premultiplied by its
 // share of the rays (so the merge is normalised by the accumulated hit ratio h):
 //   near history follows the motion vectors (Rosado 2008);
 //   far history follows the mean far-field world position of the pixel's rays, or of its 3x3
@@ -33,7 +33,8 @@ class DofAccumulationPass : public SettingsPass<DofAccumulationSettings> {
  public:
   std::string type() const override { return "dof_accumulation"; }
   std::string description() const override {
-    return "Temporal accumulation of near/far ray-traced DoF, reprojected, variance (seed 000 "
+    return "Temporal accumulation of near/far ray-traced DoF, reprojected, variance (Tan et al. "
+           "2022 "
            "§3.2.3)";
   }
   std::vector<BufferSlot> inputs() const override;

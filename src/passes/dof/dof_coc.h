@@ -1,5 +1,5 @@
-// dof_coc: the circle of confusion of every pixel from the camera's thin lens (seed 000 eq. 6,
-// scene/thin_lens.h): signed diameter in pixels, < 0 in the near field (in front of the focus
+// dof_coc: the circle of confusion of every pixel from the camera's thin lens (Tan et al. 2022 eq.
+// 6, scene/thin_lens.h): signed diameter in pixels, < 0 in the near field (in front of the focus
 // plane), > 0 in the far field; the sky takes the far-field limit. |CoC| < max_coc (√2: one
 // sensor cell) is the zone of focus, where the composite keeps the sharp raster colour.
 // Input: position (world, from the G-buffer), depth (0 = sky). Output: coc (1 channel, signed).
@@ -12,7 +12,7 @@ class DofCocPass : public Pass {
  public:
   std::string type() const override { return "dof_coc"; }
   std::string description() const override {
-    return "Circle of confusion from the thin lens (seed 000 eq. 6), near < 0 < far";
+    return "Circle of confusion from the thin lens (Tan et al. 2022 eq. 6), near < 0 < far";
   }
   std::vector<BufferSlot> inputs() const override {
     return {{"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth}};

@@ -1,5 +1,5 @@
-// Small helpers shared by the depth-of-field passes (seed 000): clamping, the near/far split of
-// a colour by its CoC, and the bokeh shape of the aperture (disk or regular n-gon) as a gather
+// Small helpers shared by the depth-of-field passes (Tan et al. 2022): clamping, the near/far split
+// of a colour by its CoC, and the bokeh shape of the aperture (disk or regular n-gon) as a gather
 // kernel sees it.
 #pragma once
 #include <algorithm>
@@ -25,6 +25,11 @@ struct RtChannels {
 // colour and CoC; rt_hit the near share of the pixel's rays and how many there were;
 // rt_far_position the mean far hit and whether any ray hit the far field.
 constexpr int kLayerCoc = 3, kLayerChannels = 4;
+// The channels of postfx_dof's bokeh buffer: the bokeh intensity (the share of reaching taps
+// that are highlights) and the share of the gather's weight from foreground taps.
+struct BokehChannels {
+  static constexpr int kIntensity = 0, kForeground = 1, kCount = 2;
+};
 constexpr int kHitNearShare = 0, kHitRays = 1, kHitChannels = 2;
 constexpr int kFarPositionValid = 3, kFarPositionChannels = 4;
 

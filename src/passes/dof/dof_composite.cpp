@@ -40,6 +40,10 @@ const ParamTable<DofCompositeSettings>& DofCompositePass::tableFor() const {
 
 namespace {
 using dof::kSilhouette;
+using Rt = dof::RtChannels;
+constexpr int kRgb = Rt::kRgb, kHit = Rt::kHit, kCoverage = Rt::kCoverage;
+constexpr int kIntensity = dof::BokehChannels::kIntensity,
+              kForeground = dof::BokehChannels::kForeground;
 
 // The distance of every pixel offset up to kMaxReach from the centre, row by row.
 constexpr int kMaxReach = 33;  // ceil(64 / 2 + 0.5): fine_coc's largest radius
@@ -109,18 +113,21 @@ void DofCompositePass::execute(FrameContext& ctx) {
       if (rt)
         sampleBilinearN<dof::RtChannels::kCount>(*rt, (float(x) + 0.5f) * sx,
                                                  (float(y) + 0.5f) * sy, r);
-      const float coverage = dof::saturate(r[5]);
+      const float coverage = dof::saturate(r[kCoverage]);
       Vec3 rtc(0.0f);
-      if (coverage > 0) rtc = Vec3(r[0], r[1], r[2]) * (1.0f / std::max(r[5], 1e-6f));
-      const float hit = coverage > 0 ? r[4] / std::max(r[5], 1e-6f) : 0.0f;
+      if (coverage > 0)
+        rtc = Vec3(r[kRgb], r[kRgb + 1], r[kRgb + 2]) * (1.0f / std::max(r[kCoverage], 1e-6f));
+      const float hit = coverage > 0 ? r[kHit] / std::max(r[kCoverage], 1e-6f) : 0.0f;
       const float* rn = &r[dof::RtChannels::kNear];
-      const Vec3 rtNear =
-          coverage > 0 ? Vec3(rn[0], rn[1], rn[2]) * (1.0f / std::max(r[5], 1e-6f)) : Vec3(0.0f);
+      const Vec3 rtNear = coverage > 0
+                              ? Vec3(rn[0], rn[1], rn[2]) * (1.0f / std::max(r[kCoverage], 1e-6f))
+                              : Vec3(0.0f);
       const bool inFocus = std::abs(c) < dof::kZoneOfFocusCoc;
       // A blurred foreground reaches over this pixel: some of its lens rays hit the near field,
       // or (without rays) the gather drew from foreground taps.
-      const bool silhouette =
-          coverage > 0 ? hit > kSilhouette : bokehIn && bokehIn->at(x, y)[1] > kSilhouette;
+      const bool silhouette = coverage > 0
+                                  ? hit > kSilhouette
+                                  : bokehIn && bokehIn->at(x, y)[kForeground] > kSilhouette;
       const Vec3 pp = postfx.rgb(x, y);
       Vec3 col;
       if (rtMode) {
@@ -134,7 +141,7 @@ void DofCompositePass::execute(FrameContext& ctx) {
       } else {
         Vec3 traced;
         if (c < 0)  // near field: ray traced, post-process on bright bokeh
-          traced = useBokeh && bokehIn ? lerp(rtc, pp, bokehIn->at(x, y)[0]) : rtc;
+          traced = useBokeh && bokehIn ? lerp(rtc, pp, bokehIn->at(x, y)[kIntensity]) : rtc;
         else  // far field, eq. 7
           traced = lerp(rtc, pp, dof::smoothstep(0.0f, farBlend, hit));
         col = lerp(pp, traced, coverage);
@@ -143,7 +150,7 @@ void DofCompositePass::execute(FrameContext& ctx) {
         // nothing from foreground taps and, in the far field, no lens ray hit the near field),
         // a full-resolution gather of the sharp image is the same blur (beyond the paper).
         const float a = std::abs(c);
-        const bool noForeground = bokehIn && bokehIn->at(x, y)[1] <= kSilhouette &&
+        const bool noForeground = bokehIn && bokehIn->at(x, y)[kForeground] <= kSilhouette &&
                                   (c < 0 || coverage <= 0 || hit <= kSilhouette);
         if (a < fineCoc && noForeground)
           col = lerp(col, fineGather(sharp, coc, x, y, 0.5f * a),

@@ -1,4 +1,5 @@
-// dof_composite: the final depth-of-field image (seed 000 §3.3, eq. 7). Inside the zone of focus
+// dof_composite: the final depth-of-field image (Tan et al. 2022 §3.3, eq. 7). Inside the zone of
+// focus
 // (|CoC| < √2) the sharp raster colour — unless a blurred foreground reaches over the pixel
 // (some of its lens rays hit the near field, or the gather's foreground share is not 0): the
 // pixel is then part of a near-field silhouette (taking the paper's rule literally cuts every
@@ -42,11 +43,11 @@ class DofCompositePass : public SettingsPass<DofCompositeSettings> {
   std::string type() const override { return "dof_composite"; }
   std::string description() const override {
     return "Composite: sharp raster in the zone of focus, ray-traced near field, post-process "
-           "bokeh, far field by hit ratio (seed 000 §3.3, eq. 7)";
+           "bokeh, far field by hit ratio (Tan et al. 2022 §3.3, eq. 7)";
   }
   std::vector<BufferSlot> inputs() const override {
     BufferSlot rt{"rt_recon", dof::RtChannels::kCount, BufferKind::Color, Extent::any()};
-    BufferSlot postfx{"postfx", 3}, bokeh{"bokeh", 2, BufferKind::Mask};
+    BufferSlot postfx{"postfx", 3}, bokeh{"bokeh", dof::BokehChannels::kCount, BufferKind::Mask};
     rt.optional = postfx.optional = bokeh.optional = true;
     return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, postfx, bokeh, rt};
   }

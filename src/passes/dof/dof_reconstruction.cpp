@@ -32,7 +32,8 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
   const Buffer filtered = settings().median ? median3x3(in) : in;
   // Mip levels 0..3 of colour, CoC and hit ratio premultiplied by coverage, so uncovered
   // pixels do not darken the coarser levels.
-  constexpr int N = dof::RtChannels::kCount, kCov = dof::RtChannels::kCoverage;
+  constexpr int N = dof::RtChannels::kCount, kCov = dof::RtChannels::kCoverage,
+                kCoc = dof::RtChannels::kCoc;
   Buffer premul = filtered;
   for (size_t i = 0; i < premul.pixelCount(); ++i) {
     float* p = &premul.data[i * N];
@@ -65,11 +66,11 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
       for (int c = 0; c < N; ++c) o[c] = c0[c];
       if (c0[kCov] <= 0) continue;
       const float b = std::clamp(variance.at(x, y)[0] * vw, 0.0f, 0.9f);  // eq. 5
-      const float radius = 0.5f * c0[3] / scale;  // this resolution's pixels
+      const float radius = 0.5f * c0[kCoc] / scale;  // this resolution's pixels
       // Below 1/256 the lerp cannot change an 8-bit display value by more than one step of the
       // difference: skip the gather.
       if (b < 1.0f / 256.0f || radius < 0.5f) continue;
-      const float lod = std::clamp(c0[3] * lodScale, 0.0f, float(mips.size() - 1));  // eq. 8
+      const float lod = std::clamp(c0[kCoc] * lodScale, 0.0f, float(mips.size() - 1));  // eq. 8
       const int level = int(lod);
       const Buffer& mip = mips[size_t(level)];
       const float ms = float(mip.width) / float(w);
@@ -81,9 +82,9 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
         sampleBilinearN<N>(mip, sx * ms, sy * ms, s);
         if (s[kCov] <= 1e-4f) continue;
         // Reject a tap whose own blur does not reach the centre: its CoC radius (the
-        // coverage-weighted mean, 0.5 s[3] / s[kCov] frame pixels) below r at this resolution.
+        // coverage-weighted mean, 0.5 s[kCoc] / s[kCov] frame pixels) below r at this resolution.
         // Multiplied out: a division here stalled every tap's branch.
-        if (t.ring > 0 && 0.5f * s[3] < r * scale * s[kCov]) continue;
+        if (t.ring > 0 && 0.5f * s[kCoc] < r * scale * s[kCov]) continue;
         for (int c = 0; c < N; ++c) acc[c] += s[c];
       }
       if (acc[kCov] <= 1e-4f) continue;

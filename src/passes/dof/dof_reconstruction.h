@@ -1,5 +1,5 @@
-// dof_reconstruction: median and spatial reconstruction of the accumulated ray-traced DoF (seed
-// 000 §3.2.4), at its resolution. A 3x3 median first removes sparse unconverged bokeh; then a
+// dof_reconstruction: median and spatial reconstruction of the accumulated ray-traced DoF (Tan et
+// al. 2022 §3.2.4), at its resolution. A 3x3 median first removes sparse unconverged bokeh; then a
 // circular kernel (the centre and two rings of 8 and 16 taps) scaled to the pixel's accumulated
 // CoC gathers its neighbours from the mip level lod = clamp(c_t·0.05, 0, 3) (eq. 8), rejecting
 // taps whose own CoC radius is smaller than their distance; the pixel's colour and hit ratio are
@@ -22,7 +22,8 @@ class DofReconstructionPass : public SettingsPass<DofReconstructionSettings> {
  public:
   std::string type() const override { return "dof_reconstruction"; }
   std::string description() const override {
-    return "Median + spatial reconstruction of ray-traced DoF, eq. 5 and 8 (seed 000 §3.2.4)";
+    return "Median + spatial reconstruction of ray-traced DoF, eq. 5 and 8 (Tan et al. 2022 "
+           "§3.2.4)";
   }
   std::vector<BufferSlot> inputs() const override {
     return {{"rt_color", dof::RtChannels::kCount, BufferKind::Color, Extent::any()},

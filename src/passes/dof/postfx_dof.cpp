@@ -261,8 +261,8 @@ void gather(const HalfGrid& grid, const ThinLens& lens, const GatherSettings& gs
       }
       const float inv = 1.0f / std::max(wsum, 1e-20f);
       gathered.setRgb(x, y, Vec3(fr * inv, fg * inv, fb * inv));
-      bokeh.at(x, y)[0] = reach > 0 ? spec / reach : 0.0f;
-      bokeh.at(x, y)[1] = wsum > 0 ? wfSum / wsum : 0.0f;
+      bokeh.at(x, y)[dof::BokehChannels::kIntensity] = reach > 0 ? spec / reach : 0.0f;
+      bokeh.at(x, y)[dof::BokehChannels::kForeground] = wsum > 0 ? wfSum / wsum : 0.0f;
     }
   });
 }
@@ -287,7 +287,7 @@ void PostfxDofPass::execute(FrameContext& ctx) {
       downsample(hdr, cocIn, specIn, lens, settings().specularThreshold, settings().bokehLuminance),
       hdr, cocIn);
   // 4. The gather.
-  Buffer gathered(grid.hw, grid.hh, 3), bokeh(grid.hw, grid.hh, 2);
+  Buffer gathered(grid.hw, grid.hh, 3), bokeh(grid.hw, grid.hh, dof::BokehChannels::kCount);
   gather(grid, lens, {settings().depthRange, settings().polygon && lens.blades >= 3, ctx.serial},
          gathered, bokeh);
   // 5. Median, upscale.

@@ -1,4 +1,4 @@
-// postfx_dof: the post-process depth of field of seed 000 §3.1 (Jimenez 2014 as the paper
+// postfx_dof: the post-process depth of field of Tan et al. 2022 §3.1 (Jimenez 2014 as the paper
 // adapts it), at half resolution:
 //  1. downsample: colour (2x2 mean), CoC (the nearest of the four: the near field wins at
 //     silhouettes) and a high-specular flag (specular >= specular_threshold);
@@ -19,6 +19,7 @@
 // Inputs: hdr (sharp colour), coc, specular. Outputs: postfx (colour), bokeh (intensity, and the
 // share of the gather's weight from foreground taps: where a blurred foreground spreads).
 #pragma once
+#include "passes/dof/dof_common.h"
 #include "pipeline/param_table.h"
 
 namespace tandem {
@@ -36,13 +37,13 @@ class PostfxDofPass : public SettingsPass<PostfxDofSettings> {
   std::string type() const override { return "postfx_dof"; }
   std::string description() const override {
     return "Post-process gather DoF: half res, tile max CoC, 9-tap prefilter, 81-tap gather "
-           "(eq. 1), bokeh intensity, 3x3 median (seed 000 §3.1)";
+           "(eq. 1), bokeh intensity, 3x3 median (Tan et al. 2022 §3.1)";
   }
   std::vector<BufferSlot> inputs() const override {
     return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, {"specular", 4, BufferKind::Material}};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"postfx", 3}, {"bokeh", 2, BufferKind::Mask}};
+    return {{"postfx", 3}, {"bokeh", dof::BokehChannels::kCount, BufferKind::Mask}};
   }
   void execute(FrameContext& ctx) override;
 

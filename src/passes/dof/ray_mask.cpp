@@ -14,7 +14,7 @@ namespace tandem {
 std::vector<BufferSlot> RayMaskPass::inputs() const {
   BufferSlot variance{"dof_variance", 1, BufferKind::Variance, Extent::any()};
   variance.history = true;
-  BufferSlot bokeh{"bokeh", 2, BufferKind::Mask};
+  BufferSlot bokeh{"bokeh", dof::BokehChannels::kCount, BufferKind::Mask};
   bokeh.optional = true;
   return {{"position", 3, BufferKind::Position},
           {"normal", 3, BufferKind::Normal},
@@ -165,7 +165,8 @@ void RayMaskPass::execute(FrameContext& ctx) {
           const int px = std::min(x * scale + i, W - 1), py = std::min(y * scale + j, H - 1);
           const float cp = coc.at(px, py)[0];
           c = std::min(c, cp);
-          fine = fine && std::abs(cp) < fineCoc && bokeh->at(px, py)[1] <= dof::kSilhouette;
+          fine = fine && std::abs(cp) < fineCoc &&
+                 bokeh->at(px, py)[dof::BokehChannels::kForeground] <= dof::kSilhouette;
         }
       nearRadius.at(x, y)[0] = c < -dof::kZoneOfFocusCoc ? -0.5f * c / float(scale) : 0.0f;
       gathered[size_t(y) * size_t(w) + size_t(x)] = fine;

@@ -1,4 +1,4 @@
-// ray_mask: how many lens rays each pixel of the ray-traced DoF gets (seed 000 §3.2.1).
+// ray_mask: how many lens rays each pixel of the ray-traced DoF gets (Tan et al. 2022 §3.2.1).
 // The G-buffer's inverse view depth (d / z with d the focus distance: like a depth buffer, and
 // independent of the scene's units) and normals are Gaussian-filtered (σ = 1 px), reduced to the
 // mask's resolution and differentiated by a 5x5 Sobel: x = (δ_d + δ_n)·s (eq. 2), x_n = saturate(1
@@ -38,7 +38,7 @@ class RayMaskPass : public SettingsPass<RayMaskSettings> {
   std::string type() const override { return "ray_mask"; }
   std::string description() const override {
     return "Adaptive ray mask: Gaussian + 5x5 Sobel on depth and normals, eq. 2-4, variance "
-           "(seed 000 §3.2.1)";
+           "(Tan et al. 2022 §3.2.1)";
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override {

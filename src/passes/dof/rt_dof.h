@@ -1,5 +1,5 @@
-// rt_dof: ray-traced depth of field (seed 000 §3.2.2, Cook et al. 1984) in the pixels of the ray
-// mask, at the mask's resolution. Each of a pixel's x_f rays starts at a point of the aperture
+// rt_dof: ray-traced depth of field (Tan et al. 2022 §3.2.2, Cook et al. 1984) in the pixels of the
+// ray mask, at the mask's resolution. Each of a pixel's x_f rays starts at a point of the aperture
 // (disk or the camera's n-gon: Camera::lensPoint, the reference's lens) and goes through the
 // pixel's point on the focus plane; the pixel position is jittered over the mask pixel's
 // footprint and both come from the Sobol sampler, new every frame. Hits are shaded by the one
@@ -25,7 +25,8 @@ class RTDofPass : public SettingsPass<RTDofSettings> {
  public:
   std::string type() const override { return "rt_dof"; }
   std::string description() const override {
-    return "Ray-traced DoF: lens rays in the ray mask, split into near and far fields (seed 000 "
+    return "Ray-traced DoF: lens rays in the ray mask, split into near and far fields (Tan et al. "
+           "2022 "
            "§3.2.2)";
   }
   std::vector<BufferSlot> inputs() const override {

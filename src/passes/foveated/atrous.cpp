@@ -292,9 +292,8 @@ void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int ite
 
 std::vector<std::pair<int, int>> nonHomogeneousAtrous(AtrousImage& img,
                                                       const std::vector<AtrousRegion>& regions,
-                                                      const AtrousWeights& w) {
+                                                      const AtrousWeights& w, float mean) {
   std::vector<std::pair<int, int>> log;
-  const float mean = sampledMeanLuminance(img);
   for (size_t r = 0; r < regions.size(); ++r) {
     if (regions[r].spans.empty()) continue;
     for (int level = regions[r].levels - 1, k = 0; level >= 0; --level, ++k) {

@@ -1,4 +1,4 @@
-// Edge-avoiding À-Trous wavelet filtering (Dammertz et al. 2010), non-homogeneous as in seed 004
+// Edge-avoiding À-Trous wavelet filtering (Dammertz et al. 2010), non-homogeneous as in Peres 2022
 // §4.4: a 5x5 kernel from the cubic B-spline (1/16, 1/4, 3/8, 1/4, 1/16) taps pixels `step` apart;
 // each tap is weighted by colour, normal and position edge-stopping weights (eq. 4.1)
 //   w = exp(-|c_j - c_u|² / (σ_c² L̄² 2^-k)) · exp(-|n_j - n_u|² / σ_n²) · exp(-|x_j - x_u|² / (σ_x
@@ -63,11 +63,12 @@ struct AtrousRegion {
 void atrousLevel(AtrousImage& img, const AtrousRegion& region, int step, int iteration,
                  float meanLuminance, const AtrousWeights& w);
 
-// Algorithm 1: the regions in order, each with step widths 2^(levels-1) ... 1. Returns the
-// (region index, step width) of every level run, in order.
+// Algorithm 1: the regions in order, each with step widths 2^(levels-1) ... 1, the colour σ
+// relative to `meanLuminance` (L̄). Returns the (region index, step width) of every level run, in
+// order.
 std::vector<std::pair<int, int>> nonHomogeneousAtrous(AtrousImage& img,
                                                       const std::vector<AtrousRegion>& regions,
-                                                      const AtrousWeights& w);
+                                                      const AtrousWeights& w, float meanLuminance);
 
 // Mean luminance of the sampled pixels (at least a small positive floor).
 float sampledMeanLuminance(const AtrousImage& img);

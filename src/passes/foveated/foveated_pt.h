@@ -1,4 +1,4 @@
-// foveated_pt: path tracing over the coordinate buffer only (seed 004 §4.3): for every listed
+// foveated_pt: path tracing over the coordinate buffer only (Peres 2022 §4.3): for every listed
 // pixel of both eyes (one parallel dispatch over the list twice, the right eye offset by the left
 // eye's width) and each of its samples, one path of rt/diffuse_gi.h from the G-buffer's primary
 // surface: a shadow ray to a random light, one cosine-weighted bounce with its own shadow ray,
@@ -27,7 +27,7 @@ class FoveatedPTPass : public SettingsPass<FoveatedPTSettings> {
  public:
   std::string type() const override { return "foveated_pt"; }
   std::string description() const override {
-    return "Path tracing over the coordinate buffer: NEE + one diffuse bounce (seed 004 §4.3)";
+    return "Path tracing over the coordinate buffer: NEE + one diffuse bounce (Peres 2022 §4.3)";
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override {

@@ -1,4 +1,4 @@
-// foveation: the foveated sample distribution (seed 004 §4.2, passes/foveation_map.h), computed
+// foveation: the foveated sample distribution (Peres 2022 §4.2, passes/foveation_map.h), computed
 // once per configuration and again only when a parameter, the eye's size or the gaze changes —
 // as in the thesis it is not part of a frame's work (the frame that recomputes it reports
 // counter foveation/recomputed = 1; benchmarks warm up past it). One distribution serves both
@@ -30,7 +30,7 @@ class FoveationPass : public SettingsPass<FoveationSettings> {
  public:
   std::string type() const override { return "foveation"; }
   std::string description() const override {
-    return "Foveated sample distribution: 3 layers, coordinate buffer + binary mask (seed 004 "
+    return "Foveated sample distribution: 3 layers, coordinate buffer + binary mask (Peres 2022 "
            "§4.2)";
   }
   std::vector<BufferSlot> outputs() const override {

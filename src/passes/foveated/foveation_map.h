@@ -1,4 +1,4 @@
-// The foveated sample distribution of seed 004 §4.2, computed once per configuration (and again
+// The foveated sample distribution of Peres 2022 §4.2, computed once per configuration (and again
 // only when the gaze moves): three concentric layers around the gaze point of one eye's viewport.
 //   inner  (radius r0):   every pixel, spp_inner samples;
 //   middle (r0 ... r1):   a pixel is listed with a probability that falls linearly with its

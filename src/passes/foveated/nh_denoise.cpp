@@ -1,6 +1,8 @@
 #include "passes/foveated/nh_denoise.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -190,9 +192,37 @@ static void initGuide(AtrousImage& img, const std::vector<View>& views) {
     });
 }
 
+// The mean luminance of the sampled pixels' whole illumination when the planes hold it less
+// pt_direct's: the planes' colour plus pt_direct's illumination (sampledMeanLuminance's floor).
+static float wholeMeanLuminance(const AtrousImage& img, const Buffer& direct,
+                                const Demodulation& dm) {
+  using Sum = std::pair<double, size_t>;  // luminance sum, sampled pixels
+  const Sum total = tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, img.height), Sum{0.0, 0},
+      [&](const tbb::blocked_range<int>& rows, Sum acc) {
+        for (int y = rows.begin(); y != rows.end(); ++y)
+          for (int x = 0; x < img.width; ++x) {
+            const size_t i = img.index(x, y);
+            if (img.sampled[i] <= 0) continue;
+            Vec3 c;
+            for (int k = 0; k < 3; ++k)
+              c[k] = img.c[k][i] + dm.illumination(direct.at(x, y)[k], x, y, k);
+            acc.first += luminance(c);
+            ++acc.second;
+          }
+        return acc;
+      },
+      [](Sum a, const Sum& b) {
+        return Sum{a.first + b.first, a.second + b.second};
+      });
+  return std::max(float(total.second ? total.first / double(total.second) : 0.0), 1e-4f);
+}
+
 std::vector<BufferSlot> NHDenoisePass::inputs() const {
   BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
   variance.optional = true;
+  BufferSlot direct{"pt_direct", 3, BufferKind::Color};
+  direct.optional = true;
   return {{"pt_noisy", 3, BufferKind::Color},
           {"normal", 3, BufferKind::Normal},
           {"position", 3, BufferKind::Position},
@@ -201,7 +231,8 @@ std::vector<BufferSlot> NHDenoisePass::inputs() const {
           {"emission", 3, BufferKind::Color},
           {"fov_mask", 1, BufferKind::Mask},
           {"fov_layer", 1, BufferKind::Id},
-          variance};
+          variance,
+          direct};
 }
 
 const ParamTable<NHDenoiseSettings>& NHDenoisePass::tableFor() const {
@@ -259,7 +290,12 @@ const ParamTable<NHDenoiseSettings>& NHDenoisePass::tableFor() const {
                 .min = 1e-6,
                 .max = 10,
                 .doc = "variance: the relative noise variance per pixel area each region is "
-                       "filtered down to"});
+                       "filtered down to"})
+          .add(&S::split,
+               {.name = "split",
+                .doc = "none: filter the whole estimate (Peres 2022); direct: filter it less "
+                       "pt_direct and add pt_direct back (beyond the thesis; needs direct_light)",
+                .choices = {"none", "direct"}});
   return table;
 }
 
@@ -277,6 +313,8 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   const NHDenoiseSettings& s = settings();
   const bool demodulate = s.demodulate;
   const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
+  const Buffer* direct =
+      s.split == NHDenoiseSettings::Split::Direct ? ctx.optionalInput(*this, "pt_direct") : nullptr;
   const AtrousWeights weights{
       s.sigmaColor, s.sigmaNormal, s.sigmaPosition,
       s.colorWeight == NHDenoiseSettings::ColorWeight::Variance && variance != nullptr,
@@ -294,7 +332,10 @@ void NHDenoisePass::execute(FrameContext& ctx) {
         const bool sampled = mask.at(x, y)[0] > 0.0f;
         for (int k = 0; k < 3; ++k) {
           // An unsampled pixel's colour is never read: it starts empty, whatever it holds.
-          img.c[k][i] = sampled ? dm.illumination(noisy.at(x, y)[k], x, y, k) : 0;
+          // Split: the part of the estimate pt_direct does not hold, over the albedo.
+          img.c[k][i] = !sampled ? 0
+                        : direct ? (noisy.at(x, y)[k] - direct->at(x, y)[k]) / dm.albedo(x, y, k)
+                                 : dm.illumination(noisy.at(x, y)[k], x, y, k);
           img.n[k][i] = normal.at(x, y)[k];
           img.x[k][i] = position.at(x, y)[k];
         }
@@ -343,9 +384,11 @@ void NHDenoisePass::execute(FrameContext& ctx) {
         x = end;
       }
     }
+  // L̄, what the colour σ and the measured noise are relative to: of the whole estimate, also
+  // where the filter sees only what pt_direct leaves (whose mean may be near 0).
+  const float mean = direct ? wholeMeanLuminance(img, *direct, dm) : sampledMeanLuminance(img);
   if (s.levelsFrom == NHDenoiseSettings::LevelsFrom::Variance) {
     const float target = s.targetVariance;
-    const float mean = sampledMeanLuminance(img);
     for (size_t r = 0; r < regions.size(); ++r) {
       const RegionNoise noise = measureNoise(img, regions[r]);
       // Each level widens the footprint about fourfold: levels = log4 of the noise per pixel
@@ -358,14 +401,18 @@ void NHDenoisePass::execute(FrameContext& ctx) {
   }
   ctx.passParts.push_back({"setup", msSince(t0), 0});
   const auto t1 = Clock::now();
-  steps_ = nonHomogeneousAtrous(img, regions, weights);
+  steps_ = nonHomogeneousAtrous(img, regions, weights, mean);
   ctx.passParts.push_back({"levels", msSince(t1), 0});
   for (const View& v : ctx.views)
     tbb::parallel_for(0, v.height(), [&](int row) {
       const int y = row + v.y;
       for (int x = v.x; x < v.x + v.width(); ++x) {
         const size_t i = img.index(x, y);
-        for (int k = 0; k < 3; ++k) out.at(x, y)[k] = dm.colour(img.c[k][i], x, y, k);
+        for (int k = 0; k < 3; ++k)
+          // Split: the filtered rest on top of the direct light (light is never negative).
+          out.at(x, y)[k] =
+              direct ? std::max(img.c[k][i] * dm.albedo(x, y, k) + direct->at(x, y)[k], 0.0f)
+                     : dm.colour(img.c[k][i], x, y, k);
       }
     });
   ctx.counters["nh_denoise/levels_run"] = double(steps_.size());

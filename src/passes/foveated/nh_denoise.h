@@ -1,4 +1,4 @@
-// nh_denoise: the non-homogeneous denoiser of seed 004 §4.4 (Algorithm 1, passes/atrous.h): the
+// nh_denoise: the non-homogeneous denoiser of Peres 2022 §4.4 (Algorithm 1, passes/atrous.h): the
 // foveation layers become regions — three (inner, middle, outer: NH3LD), two (inner, and middle
 // + outer merged: NH2LD) or one (the whole frame: Base) — filtered one after another, each with
 // its own level count and decreasing step widths, over both eyes in one pass. Only pixels the
@@ -9,8 +9,13 @@
 // measured noise: the variance of a listed pixel about its listed neighbours (same surface),
 // relative to the mean luminance, over the region's listed share (the noise per pixel area);
 // each level widens the footprint about fourfold, so levels = ceil(log4(noise / target)).
-// Inputs: pt_noisy, normal, position, depth, diffuse, emission, fov_mask, fov_layer.
-// Output: denoised.
+// Beyond the thesis too, `split = direct` (the default where a direct_light pass gives pt_direct):
+// the filter runs on pt_noisy - pt_direct only (the bounce, the dimmer lights and zero-mean
+// light-selection noise) and pt_direct, noise-free at every pixel, is added back unfiltered, so
+// the edges of shadows and of a sun patch stay as sharp as the G-buffer; `split = none` filters
+// the whole estimate, as the thesis does.
+// Inputs: pt_noisy, normal, position, depth, diffuse, emission, fov_mask, fov_layer; optional
+// pt_variance, pt_direct. Output: denoised.
 #pragma once
 #include <utility>
 #include <vector>
@@ -24,6 +29,7 @@ struct NHDenoiseSettings {
   enum class Regions { One, Two, Three };  // Base, NH2LD, NH3LD
   enum class ColorWeight { Mean, Variance };
   enum class LevelsFrom { Fixed, Variance };
+  enum class Split { None, Direct };
   Regions regions = Regions::Three;
   int levelsInner = 2, levelsMiddle = 3, levelsOuter = 5;  // M, N, P
   float sigmaColor = 16, sigmaNormal = 0.3f, sigmaPosition = 0.05f;
@@ -32,13 +38,14 @@ struct NHDenoiseSettings {
   float sigmaVariance = 4;
   LevelsFrom levelsFrom = LevelsFrom::Fixed;
   float targetVariance = 0.001f;
+  Split split = Split::Direct;
 };
 
 class NHDenoisePass : public SettingsPass<NHDenoiseSettings> {
  public:
   std::string type() const override { return "nh_denoise"; }
   std::string description() const override {
-    return "Non-homogeneous edge-avoiding À-Trous denoising per foveation layer (seed 004 §4.4)";
+    return "Non-homogeneous edge-avoiding À-Trous denoising per foveation layer (Peres 2022 §4.4)";
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"denoised", 3, BufferKind::Color}}; }

@@ -10,8 +10,18 @@
 
 namespace tandem {
 
+namespace {
+using H = HistoryChannels;
+Vec3 vec3At(const float* px, int c) {
+  return Vec3(px[c], px[c + 1], px[c + 2]);
+}
+void setVec3At(float* px, int c, Vec3 v) {
+  px[c] = v.x, px[c + 1] = v.y, px[c + 2] = v.z;
+}
+}  // namespace
+
 std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
-  BufferSlot history{"pt_history", 10, BufferKind::List};
+  BufferSlot history{"pt_history", HistoryChannels::kCount, BufferKind::List};
   history.history = true;
   BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
   variance.optional = true;
@@ -107,10 +117,11 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
           const float w = (i ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
           if (w <= 0.0f || !v.contains(ix + i, iy + j)) continue;
           const float* ph = prev->at(ix + i, iy + j);
-          if (ph[3] <= 0 || length(Vec3(ph[4], ph[5], ph[6]) - p) > limit ||
-              dot(Vec3(ph[7], ph[8], ph[9]), nrm) < minCos)
+          if (ph[H::kFrames] <= 0 || length(vec3At(ph, H::kPosition) - p) > limit ||
+              dot(vec3At(ph, H::kNormal), nrm) < minCos)
             continue;
-          for (int k = 0; k < 4; ++k) out[k] += w * ph[k];
+          // Illumination and frames: the four channels from kIllumination.
+          for (int k = 0; k < 4; ++k) out[k] += w * ph[H::kIllumination + k];
           wsum += w;
         }
       if (wsum < 0.25f) return false;
@@ -128,7 +139,7 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
         float hist[4] = {0, 0, 0, 0};
         const bool reprojected = accumulated && (listed || fill) && reproject(x, y, p, nrm, hist);
         if (!listed && !reprojected) {
-          std::fill(h, h + 10, 0.0f);
+          std::fill(h, h + H::kCount, 0.0f);
           out[0] = out[1] = out[2] = 0.0f;
           accumVariance.at(x, y)[0] = -1.0f;
           accumMask.at(x, y)[0] = 0.0f;
@@ -154,9 +165,10 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
         // The mean of n frames: this frame's variance over n (the young history's equal weights).
         const float var = variance && listed ? variance->at(x, y)[0] : -1.0f;
         accumVariance.at(x, y)[0] = var >= 0.0f ? var / n : -1.0f;
-        h[0] = result.x, h[1] = result.y, h[2] = result.z, h[3] = n;
-        h[4] = p.x, h[5] = p.y, h[6] = p.z;
-        h[7] = nrm.x, h[8] = nrm.y, h[9] = nrm.z;
+        setVec3At(h, H::kIllumination, result);
+        h[H::kFrames] = n;
+        setVec3At(h, H::kPosition, p);
+        setVec3At(h, H::kNormal, nrm);
         if (int(layer.at(x, y)[0]) >= fromLayer) tileFrames += n, tilePixels += 1;
       }
     historyFrames += tileFrames;

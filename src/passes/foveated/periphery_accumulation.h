@@ -1,4 +1,4 @@
-// periphery_accumulation (beyond seed 004): temporal accumulation of the path-traced samples
+// periphery_accumulation (beyond Peres 2022): temporal accumulation of the path-traced samples
 // outside the fovea. Each listed pixel of a layer >= from_layer blends this frame's estimate into
 // its history: an exponential moving average whose young history averages its frames equally
 // (weight max(1 / (n + 1), alpha_min)). The history is reprojected by the motion vectors,
@@ -20,6 +20,12 @@
 
 namespace tandem {
 
+// The channels of pt_history, one record per pixel: the accumulated illumination, the frames
+// it averages, and the world position and normal of the surface it belongs to.
+struct HistoryChannels {
+  static constexpr int kIllumination = 0, kFrames = 3, kPosition = 4, kNormal = 7, kCount = 10;
+};
+
 struct PeripheryAccumulationSettings {
   int fromLayer = 1;
   float alphaMin = 0.1f;
@@ -33,14 +39,14 @@ class PeripheryAccumulationPass : public SettingsPass<PeripheryAccumulationSetti
  public:
   std::string type() const override { return "periphery_accumulation"; }
   std::string description() const override {
-    return "Temporal accumulation with reprojection outside the fovea (beyond seed 004)";
+    return "Temporal accumulation with reprojection outside the fovea (beyond Peres 2022)";
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override {
     return {{"pt_accum", 3, BufferKind::Color},
             {"pt_accum_variance", 1, BufferKind::Variance},
             {"pt_accum_mask", 1, BufferKind::Mask},
-            {"pt_history", 10, BufferKind::List}};
+            {"pt_history", HistoryChannels::kCount, BufferKind::List}};
   }
   void execute(FrameContext& ctx) override;
 

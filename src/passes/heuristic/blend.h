@@ -1,5 +1,5 @@
-// blend: seed 002 §3.4 (Listing 10). Outside the heuristic mask the lighting L is kept; inside,
-// C = L - (1 - S) (eq. 4) and the result is the average of C_M and C_R (eq. 5-6). With the
+// blend: Walewski et al. 2019 §3.4 (Listing 10). Outside the heuristic mask the lighting L is kept;
+// inside, C = L - (1 - S) (eq. 4) and the result is the average of C_M and C_R (eq. 5-6). With the
 // per-effect mask, an effect not traced for a pixel counts as absent (O_M or O_R = 0) unless
 // the optional `fallback` (ss_fallback) has a screen-space or sky colour for it.
 // Inputs: hdr (L), shadow, reflection, refraction, optical, heuristic_mask, fallback (optional).

@@ -200,7 +200,8 @@ const ParamTable<HeuristicSettings>& HeuristicPass::tableFor() const {
                {.name = "select_all", .doc = "select every visible object (no heuristic)"})
           .add(&S::shadows,
                {.name = "shadows",
-                .doc = "shadows: selected with their object within the budget (seed 002), or every "
+                .doc = "shadows: selected with their object within the budget (Walewski et al. "
+                       "2019), or every "
                        "visible object's traced (classified shadows), the budget left to "
                        "reflections and refractions",
                 .choices = {"budget", "all"}})

@@ -1,6 +1,6 @@
-// heuristic: seed 002 §3.2. Every frame, for every object: visible area A (pixel count from the
-// object-id buffer, one pass over the image), P (projected bounding-box centre, [0.01, 1]),
-// D (distance to the camera), V = A P / D (eq. 1), Q (lights; + lights + 1 if reflective;
+// heuristic: Walewski et al. 2019 §3.2. Every frame, for every object: visible area A (pixel count
+// from the object-id buffer, one pass over the image), P (projected bounding-box centre, [0.01,
+// 1]), D (distance to the camera), V = A P / D (eq. 1), Q (lights; + lights + 1 if reflective;
 // + lights + 4 if refractive), S (selected last frame), C = A Q E (eq. 2), R = (S I + V) K (eq. 3).
 // Then phase 3: nodes sorted by cost, each pointing to cheaper-or-equal, more relevant nodes,
 // walked while budget T remains. Output: the per-pixel heuristic mask (Figure 2h), one channel
@@ -139,7 +139,7 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
  public:
   std::string type() const override { return "heuristic"; }
   std::string description() const override {
-    return "Per-object relevancy/cost selection under budget T (seed 002 §3.2)";
+    return "Per-object relevancy/cost selection under budget T (Walewski et al. 2019 §3.2)";
   }
   std::vector<BufferSlot> inputs() const override {
     return {{"object_id", 1, BufferKind::Id}, rtStatsSlot(true)};

@@ -1,7 +1,7 @@
 // What the heuristic and rt_secondary hand each other, as typed records (BufferKind::Record):
 // this frame's request (`rt_request`: whether to time each object and effect, and a deadline),
 // and what rt_secondary measured (`rt_stats`), which the heuristic reads the next frame as a
-// history input to price its nodes (seed 002's frame-to-frame feedback).
+// history input to price its nodes (Walewski et al. 2019's frame-to-frame feedback).
 #pragma once
 #include <array>
 #include <cstdint>

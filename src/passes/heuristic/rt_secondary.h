@@ -1,15 +1,14 @@
-// rt_secondary: seed 002 §3.3 (Listing 8a) for the pixels of the heuristic mask, starting from the
-// G-buffer (no primary rays): shadows of every light (Listing 8b; classified by the frame's shadow
-// maps where they are certain, shadow rays the rest: `shadows`), reflection and refraction
-// rays with recursion (Listing 8c, rt/whitted.h). Outside the mask all three are 0 (Listing 8a;
-// Figure 5's buffers), or the shadow 1 with outside_mask_shadow = 1.
-// Inputs: G-buffer sample targets, heuristic_mask, rt_request (optional record: time each object
-// and effect; a deadline), heuristic_order (optional: the nodes' ranks, the order tiles
-// are traced in under a deadline). Outputs: shadow, reflection, refraction, traced_mask (the
-// heuristic mask where it was traced: all of it, unless the deadline cut the tail), shadow_class
-// (when read: traced, lit, shadowed shares of each pixel's lights), rt_stats (what it traced, for
-// the next frame's heuristic). Parameters: the Whitted settings, shadow_class_light,
-// outside_mask_shadow.
+// rt_secondary: Walewski et al. 2019 §3.3 (Listing 8a) for the pixels of the heuristic mask,
+// starting from the G-buffer (no primary rays): shadows of every light (Listing 8b; classified by
+// the frame's shadow maps where they are certain, shadow rays the rest: `shadows`), reflection and
+// refraction rays with recursion (Listing 8c, rt/whitted.h). Outside the mask all three are 0
+// (Listing 8a; Figure 5's buffers), or the shadow 1 with outside_mask_shadow = 1. Inputs: G-buffer
+// sample targets, heuristic_mask, rt_request (optional record: time each object and effect; a
+// deadline), heuristic_order (optional: the nodes' ranks, the order tiles are traced in under a
+// deadline). Outputs: shadow, reflection, refraction, traced_mask (the heuristic mask where it was
+// traced: all of it, unless the deadline cut the tail), shadow_class (when read: traced, lit,
+// shadowed shares of each pixel's lights), rt_stats (what it traced, for the next frame's
+// heuristic). Parameters: the Whitted settings, shadow_class_light, outside_mask_shadow.
 #pragma once
 #include "passes/common/whitted_settings.h"
 #include "rt/whitted.h"
@@ -26,7 +25,8 @@ class RTSecondaryPass : public SettingsPass<RTSecondarySettings> {
  public:
   std::string type() const override { return "rt_secondary"; }
   std::string description() const override {
-    return "Ray-traced shadows, reflections, refractions for masked pixels (seed 002 §3.3)";
+    return "Ray-traced shadows, reflections, refractions for masked pixels (Walewski et al. 2019 "
+           "§3.3)";
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;

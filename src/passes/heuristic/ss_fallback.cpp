@@ -19,14 +19,16 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
   using S = FallbackSettings;
   static const ParamTable<S> table =
       ParamTable<S>()
-          .add(&S::mode, {.name = "mode",
-                          .doc = "unselected reflections/refractions: off (seed 002: black), sky, "
-                                 "screen space, per-object reflection probes",
-                          .choices = {"off", "environment", "screen_space", "probe"}})
-          .add(&S::shadows,
-               {.name = "shadows",
-                .doc = "unselected shadows: off (seed 002: unshadowed) or raster shadow maps",
-                .choices = {"off", "shadow_map"}})
+          .add(
+              &S::mode,
+              {.name = "mode",
+               .doc = "unselected reflections/refractions: off (Walewski et al. 2019: black), sky, "
+                      "screen space, per-object reflection probes",
+               .choices = {"off", "environment", "screen_space", "probe"}})
+          .add(&S::shadows, {.name = "shadows",
+                             .doc = "unselected shadows: off (Walewski et al. 2019: unshadowed) or "
+                                    "raster shadow maps",
+                             .choices = {"off", "shadow_map"}})
           .add(&S::shadowMapSize,
                {.name = "shadow_map_size", .min = 64, .max = 8192, .doc = "shadow map resolution"})
           .add(&S::probeSize, {.name = "probe_size",

@@ -1,6 +1,6 @@
-// ss_fallback: what production hybrids draw for the effects the heuristic did not select (seed
-// 002 draws them black, Listing 8a). For each pixel of a reflective or transparent object whose
-// reflection or refraction was not traced, it looks along the reflected (refracted) direction
+// ss_fallback: what production hybrids draw for the effects the heuristic did not select (Walewski
+// et al. 2019 draws them black, Listing 8a). For each pixel of a reflective or transparent object
+// whose reflection or refraction was not traced, it looks along the reflected (refracted) direction
 // through the frame itself: a world-space march projected on the screen, hitting where it
 // passes just behind the depth of the G-buffer, takes the shaded colour there (screen-space
 // reflection / refraction); a march that leaves the screen or finds nothing takes the sky.

@@ -1,4 +1,4 @@
-// Interleaved sampling for depth of field and motion blur (seed 003; Fatahalian et al. 2009).
+// Interleaved sampling for depth of field and motion blur (Foster 2015; Fatahalian et al. 2009).
 // Per frame the set T of N (time, lens) pairs (raster/sample_tiles.h); the image's samples, k per
 // pixel on a grid of strata, each take one pair (raster/sample_layout.h: the sampling scheme).
 // Visibility is found once per pair of T:

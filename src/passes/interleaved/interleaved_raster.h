@@ -11,7 +11,7 @@ class InterleavedRasterPass : public InterleavedPass {
   std::string type() const override { return "interleaved_raster"; }
   std::string description() const override {
     return "Interleaved rasterization: one pass per (time, lens) pair of T into the samples "
-           "whose tile slot carries it (seed 003)";
+           "whose tile slot carries it (Foster 2015)";
   }
 
  protected:

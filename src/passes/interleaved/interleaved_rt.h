@@ -10,7 +10,7 @@ class InterleavedRTPass : public InterleavedPass {
   std::string type() const override { return "interleaved_rt"; }
   std::string description() const override {
     return "Interleaved ray tracing: each sample's primary ray at its pair's time and lens point "
-           "(seed 003, the same tiles)";
+           "(Foster 2015, the same tiles)";
   }
 
  protected:

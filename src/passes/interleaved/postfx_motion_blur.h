@@ -6,8 +6,8 @@
 // (jittered), weighting each by soft depth comparisons and cone / cylinder coverage: blurry
 // samples in front reach over, samples behind a blurry pixel stand in for the background it
 // uncovers.
-// Beyond the paper (seed 000's future work, hybrid motion blur): `mb_mask` marks the tiles where
-// the post-process is least trustworthy — a neighbourhood mixing motions (a moving object
+// Beyond the paper (Tan et al. 2022's future work, hybrid motion blur): `mb_mask` marks the tiles
+// where the post-process is least trustworthy — a neighbourhood mixing motions (a moving object
 // crossing or uncovering other geometry: the velocities inside the 3 x 3 tiles differ from the
 // largest by more than `mask_threshold` pixels of blur radius), bilinearly widened by a tile so
 // that a composite fades between the two images.
@@ -44,21 +44,6 @@ class PostfxMotionBlurPass : public SettingsPass<PostfxMotionBlurSettings> {
 
  protected:
   const ParamTable<PostfxMotionBlurSettings>& tableFor() const override;
-};
-
-// mb_composite: the hybrid motion blur image, lerp(mb_postfx, mb_interleaved, mb_mask).
-class MotionBlurCompositePass : public Pass {
- public:
-  std::string type() const override { return "mb_composite"; }
-  std::string description() const override {
-    return "Hybrid motion blur composite: interleaved samples inside the mask, post-process "
-           "outside";
-  }
-  std::vector<BufferSlot> inputs() const override {
-    return {{"mb_postfx", 3}, {"mb_interleaved", 3}, {"mb_mask", 1, BufferKind::Mask}};
-  }
-  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
-  void execute(FrameContext& ctx) override;
 };
 
 }  // namespace tandem

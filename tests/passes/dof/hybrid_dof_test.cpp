@@ -1,5 +1,5 @@
-// Hybrid depth of field (seed 000): the lens every pass shares, each pass against what it must
-// do on synthetic inputs, and the pipelines against the same-shading reference.
+// Hybrid depth of field (Tan et al. 2022): the lens every pass shares, each pass against what it
+// must do on synthetic inputs, and the pipelines against the same-shading reference.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
-// Interleaved sampling passes (seed 003): motion blur of a square moving at constant speed is its
-// swept path with linear ramps (analytic); a defocused square spreads over its circle of
+// Interleaved sampling passes (Foster 2015): motion blur of a square moving at constant speed is
+// its swept path with linear ramps (analytic); a defocused square spreads over its circle of
 // confusion like the reference's thin lens, energy kept; N = 1 through a pinhole is the plain
 // raster image; raster and ray-traced interleaving see the same samples; bad values are named.
 #include <gtest/gtest.h>

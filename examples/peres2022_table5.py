@@ -1,4 +1,4 @@
-"""Seed 004, the quality table from Python: Base (full screen, 4 spp, A-Trous), NH3LD (three
+"""Peres 2022, the quality table from Python: Base (full screen, 4 spp, A-Trous), NH3LD (three
 foveation layers, non-homogeneous A-Trous) and NH3LD with the periphery accumulated over frames,
 both eyes of the Pink Room, against the same path tracer converged (diffuse-gi reference), with
 frame times. `tandem experiment foveated` is the full version (three scenes, fhd and quest2)."""

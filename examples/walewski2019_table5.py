@@ -1,4 +1,4 @@
-"""Seed 002, Table 5 from Python: per static shot, the raster stage (RAST), the heuristic (HEUR),
+"""Walewski et al. 2019, Table 5 from Python: per static shot, the raster stage (RAST), the heuristic (HEUR),
 the ray-traced stage (RAYT) and the whole frame of hybrid-heuristic, against the frame of
 rt-only (Whitted ray tracing of everything, the same shading), with SSIM against rt-only.
 `tandem experiment heuristic` is the full version (four scenes, 1280x720, camera paths)."""

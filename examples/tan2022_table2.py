@@ -1,4 +1,4 @@
-"""Seed 000, Table 2 from Python: the three shots of the DoF courtyard (background-dominant BG,
+"""Tan et al. 2022, Table 2 from Python: the three shots of the DoF courtyard (background-dominant BG,
 mixed M, foreground close-up FG) through post-process DoF, hybrid DoF and lens rays everywhere,
 each timed and compared with distributed ray tracing of the same shading (the Whitted thin-lens
 reference). `tandem experiment hybrid-dof` is the full version."""

@@ -1,4 +1,4 @@
-"""Seed 003's hybrid motion blur from Python: post-process blur only, the hybrid (interleaved
+"""Foster 2015's hybrid motion blur from Python: post-process blur only, the hybrid (interleaved
 samples where the blur cannot be right, a temporal sharp image elsewhere) and interleaved samples
 everywhere, each timed and compared with distributed ray tracing of the same shading over the
 same shutter (the Whitted shutter reference). `tandem experiment interleaved` is the full

@@ -1,0 +1,74 @@
+#include "passes/foveated/direct_light.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+
+#include "pipeline/frame_context.h"
+#include "rt/diffuse_gi.h"
+#include "scene/scene.h"
+
+namespace tandem {
+
+std::vector<BufferSlot> DirectLightPass::inputs() const {
+  return {{"position", 3, BufferKind::Position}, {"normal", 3, BufferKind::Normal},
+          {"geo_normal", 3, BufferKind::Normal}, {"diffuse", 4, BufferKind::Material},
+          {"emission", 3, BufferKind::Color},    {"depth", 1, BufferKind::Depth}};
+}
+
+const ParamTable<DirectLightSettings>& DirectLightPass::tableFor() const {
+  using S = DirectLightSettings;
+  static const ParamTable<S> table = ParamTable<S>().add(
+      &S::lights, {.name = "lights",
+                   .min = 0,
+                   .max = 64,
+                   .doc = "lights traced per pixel, those giving it the most unshadowed light; "
+                          "the others stay in the path-traced estimate"});
+  return table;
+}
+
+void DirectLightPass::execute(FrameContext& ctx) {
+  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& normal = ctx.input(*this, "normal");
+  const Buffer& geoNormal = ctx.input(*this, "geo_normal");
+  const Buffer& diffuse = ctx.input(*this, "diffuse");
+  const Buffer& emission = ctx.input(*this, "emission");
+  const Buffer& depth = ctx.input(*this, "depth");
+  Buffer& out = ctx.output(*this, "pt_direct");
+  const RayTracer& rt = ctx.rayTracer();
+  const ShadingContext shading = ShadingContext::from(*ctx.scene);
+  const DiffuseGI gi(rt, *ctx.scene, shading);
+  const int count = settings().lights;
+  std::atomic<uint64_t> rays{0};
+  for (const View& v : ctx.views)
+    tbb::parallel_for(tbb::blocked_range<int>(0, v.height()), [&](const auto& rows) {
+      uint64_t local = 0;
+      for (int ey = rows.begin(); ey != rows.end(); ++ey)
+        for (int ex = 0; ex < v.width(); ++ex) {
+          const int x = ex + v.x, y = ey + v.y;
+          if (depth.at(x, y)[0] <= 0.0f) {  // the sky, as foveated_pt sees it
+            Vec3 o, d;
+            v.jitteredCamera.generateRay(ex + 0.5f, ey + 0.5f, o, d);
+            out.setRgb(x, y, ctx.scene->skyRadiance(d));
+            continue;
+          }
+          SurfaceSample s;
+          s.position = position.rgb(x, y);
+          s.normal = normal.rgb(x, y);
+          s.geoNormal = geoNormal.rgb(x, y);
+          s.diffuse = Vec3(diffuse.at(x, y)[0], diffuse.at(x, y)[1], diffuse.at(x, y)[2]);
+          s.emission = emission.rgb(x, y);
+          const Vec3 wo = v.camera.desc.projection == Projection::Perspective
+                              ? normalize(v.camera.desc.position - s.position)
+                              : -v.camera.forward;
+          out.setRgb(x, y,
+                     DiffuseGI::emitted(s, wo) +
+                         DiffuseGI::albedo(s) * gi.brightestDirect(s, wo, count, 0.0f, local));
+        }
+      rays += local;
+    });
+  ctx.passRays += double(rays.load());
+}
+
+}  // namespace tandem
