@@ -52,7 +52,8 @@ class Pass {
   std::optional<BufferSlot> outputSlot(const std::string& slot) const;
   std::optional<BufferSlot> inputSlot(const std::string& slot) const;
 
-  // Parameter values, validated against params(); read with param("name").
+  // Parameter values by name, validated against params(): for generic readers (the viewer, the
+  // docs, --set, tests). A pass reads its typed settings (SettingsPass, param_table.h).
   double param(const std::string& name) const;
   void setParam(const std::string& name, double value);  // throws on unknown name or range
   void resetParams();

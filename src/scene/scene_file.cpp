@@ -78,16 +78,9 @@ Material readMaterial(FileCtx& c, const Json& j, const std::string& name, const 
   m.offset = f.vec2("offset", m.offset);
   m.castsShadows = f.boolean("castsShadows", m.castsShadows);
   m.doubleSided = f.boolean("doubleSided", m.doubleSided);
-  const char* modes[] = {"opaque", "mask", "blend"};
-  std::string alpha = f.string("alphaMode", modes[int(m.alphaMode)]);
-  if (alpha == "opaque")
-    m.alphaMode = AlphaMode::Opaque;
-  else if (alpha == "mask")
-    m.alphaMode = AlphaMode::Mask;
-  else if (alpha == "blend")
-    m.alphaMode = AlphaMode::Blend;
-  else
-    f.fail("alphaMode", "expected opaque, mask or blend, got '" + alpha + "'");
+  m.alphaMode = f.choice<AlphaMode>(
+      "alphaMode", m.alphaMode,
+      {{"opaque", AlphaMode::Opaque}, {"mask", AlphaMode::Mask}, {"blend", AlphaMode::Blend}});
   m.alphaCutoff = f.number("alphaCutoff", m.alphaCutoff, 0.0f, 1.0f);
   auto texture = [&](const char* key, bool srgb, int& slot) {
     const int t = readTexture(c, f, key, srgb);
@@ -204,15 +197,11 @@ void readObject(FileCtx& c, const Json& j, size_t index) {
 Light readLight(const FileCtx& c, const Json& j, size_t index) {
   JsonFields f(j, c.path, "lights[" + std::to_string(index) + "]");
   Light l;
-  std::string type = f.string("type", "");
-  if (type == "directional")
-    l.type = LightType::Directional;
-  else if (type == "point")
-    l.type = LightType::Point;
-  else if (type == "spot")
-    l.type = LightType::Spot;
-  else
-    f.fail("type", "expected directional, point or spot, got '" + type + "'");
+  const std::string type = f.string("type", "");
+  l.type = f.choice<LightType>("type", std::nullopt,
+                               {{"directional", LightType::Directional},
+                                {"point", LightType::Point},
+                                {"spot", LightType::Spot}});
   l.name = f.string("name", type + std::to_string(index));
   l.color = f.vec3("color", l.color);
   l.intensity = f.number("intensity", 1.0f, 0.0f, 1e9f);
@@ -240,13 +229,9 @@ Light readLight(const FileCtx& c, const Json& j, size_t index) {
 
 CameraDesc cameraFromJson(const Json& j, const std::string& file, CameraDesc d) {
   JsonFields f(j, file, "camera");
-  std::string proj = f.string("projection", "perspective");
-  if (proj == "perspective")
-    d.projection = Projection::Perspective;
-  else if (proj == "orthographic")
-    d.projection = Projection::Orthographic;
-  else
-    f.fail("projection", "expected perspective or orthographic");
+  d.projection = f.choice<Projection>(
+      "projection", Projection::Perspective,
+      {{"perspective", Projection::Perspective}, {"orthographic", Projection::Orthographic}});
   d.position = f.vec3("position", d.position);
   d.lookAt = f.vec3("lookAt", d.lookAt);
   d.up = f.vec3("up", d.up);

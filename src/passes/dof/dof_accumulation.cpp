@@ -100,7 +100,7 @@ void reprojectFar(const Buffer& farPosIn, int x, int y, const View& view, float 
 float adaptiveAlpha(float alpha, float lum, const float* hn, const float* hf, const float* hm) {
   const float hsum = hn[3] + hf[3];
   const float histLum =
-      hsum > 0 ? dof::luma(Vec3(hn[0] + hf[0], hn[1] + hf[1], hn[2] + hf[2])) / hsum : lum;
+      hsum > 0 ? luminance(Vec3(hn[0] + hf[0], hn[1] + hf[1], hn[2] + hf[2])) / hsum : lum;
   const float sigma = std::sqrt(std::max(hm[1] - hm[0] * hm[0], 0.0f));
   const float lambda =
       dof::saturate((std::abs(lum - histLum) - 2.0f * sigma) / std::max({lum, histLum, 1e-3f}));
@@ -152,7 +152,7 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       const float* cn = nearIn.at(x, y);
       const float* cf = farIn.at(x, y);
       // This frame's merged sample (the mean of its rays).
-      const float lum = dof::luma(lerp(Vec3(cf[0], cf[1], cf[2]), Vec3(cn[0], cn[1], cn[2]), hc));
+      const float lum = luminance(lerp(Vec3(cf[0], cf[1], cf[2]), Vec3(cn[0], cn[1], cn[2]), hc));
       float age = haveHistory ? hm[2] : 0.0f;
       float alpha = rays > 0 ? std::max(minAlpha, 1.0f / (age + 1.0f)) : 0.0f;
       if (!haveHistory) {

@@ -51,9 +51,6 @@ inline float smoothstep(float a, float b, float x) {
   const float t = saturate((x - a) / (b - a));
   return t * t * (3.0f - 2.0f * t);
 }
-inline float luma(Vec3 c) {
-  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
-}
 
 // Share of a sample that belongs to the near field, from its signed CoC (§3.2.2 splits by the
 // distance to the focus plane, smoothly): 0 behind the focus plane and inside the zone of focus,

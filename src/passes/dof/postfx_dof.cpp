@@ -106,8 +106,8 @@ HalfGrid downsample(const Buffer& hdr, const Buffer& cocIn, const Buffer& specIn
           cmin = std::min(cmin, cocIn.at(sx, sy)[0]);
           // A bright specular highlight: a specular surface, and brighter than white.
           const float* s = specIn.at(sx, sy);
-          if (dof::luma(Vec3(s[0], s[1], s[2])) >= specThreshold &&
-              dof::luma(hdr.rgb(sx, sy)) >= bokehLuminance)
+          if (luminance(Vec3(s[0], s[1], s[2])) >= specThreshold &&
+              luminance(hdr.rgb(sx, sy)) >= bokehLuminance)
             highlight = 1.0f;
         }
       const float radius = 0.25f * std::abs(cmin);

@@ -32,7 +32,7 @@ float sampledMeanLuminance(const AtrousImage& img) {
   size_t count = 0;
   for (size_t i = 0; i < img.sampled.size(); ++i)
     if (img.sampled[i] > 0) {
-      sum += 0.2126 * img.c[0][i] + 0.7152 * img.c[1][i] + 0.0722 * img.c[2][i];
+      sum += planeLuminance(img, i);
       ++count;
     }
   return std::max(float(count ? sum / double(count) : 0.0), 1e-4f);

@@ -70,6 +70,11 @@ std::vector<std::pair<int, int>> nonHomogeneousAtrous(AtrousImage& img,
                                                       const std::vector<AtrousRegion>& regions,
                                                       const AtrousWeights& w, float meanLuminance);
 
+// The luminance of pixel i's colour planes, in double (sums over millions of pixels).
+inline double planeLuminance(const AtrousImage& img, size_t i) {
+  return 0.2126 * img.c[0][i] + 0.7152 * img.c[1][i] + 0.0722 * img.c[2][i];
+}
+
 // Mean luminance of the sampled pixels (at least a small positive floor).
 float sampledMeanLuminance(const AtrousImage& img);
 

@@ -16,10 +16,6 @@ namespace tandem {
 
 namespace {
 
-double luminanceAt(const AtrousImage& img, size_t j) {
-  return 0.2126 * img.c[0][j] + 0.7152 * img.c[1][j] + 0.0722 * img.c[2][j];
-}
-
 struct RegionNoise {
   double variance = 0;  // of a listed pixel's luminance about its listed 3x3 neighbours' mean
   double density = 0;   // listed share of the region's pixels
@@ -30,7 +26,7 @@ struct RegionNoise {
 // within 25°) is noise, not signal.
 RegionNoise measureNoise(const AtrousImage& img, const AtrousRegion& region) {
   double sum = 0, listed = 0, total = 0, used = 0;
-  const auto lum = [&](size_t i) { return luminanceAt(img, i); };
+  const auto lum = [&](size_t i) { return planeLuminance(img, i); };
   for (const AtrousSpan& sp : region.spans)
     for (int x = sp.x0; x < sp.x1; ++x) {
       ++total;
@@ -117,7 +113,7 @@ static void prefilterVariance(AtrousImage& img, const std::vector<View>& views) 
             ++n;
           }
           if (!sameSurface(img, i, j)) return;
-          const double l = luminanceAt(img, j);
+          const double l = planeLuminance(img, j);
           s1 += l;
           s2 += l * l;
           ++m;
@@ -146,7 +142,7 @@ static void prefillHoles(AtrousImage& img, const std::vector<View>& views) {
         if (img.sampled[i] > 0) continue;
         for (int r = 1; r <= 2 && near.empty(); ++r)
           forSampledNeighbours(img, v, x, y, r, [&](size_t j, int, int) {
-            if (sameSurface(img, i, j)) near.push_back({float(luminanceAt(img, j)), j});
+            if (sameSurface(img, i, j)) near.push_back({float(planeLuminance(img, j)), j});
           });
         if (near.empty()) continue;
         std::nth_element(near.begin(), near.begin() + ptrdiff_t(near.size() / 2), near.end());
