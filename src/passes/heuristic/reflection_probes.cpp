@@ -40,7 +40,7 @@ int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading
   for (size_t o = 0; o < wanted.size() && o < probes_.size(); ++o) {
     Probe& p = probes_[o];
     if (wanted[o]) p.wanted = updates_;
-    if (!wanted[o] || (p.version == fs.geometryVersion && p.size == size)) continue;
+    if (!wanted[o] || (p.size == size && !outdated(fs, p))) continue;
     if (p.size == size) {
       stale.push_back(o);
       continue;
@@ -64,6 +64,21 @@ int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading
   return drawn;
 }
 
+bool ReflectionProbes::outdated(const FrameScene& fs, const Probe& p) {
+  if (p.version == fs.geometryVersion) return false;
+  if (p.staticVersion != fs.staticVersion) return true;
+  // Half a texel at a face's centre (a face spans 90 degrees).
+  const float halfTexel = 0.25f * kPi / float(std::max(p.size, 1));
+  for (const auto& [object, then] : p.movers) {
+    const Bounds3& now = fs.objects[size_t(object)].bounds;
+    const float moved = std::max(length(now.lo - then.lo), length(now.hi - then.hi));
+    const float distance =
+        std::max(length(now.center() - p.centre) - 0.5f * length(now.hi - now.lo), p.radius);
+    if (moved > halfTexel * distance) return true;
+  }
+  return false;
+}
+
 void ReflectionProbes::draw(const FrameScene& fs, const ShadingContext& shading, int object,
                             int size, Probe& p) {
   const Scene& scene = *fs.scene;
@@ -84,9 +99,13 @@ void ReflectionProbes::draw(const FrameScene& fs, const ShadingContext& shading,
   // or around them; without them the probe shows that.
   std::vector<uint8_t> others(fs.objects.size(), 1);
   others[size_t(object)] = 0;
+  p.staticVersion = fs.staticVersion;
+  p.movers.clear();
   for (size_t o = 0; o < others.size(); ++o) {
     const Material& m = scene.materials[size_t(scene.objects[o].material)];
     if (m.reflectivity > 0.5f || m.opacity < 0.5f) others[o] = 0;
+    if (others[o] && scene.objects[o].animated())
+      p.movers.push_back({int(o), fs.objects[o].bounds});
   }
   for (int f = 0; f < 6; ++f) {
     CameraDesc d;

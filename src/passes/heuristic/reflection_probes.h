@@ -3,9 +3,11 @@
 // object's centre (the object itself left out), rasterized, resolved and shaded by the one
 // shading function (lights unshadowed; the sky behind). A mirror ball looks up its reflected
 // direction; glass looks up the direction its ray leaves by, refracted in and out of the
-// object's bounding sphere. Probes do not depend on the camera: they are redrawn only when
-// geometry or lights change.
+// object's bounding sphere. Probes do not depend on the camera: they are redrawn only when the
+// lights change, an object that is not animated changes, or an animated object the probe shows
+// has moved by half a texel as seen from the probe's centre since it was drawn.
 #pragma once
+#include <utility>
 #include <vector>
 
 #include "core/buffer.h"
@@ -38,9 +40,13 @@ class ReflectionProbes {
 
  private:
   struct Probe {
-    uint64_t version = ~0ull;  // geometry version drawn for
-    uint64_t drawn = 0;        // update() call it was drawn in (the oldest is refreshed first)
-    uint64_t wanted = 0;       // update() call that last wanted it (the oldest is freed first)
+    uint64_t version = ~0ull;        // geometry version drawn for
+    uint64_t staticVersion = ~0ull;  // static geometry version drawn for
+    // The animated objects drawn into it and their bounds then: the probe is out of date once
+    // one of them has visibly moved.
+    std::vector<std::pair<int, Bounds3>> movers;
+    uint64_t drawn = 0;   // update() call it was drawn in (the oldest is refreshed first)
+    uint64_t wanted = 0;  // update() call that last wanted it (the oldest is freed first)
     Vec3 centre;
     float radius = 0;
     int size = 0;
@@ -48,6 +54,8 @@ class ReflectionProbes {
     std::vector<Buffer> faces;    // size x size radiance each
   };
   void draw(const FrameScene& fs, const ShadingContext& shading, int object, int size, Probe& p);
+  // Whether what probe p shows changed since it was drawn (by more than half a texel).
+  static bool outdated(const FrameScene& fs, const Probe& p);
 
   std::vector<Probe> probes_;  // per object
   uint64_t updates_ = 0;
