@@ -5,6 +5,7 @@
 
 #include <atomic>
 
+#include "passes/foveated/primary_surface.h"
 #include "pipeline/frame_context.h"
 #include "rt/diffuse_gi.h"
 #include "scene/scene.h"
@@ -12,9 +13,7 @@
 namespace tandem {
 
 std::vector<BufferSlot> DirectLightPass::inputs() const {
-  return {{"position", 3, BufferKind::Position}, {"normal", 3, BufferKind::Normal},
-          {"geo_normal", 3, BufferKind::Normal}, {"diffuse", 4, BufferKind::Material},
-          {"emission", 3, BufferKind::Color},    {"depth", 1, BufferKind::Depth}};
+  return PrimarySurfaces::slots();
 }
 
 const ParamTable<DirectLightSettings>& DirectLightPass::tableFor() const {
@@ -29,12 +28,7 @@ const ParamTable<DirectLightSettings>& DirectLightPass::tableFor() const {
 }
 
 void DirectLightPass::execute(FrameContext& ctx) {
-  const Buffer& position = ctx.input(*this, "position");
-  const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer& geoNormal = ctx.input(*this, "geo_normal");
-  const Buffer& diffuse = ctx.input(*this, "diffuse");
-  const Buffer& emission = ctx.input(*this, "emission");
-  const Buffer& depth = ctx.input(*this, "depth");
+  const PrimarySurfaces g = PrimarySurfaces::of(ctx, *this);
   Buffer& out = ctx.output(*this, "pt_direct");
   const RayTracer& rt = ctx.rayTracer();
   const ShadingContext shading = ShadingContext::from(*ctx.scene);
@@ -47,21 +41,14 @@ void DirectLightPass::execute(FrameContext& ctx) {
       for (int ey = rows.begin(); ey != rows.end(); ++ey)
         for (int ex = 0; ex < v.width(); ++ex) {
           const int x = ex + v.x, y = ey + v.y;
-          if (depth.at(x, y)[0] <= 0.0f) {  // the sky, as foveated_pt sees it
+          if (g.sky(x, y)) {  // the sky, as foveated_pt sees it
             Vec3 o, d;
             v.jitteredCamera.generateRay(ex + 0.5f, ey + 0.5f, o, d);
             out.setRgb(x, y, ctx.scene->skyRadiance(d));
             continue;
           }
-          SurfaceSample s;
-          s.position = position.rgb(x, y);
-          s.normal = normal.rgb(x, y);
-          s.geoNormal = geoNormal.rgb(x, y);
-          s.diffuse = Vec3(diffuse.at(x, y)[0], diffuse.at(x, y)[1], diffuse.at(x, y)[2]);
-          s.emission = emission.rgb(x, y);
-          const Vec3 wo = v.camera.desc.projection == Projection::Perspective
-                              ? normalize(v.camera.desc.position - s.position)
-                              : -v.camera.forward;
+          const SurfaceSample s = g.at(x, y);
+          const Vec3 wo = PrimarySurfaces::towardsViewer(v, s.position);
           out.setRgb(x, y,
                      DiffuseGI::emitted(s, wo) +
                          DiffuseGI::albedo(s) * gi.brightestDirect(s, wo, count, 0.0f, local));

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "core/profiler.h"
+#include "passes/foveated/primary_surface.h"
 #include "pipeline/frame_context.h"
 #include "rt/diffuse_gi.h"
 #include "scene/scene.h"
@@ -15,13 +16,9 @@
 namespace tandem {
 
 std::vector<BufferSlot> FoveatedPTPass::inputs() const {
-  return {{"position", 3, BufferKind::Position},
-          {"normal", 3, BufferKind::Normal},
-          {"geo_normal", 3, BufferKind::Normal},
-          {"diffuse", 4, BufferKind::Material},
-          {"emission", 3, BufferKind::Color},
-          {"depth", 1, BufferKind::Depth},
-          {"fov_coords", 3, BufferKind::List, Extent::any()}};
+  std::vector<BufferSlot> slots = PrimarySurfaces::slots();
+  slots.push_back({"fov_coords", 3, BufferKind::List, Extent::any()});
+  return slots;
 }
 
 const ParamTable<FoveatedPTSettings>& FoveatedPTPass::tableFor() const {
@@ -35,12 +32,7 @@ const ParamTable<FoveatedPTSettings>& FoveatedPTPass::tableFor() const {
 }
 
 void FoveatedPTPass::execute(FrameContext& ctx) {
-  const Buffer& position = ctx.input(*this, "position");
-  const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer& geoNormal = ctx.input(*this, "geo_normal");
-  const Buffer& diffuse = ctx.input(*this, "diffuse");
-  const Buffer& emission = ctx.input(*this, "emission");
-  const Buffer& depth = ctx.input(*this, "depth");
+  const PrimarySurfaces g = PrimarySurfaces::of(ctx, *this);
   const Buffer& coords = ctx.input(*this, "fov_coords");
   Buffer& out = ctx.output(*this, "pt_noisy");
   Buffer& variance = ctx.output(*this, "pt_variance");
@@ -83,20 +75,13 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
       const int x = ex + v.x, y = ey + v.y;
       Vec3 sum(0.0f);
       double lum2 = 0;  // the samples' squared luminances
-      if (depth.at(x, y)[0] <= 0.0f) {
+      if (g.sky(x, y)) {
         Vec3 o, d;
         v.jitteredCamera.generateRay(ex + 0.5f, ey + 0.5f, o, d);
         sum = ctx.scene->skyRadiance(d) * float(spp);
       } else {
-        SurfaceSample s;
-        s.position = Vec3(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]);
-        s.normal = Vec3(normal.at(x, y)[0], normal.at(x, y)[1], normal.at(x, y)[2]);
-        s.geoNormal = Vec3(geoNormal.at(x, y)[0], geoNormal.at(x, y)[1], geoNormal.at(x, y)[2]);
-        s.diffuse = Vec3(diffuse.at(x, y)[0], diffuse.at(x, y)[1], diffuse.at(x, y)[2]);
-        s.emission = Vec3(emission.at(x, y)[0], emission.at(x, y)[1], emission.at(x, y)[2]);
-        const Vec3 wo = v.camera.desc.projection == Projection::Perspective
-                            ? normalize(v.camera.desc.position - s.position)
-                            : -v.camera.forward;
+        const SurfaceSample s = g.at(x, y);
+        const Vec3 wo = PrimarySurfaces::towardsViewer(v, s.position);
         const uint64_t pixel = uint64_t(y) * uint64_t(ctx.width) + uint64_t(x);
         for (int i = 0; i < spp; ++i) {
           SobolSampler rng(seed, pixel, uint32_t(i));

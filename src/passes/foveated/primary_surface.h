@@ -1,0 +1,44 @@
+// The primary surface of a pixel as the foveated path tracer and direct_light read it from the
+// G-buffer: the slots both declare, the surface sample, the sky test and the direction to the
+// viewer.
+#pragma once
+#include <vector>
+
+#include "pipeline/frame_context.h"
+#include "pipeline/pass.h"
+#include "shading/surface.h"
+
+namespace tandem {
+
+struct PrimarySurfaces {
+  const Buffer &position, &normal, &geoNormal, &diffuse, &emission, &depth;
+
+  // The G-buffer slots read (position, normal, geo_normal, diffuse, emission, depth).
+  static std::vector<BufferSlot> slots() {
+    return {{"position", 3, BufferKind::Position}, {"normal", 3, BufferKind::Normal},
+            {"geo_normal", 3, BufferKind::Normal}, {"diffuse", 4, BufferKind::Material},
+            {"emission", 3, BufferKind::Color},    {"depth", 1, BufferKind::Depth}};
+  }
+  static PrimarySurfaces of(const FrameContext& ctx, const Pass& pass) {
+    return {ctx.input(pass, "position"), ctx.input(pass, "normal"),   ctx.input(pass, "geo_normal"),
+            ctx.input(pass, "diffuse"),  ctx.input(pass, "emission"), ctx.input(pass, "depth")};
+  }
+  bool sky(int x, int y) const { return depth.at(x, y)[0] <= 0.0f; }
+  SurfaceSample at(int x, int y) const {
+    SurfaceSample s;
+    s.position = position.rgb(x, y);
+    s.normal = normal.rgb(x, y);
+    s.geoNormal = geoNormal.rgb(x, y);
+    s.diffuse = Vec3(diffuse.at(x, y)[0], diffuse.at(x, y)[1], diffuse.at(x, y)[2]);
+    s.emission = emission.rgb(x, y);
+    return s;
+  }
+  // Unit direction from surface point p to view v's eye (its axis for an orthographic camera).
+  static Vec3 towardsViewer(const View& v, Vec3 p) {
+    return v.camera.desc.projection == Projection::Perspective
+               ? normalize(v.camera.desc.position - p)
+               : -v.camera.forward;
+  }
+};
+
+}  // namespace tandem
