@@ -8,8 +8,8 @@
 
 using namespace tandem;
 
-// Walewski et al. 2019 Figure 4 with T = 400, values chosen to match the text: nodes 0-2 cost more than
-// 400 and leave the graph; node 3 is the first affordable one and points to nodes 5 and 6 as
+// Walewski et al. 2019 Figure 4 with T = 400, values chosen to match the text: nodes 0-2 cost more
+// than 400 and leave the graph; node 3 is the first affordable one and points to nodes 5 and 6 as
 // more relevant (5 the more relevant), so 5 is taken first; the walk goes on while budget lasts.
 TEST(Heuristic, Figure4WorkedExample) {
   std::vector<HeuristicNode> nodes = {{0, 900, 5}, {1, 700, 9}, {2, 500, 2}, {3, 350, 3},
