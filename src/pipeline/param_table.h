@@ -77,6 +77,8 @@ class ParamTable {
   }
 
   const std::vector<ParamDesc>& descs() const { return descs_; }
+  // Parameter i's value in s (the index into descs()).
+  double value(const S& s, size_t i) const { return bindings_[i].get(s); }
   // Writes parameter `name` (already validated by Pass::setParam) into s.
   void assign(S& s, const std::string& name, double value) const {
     for (size_t i = 0; i < descs_.size(); ++i)
@@ -106,8 +108,15 @@ class ParamTable {
 template <class S>
 class SettingsPass : public Pass {
  public:
+  using Settings = S;
   std::vector<ParamDesc> params() const override { return tableFor().descs(); }
   const S& settings() const { return settings_; }
+  // Every parameter from `s`, each checked as setParam checks it (range, choices), so what the
+  // viewer, the docs and --set read follows.
+  void assign(const S& s) {
+    const ParamTable<S>& t = tableFor();
+    for (size_t i = 0; i < t.descs().size(); ++i) setParam(t.descs()[i].name, t.value(s, i));
+  }
 
  protected:
   // The pass's binding, built once (a function-local static in the derived class).

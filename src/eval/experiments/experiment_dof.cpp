@@ -11,7 +11,10 @@
 #include "eval/metrics/flip.h"
 #include "eval/metrics/metrics.h"
 #include "eval/reference/reference_cache.h"
+#include "passes/dof/dof_accumulation.h"
+#include "passes/dof/ray_mask.h"
 #include "pipeline/aov.h"
+#include "pipeline/pass_edit.h"
 #include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/loaders.h"
@@ -142,10 +145,10 @@ std::map<std::string, double> groupTimes(const Pipeline& p, const PassTimes& tim
   return groups;
 }
 
-StaticRun renderStatic(const Scene& scene, const std::string& pipeline,
-                       const std::vector<std::string>& sets, int w, int h, int warmup, int frames) {
+StaticRun renderStatic(const Scene& scene, const std::string& pipeline, const PipelineEdits& edits,
+                       int w, int h, int warmup, int frames) {
   Pipeline p = Pipeline::load(pipeline);
-  for (const std::string& s : sets) p.setParam(s, "experiment");
+  applyEdits(p, edits);
   Renderer r(scene, std::move(p), RenderSettings{.width = w, .height = h});
   const CameraDesc cam = defaultCamera(scene);
   for (int f = 0; f < warmup; ++f) r.renderFrame(0, cam);
@@ -183,8 +186,12 @@ Buffer referenceFor(const Scene& scene, const CameraDesc& cam, int w, int h, int
   return visualizeBuffer(referenceImage(job, cache).hdr);
 }
 
-std::vector<std::string> setM(int m) {
-  return {"ray_mask.m=" + std::to_string(m)};
+// The ray budget m (and, with `full`, the mask at full resolution).
+PipelineEdits setM(int m, bool full = false) {
+  return {editPass<RayMaskPass>([=](RayMaskSettings& r) {
+    r.m = m;
+    if (full) r.resolution = RayMaskSettings::Resolution::Full;
+  })};
 }
 
 // Table 2: pass timings per shot and ray budget.
@@ -286,9 +293,7 @@ Figure7 figure7(const DofExperimentOptions& o, const Scene& fig, const std::stri
     std::fflush(stdout);
     const StaticRun h = renderStatic(fig, "hybrid-dof", setM(m), sw, sh, o.warmup, o.frames);
     const StaticRun r = renderStatic(fig, "rt-dof", setM(m), sw, sh, o.warmup, o.frames);
-    std::vector<std::string> fullSettings = setM(m);
-    fullSettings.push_back("ray_mask.resolution=full");
-    const StaticRun f = renderStatic(fig, "hybrid-dof", fullSettings, sw, sh, o.warmup, o.frames);
+    const StaticRun f = renderStatic(fig, "hybrid-dof", setM(m, true), sw, sh, o.warmup, o.frames);
     const double hs = ssim(h.image, ref), rs = ssim(r.image, ref), fss = ssim(f.image, ref);
     const double hf = flip(ref, h.image), rf = flip(ref, r.image);
     sweepRows.push_back({std::to_string(m), fmt(hs, 4), fmt(hf, 4), fmt(rmse(h.image, ref), 4),
@@ -429,8 +434,8 @@ void temporalTable(const DofExperimentOptions& o, const std::vector<Scene>& scen
     const CameraDesc base = defaultCamera(scene);
     for (bool adaptive : {false, true}) {
       Pipeline p = Pipeline::load("hybrid-dof");
-      p.setParam(std::string("dof_accumulation.adaptive_alpha=") + (adaptive ? "true" : "false"),
-                 "experiment");
+      editPass<DofAccumulationPass>(
+          [&](DofAccumulationSettings& a) { a.adaptiveAlpha = adaptive; })(p);
       Renderer r(scene, std::move(p),
                  RenderSettings{.width = o.temporalWidth, .height = o.temporalHeight});
       double sum = 0, worst = 1;

@@ -10,8 +10,12 @@
 #include "eval/metrics/flip.h"
 #include "eval/metrics/metrics.h"
 #include "eval/reference/reference_cache.h"
+#include "passes/foveated/foveated_pt.h"
+#include "passes/foveated/foveation.h"
 #include "passes/foveated/foveation_map.h"
+#include "passes/foveated/nh_denoise.h"
 #include "pipeline/aov.h"
+#include "pipeline/pass_edit.h"
 #include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/loaders.h"
@@ -71,65 +75,71 @@ Resolution resolutionNamed(const std::string& n) {
 // (nh_denoise.split = direct).
 struct Config {
   const char *pipeline, *label, *file;
-  std::vector<std::string> sets;
+  PipelineEdits sets;
   int base = 0;  // the configuration its speed-up and SSIM are taken against (itself: a Base)
   bool temporal = false;  // accumulates over frames: measured after temporalFrames frames
 };
+const PipelineEdit kLevelsFromVariance = editPass<NHDenoisePass>(
+    [](NHDenoiseSettings& d) { d.levelsFrom = NHDenoiseSettings::LevelsFrom::Variance; });
+const PipelineEdit kVarianceWeight = editPass<NHDenoisePass>(
+    [](NHDenoiseSettings& d) { d.colorWeight = NHDenoiseSettings::ColorWeight::Variance; });
+const PipelineEdit kNoSplit =
+    editPass<NHDenoisePass>([](NHDenoiseSettings& d) { d.split = NHDenoiseSettings::Split::None; });
+const PipelineEdit kUniformLights = editPass<FoveatedPTPass>(
+    [](FoveatedPTSettings& p) { p.lightSelection = FoveatedPTSettings::LightSelection::Uniform; });
+
 const std::vector<Config>& configs() {
   static const std::vector<Config> c = {
       {"foveated-base", "Base", "base", {}},
       {"foveated-nh2ld", "NH2LD", "nh2ld", {}},
       {"foveated-nh3ld", "NH3LD", "nh3ld", {}},
       {"foveated-nh3ld-temporal", "NH3LD + temporal", "nh3ld-temporal", {}, 0, true},
-      {"foveated-nh3ld",
-       "NH3LD, levels from variance",
-       "nh3ld-variance",
-       {"nh_denoise.levels_from=variance"}},
+      {"foveated-nh3ld", "NH3LD, levels from variance", "nh3ld-variance", {kLevelsFromVariance}},
       // Beyond the thesis: the colour weight scaled by each pixel's measured noise.
       {"foveated-base",
        "Base, variance-guided colour weight",
        "base-varweight",
-       {"nh_denoise.color_weight=variance"},
+       {kVarianceWeight},
        5},
       {"foveated-nh3ld",
        "NH3LD, variance-guided colour weight",
        "nh3ld-varweight",
-       {"nh_denoise.color_weight=variance"},
+       {kVarianceWeight},
        5},
       // The thesis' own estimator and filter: lights picked uniformly, the whole estimate
       // filtered (no direct_light split).
       {"foveated-base",
        "Base, the thesis (lights picked uniformly, no direct split)",
        "base-uniform",
-       {"foveated_pt.light_selection=uniform", "nh_denoise.split=none"},
+       {kUniformLights, kNoSplit},
        7},
       {"foveated-nh3ld",
        "NH3LD, the thesis (lights picked uniformly, no direct split)",
        "nh3ld-uniform",
-       {"foveated_pt.light_selection=uniform", "nh_denoise.split=none"},
+       {kUniformLights, kNoSplit},
        7},
       // Both of the above beyond-the-thesis options of NH3LD together.
       {"foveated-nh3ld-temporal",
        "NH3LD + temporal, levels from variance",
        "nh3ld-temporal-variance",
-       {"nh_denoise.levels_from=variance"},
+       {kLevelsFromVariance},
        0,
        true},
       // The thesis' filter on the grid's estimate: the whole estimate filtered.
       {"foveated-base",
        "Base, the thesis' filter (no direct split)",
        "base-nosplit",
-       {"nh_denoise.split=none"},
+       {kNoSplit},
        10},
       {"foveated-nh3ld",
        "NH3LD, the thesis' filter (no direct split)",
        "nh3ld-nosplit",
-       {"nh_denoise.split=none"},
+       {kNoSplit},
        10},
       {"foveated-nh3ld-temporal",
        "NH3LD + temporal, levels from variance, no direct split",
        "nh3ld-temporal-variance-nosplit",
-       {"nh_denoise.levels_from=variance", "nh_denoise.split=none"},
+       {kLevelsFromVariance, kNoSplit},
        10,
        true}};
   return c;
@@ -143,9 +153,9 @@ std::string configLabels(const char* sep) {
 }
 
 Renderer makeRenderer(const Scene& scene, const char* pipeline, int w, int h,
-                      const std::vector<std::string>& sets) {
+                      const PipelineEdits& edits) {
   Pipeline p = Pipeline::load(pipeline);
-  for (const std::string& s : sets) p.setParam(s, "experiment");
+  applyEdits(p, edits);
   RenderSettings rs{.width = w, .height = h};
   rs.stereo = scene.stereo;
   rs.stereo.enabled = true;
@@ -247,17 +257,19 @@ std::vector<double> table4(const FoveatedExperimentOptions& o, const std::vector
   for (const std::string& rn : o.resolutions) {
     const Resolution r = resolutionNamed(rn);
     const int frames = rn == "quest2" ? o.quest2Frames : o.fhdFrames;
-    const std::vector<std::string> radii = {"foveation.scale_radii=false",
-                                            "foveation.r0=" + fmt(r.r0, 0),
-                                            "foveation.r1=" + fmt(r.r1, 0)};
+    const PipelineEdit radii = editPass<FoveationPass>([&](FoveationSettings& f) {
+      f.scaleRadii = false;
+      f.r0 = float(r.r0);
+      f.r1 = float(r.r1);
+    });
     for (size_t s = 0; s < scenes.size(); ++s) {
       std::vector<double> configMs(size_t(kConfigCount), 0.0);
       for (int c = 0; c < kConfigCount; ++c) {
         std::printf("experiment foveated: Table 4, %s, %s, %s\n", rn.c_str(),
                     o.sceneLabels[s].c_str(), configs()[size_t(c)].label);
         std::fflush(stdout);
-        std::vector<std::string> sets = radii;
-        for (const std::string& x : configs()[size_t(c)].sets) sets.push_back(x);
+        PipelineEdits sets = {radii};
+        for (const PipelineEdit& x : configs()[size_t(c)].sets) sets.push_back(x);
         Renderer rd =
             makeRenderer(scenes[s], configs()[size_t(c)].pipeline, r.width, r.height, sets);
         const CameraDesc base = defaultCamera(scenes[s]);

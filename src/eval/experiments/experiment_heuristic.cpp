@@ -14,6 +14,9 @@
 #include "core/json_fields.h"
 #include "eval/experiments/experiment_report.h"
 #include "eval/metrics/metrics.h"
+#include "passes/heuristic/heuristic.h"
+#include "passes/heuristic/ss_fallback.h"
+#include "pipeline/pass_edit.h"
 #include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/loaders.h"
@@ -76,11 +79,11 @@ struct Run {
     return it == renderer->context().counters.end() ? 0.0 : it->second;
   }
 
-  Run(const Scene& scene, const std::string& name, const std::vector<std::string>& params,
+  Run(const Scene& scene, const std::string& name, const PipelineEdits& edits,
       const HeuristicExperimentOptions& o)
       : pipeline(name) {
     Pipeline p = Pipeline::load(name);
-    for (const std::string& a : params) p.setParam(a, "experiment heuristic");
+    applyEdits(p, edits);
     RenderSettings settings{.width = o.width, .height = o.height};
     renderer = std::make_unique<Renderer>(scene, std::move(p), settings);
     for (const auto& pass : renderer->pipeline().passes) heuristic |= pass->type() == "heuristic";
@@ -152,18 +155,22 @@ void validate(const HeuristicExperimentOptions& o) {
 
 // The settings of the runs: T, the ms budget, and the paper's rules for its tables.
 struct RunSettings {
-  std::string T, budgetMs;
+  PipelineEdit T, budgetMs;
   // Unselected effects are absent (no fallbacks).
-  std::string noFallback = "ss_fallback.mode=off", noShadowMaps = "ss_fallback.shadows=off";
+  PipelineEdit noFallback = editPass<ScreenSpaceFallbackPass>(
+      [](FallbackSettings& f) { f.mode = FallbackSettings::Mode::Off; });
+  PipelineEdit noShadowMaps = editPass<ScreenSpaceFallbackPass>(
+      [](FallbackSettings& f) { f.shadows = FallbackSettings::Shadows::Off; });
   // Shadows selected with their object (the pipeline traces them all).
-  std::string paperShadows = "heuristic.shadows=budget";
+  PipelineEdit paperShadows = editPass<HeuristicPass>(
+      [](HeuristicSettings& h) { h.shadows = HeuristicSettings::Shadows::Budget; });
 };
 
 // Table 5: the static shot, each pipeline, and the images compared.
 void staticShot(const Scene& scene, const CameraDesc& cam, const HeuristicExperimentOptions& o,
                 const RunSettings& rs, const fs::path& dir, SceneResult& res) {
-  const std::string &T = rs.T, &budgetMs = rs.budgetMs, &noFallback = rs.noFallback,
-                    &noShadowMaps = rs.noShadowMaps, &paperShadows = rs.paperShadows;
+  const PipelineEdit &T = rs.T, &budgetMs = rs.budgetMs, &noFallback = rs.noFallback,
+                     &noShadowMaps = rs.noShadowMaps, &paperShadows = rs.paperShadows;
   // Table 5: the static shot.
   {
     Run heur(scene, "hybrid-heuristic", {T, noFallback, noShadowMaps, paperShadows}, o),
@@ -194,8 +201,8 @@ void staticShot(const Scene& scene, const CameraDesc& cam, const HeuristicExperi
 // Table 6 and budget tracking: the camera path, the three hybrids frame by frame.
 void cameraPath(const Scene& scene, const CameraDesc& cam, const HeuristicExperimentOptions& o,
                 const RunSettings& rs, SceneResult& res) {
-  const std::string &T = rs.T, &budgetMs = rs.budgetMs, &noFallback = rs.noFallback,
-                    &noShadowMaps = rs.noShadowMaps, &paperShadows = rs.paperShadows;
+  const PipelineEdit &T = rs.T, &budgetMs = rs.budgetMs, &noFallback = rs.noFallback,
+                     &noShadowMaps = rs.noShadowMaps, &paperShadows = rs.paperShadows;
   Run heur(scene, "hybrid-heuristic", {T, noFallback, noShadowMaps, paperShadows}, o),
       all(scene, "hybrid-all", {}, o),
       budget(scene, "hybrid-budget", {budgetMs, noFallback, noShadowMaps}, o);
@@ -393,8 +400,9 @@ int runHeuristicExperiment(const HeuristicExperimentOptions& o) {
   }
   if (!o.out.empty() && !fs::exists(o.out)) fs::create_directories(o.out);
   const fs::path dir(o.out);
-  const RunSettings rs{"heuristic.budget=" + fmt(o.budget, 0),
-                       "heuristic.budget_ms=" + fmt(o.budgetMs, 3)};
+  const RunSettings rs{
+      editPass<HeuristicPass>([&](HeuristicSettings& h) { h.budget = o.budget; }),
+      editPass<HeuristicPass>([&](HeuristicSettings& h) { h.budgetMs = o.budgetMs; })};
 
   std::vector<SceneResult> results;
   for (size_t si = 0; si < scenes.size(); ++si) {

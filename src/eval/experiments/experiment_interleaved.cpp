@@ -12,9 +12,14 @@
 #include "eval/metrics/flip.h"
 #include "eval/metrics/metrics.h"
 #include "eval/reference/reference_cache.h"
+#include "passes/baselines/accumulation.h"
+#include "passes/baselines/taa.h"
+#include "passes/interleaved/interleaved_raster.h"
 #include "pipeline/aov.h"
+#include "pipeline/pass_edit.h"
 #include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
+#include "raster/sample_layout.h"
 #include "raster/sample_tiles.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
@@ -76,18 +81,33 @@ InterleavedExperimentOptions interleavedOptionsFromJson(const nlohmann::json& j,
 
 namespace {
 
-const char* kSchemes[] = {"independent", "stratified", "random_tiles", "colored_corner"};
+// The sampling schemes compared, with their names (as interleaved_raster.scheme spells them).
+const std::pair<const char*, SamplingScheme> kSchemes[] = {
+    {"independent", SamplingScheme::Independent},
+    {"stratified", SamplingScheme::Stratified},
+    {"random_tiles", SamplingScheme::RandomTiles},
+    {"colored_corner", SamplingScheme::ColoredCorner}};
+using Mode = InterleavedSettings::Mode;
+using Shading = InterleavedSettings::Shading;
+
+// The accumulation baseline's mode for the interleaved passes' one.
+AccumulationSettings::Mode accumulationMode(Mode m) {
+  return m == Mode::Dof          ? AccumulationSettings::Mode::Dof
+         : m == Mode::MotionBlur ? AccumulationSettings::Mode::MotionBlur
+                                 : AccumulationSettings::Mode::Both;
+}
 
 // A scene's shot at time 0: the camera at shutter open and close (its path), and what the
 // pairs vary (the lens only where the camera has an aperture; time only where something moves).
 struct Shot {
   Scene scene;
   CameraDesc base, open, close;  // base: the scene's camera; open, close: on its path at time 0
-  std::string label, mode;
+  std::string label;
+  Mode mode = Mode::Both;  // what the pairs vary
 };
 
 Shot shotOf(const std::string& spec, const std::string& label, float shutter) {
-  Shot s{loadScene(spec), {}, {}, {}, label, ""};
+  Shot s{loadScene(spec), {}, {}, {}, label};
   const CameraDesc base = defaultCamera(s.scene);
   s.base = base;
   s.open = pathCameraAt(s.scene, base, 0.0f);
@@ -96,7 +116,7 @@ Shot shotOf(const std::string& spec, const std::string& label, float shutter) {
       length(s.open.position - s.close.position) > 0 || length(s.open.lookAt - s.close.lookAt) > 0;
   for (const Object& o : s.scene.objects) moves = moves || o.animation.size() > 1;
   const bool lens = s.open.apertureDiameter > 0;
-  s.mode = lens && moves ? "both" : lens ? "dof" : "motion_blur";
+  s.mode = lens && moves ? Mode::Both : lens ? Mode::Dof : Mode::MotionBlur;
   return s;
 }
 
@@ -107,11 +127,11 @@ struct RenderResult {
   std::map<std::string, double> counters;
 };
 
-RenderResult renderShot(const Shot& shot, const std::string& pipeline,
-                        const std::vector<std::string>& sets, int w, int h, float shutter,
-                        uint64_t seed, int warmup = 0, int frames = 1, float frameStep = 0.0f) {
+RenderResult renderShot(const Shot& shot, const std::string& pipeline, const PipelineEdits& edits,
+                        int w, int h, float shutter, uint64_t seed, int warmup = 0, int frames = 1,
+                        float frameStep = 0.0f) {
   Pipeline p = Pipeline::load(pipeline);
-  for (const std::string& s : sets) p.setParam(s, "experiment");
+  applyEdits(p, edits);
   Renderer r(shot.scene, std::move(p),
              RenderSettings{.width = w, .height = h, .seed = seed, .shutter = shutter});
   std::vector<double> total;
@@ -220,11 +240,11 @@ std::vector<Buffer> references(const InterleavedExperimentOptions& o,
 
 // Mean errors over the seeds of one configuration.
 Errors measure(const InterleavedExperimentOptions& o, const Shot& shot, const Buffer& ref,
-               const std::string& pipeline, const std::vector<std::string>& sets) {
+               const std::string& pipeline, const PipelineEdits& edits) {
   Errors e;
   for (int seed = 0; seed < o.seeds; ++seed) {
     const RenderResult r =
-        renderShot(shot, pipeline, sets, o.width, o.height, o.shutter, uint64_t(seed));
+        renderShot(shot, pipeline, edits, o.width, o.height, o.shutter, uint64_t(seed));
     const Errors x = errorsOf(r.hdr, ref);
     e.rmse += x.rmse / o.seeds;
     e.ssim += x.ssim / o.seeds;
@@ -233,13 +253,24 @@ Errors measure(const InterleavedExperimentOptions& o, const Shot& shot, const Bu
   return e;
 }
 
-std::vector<std::string> interleavedSets(const Shot& s, int n, int k, const char* scheme) {
-  return std::vector<std::string>{"interleaved_raster.samples=" + std::to_string(n),
-                                  "interleaved_raster.spp=" + std::to_string(k),
-                                  std::string("interleaved_raster.scheme=") + scheme,
-                                  "interleaved_raster.mode=" + s.mode,
-                                  "interleaved_raster.filter=box",
-                                  "interleaved_raster.filter_radius=0.5"};
+PipelineEdits interleavedSets(const Shot& s, int n, int k, SamplingScheme scheme) {
+  return {editPass<InterleavedRasterPass>([=, mode = s.mode](InterleavedSettings& i) {
+    i.samples = n;
+    i.spp = k;
+    i.scheme = scheme;
+    i.mode = mode;
+    i.filter = InterleavedSettings::Filter::Box;
+    i.filterRadius = 0.5f;
+  })};
+}
+
+// The brute-force baseline: n whole images averaged, Whitted-shaded.
+PipelineEdits accumulationSets(const Shot& s, int n) {
+  return {editPass<AccumulationPass>([=, mode = s.mode](AccumulationSettings& a) {
+    a.samples = n;
+    a.mode = accumulationMode(mode);
+    a.shading = AccumulationSettings::Shading::Whitted;
+  })};
 }
 
 // One scene's errors against N (each scheme, and accumulation) and against k, with their plots;
@@ -249,14 +280,14 @@ void errorSweeps(const InterleavedExperimentOptions& o, const Shot& s, const Buf
                  std::vector<std::vector<std::string>>& kRows, std::string& figureCheck) {
   std::vector<PlotSeries> rmsePlot, ssimPlot;
   std::map<std::string, std::vector<double>> rmseOf;
-  for (const char* scheme : kSchemes) {
+  for (const auto& [scheme, layout] : kSchemes) {
     PlotSeries pr{scheme, {}, {}}, ps{scheme, {}, {}};
     for (int n : o.pairCounts) {
       std::printf("experiment interleaved: %s, %s, N %d, k %d\n", s.label.c_str(), scheme, n,
                   o.sweepSpp);
       std::fflush(stdout);
       const Errors e =
-          measure(o, s, ref, "interleaved-raster", interleavedSets(s, n, o.sweepSpp, scheme));
+          measure(o, s, ref, "interleaved-raster", interleavedSets(s, n, o.sweepSpp, layout));
       nRows.push_back({s.label, scheme, std::to_string(n), std::to_string(o.sweepSpp),
                        fmt(e.rmse, 4), fmt(e.ssim, 4), fmt(e.flip, 4)});
       pr.x.push_back(n);
@@ -274,9 +305,7 @@ void errorSweeps(const InterleavedExperimentOptions& o, const Shot& s, const Buf
     for (int n : o.pairCounts) {
       std::printf("experiment interleaved: %s, accumulation, N %d\n", s.label.c_str(), n);
       std::fflush(stdout);
-      const Errors e = measure(o, s, ref, "accumulation-dof",
-                               {"accumulation.samples=" + std::to_string(n),
-                                "accumulation.mode=" + s.mode, "accumulation.shading=whitted"});
+      const Errors e = measure(o, s, ref, "accumulation-dof", accumulationSets(s, n));
       nRows.push_back({s.label, "accumulation (N images, N spp)", std::to_string(n), "-",
                        fmt(e.rmse, 4), fmt(e.ssim, 4), fmt(e.flip, 4)});
       pr.x.push_back(n);
@@ -304,14 +333,14 @@ void errorSweeps(const InterleavedExperimentOptions& o, const Shot& s, const Buf
                  std::to_string(wins) + " of " + std::to_string(points) + " N >= 8\n";
 
   std::vector<PlotSeries> kPlot;
-  for (const char* scheme : kSchemes) {
+  for (const auto& [scheme, layout] : kSchemes) {
     PlotSeries pk{scheme, {}, {}};
     for (int k : o.sppCounts) {
       std::printf("experiment interleaved: %s, %s, N %d, k %d\n", s.label.c_str(), scheme,
                   o.sweepPairs, k);
       std::fflush(stdout);
       const Errors e =
-          measure(o, s, ref, "interleaved-raster", interleavedSets(s, o.sweepPairs, k, scheme));
+          measure(o, s, ref, "interleaved-raster", interleavedSets(s, o.sweepPairs, k, layout));
       kRows.push_back({s.label, scheme, std::to_string(o.sweepPairs), std::to_string(k),
                        fmt(e.rmse, 4), fmt(e.ssim, 4), fmt(e.flip, 4)});
       pk.x.push_back(k);
@@ -356,7 +385,8 @@ void timePerFrameTable(const InterleavedExperimentOptions& o, const std::vector<
   std::string ratios;
   const int n = o.timingPairs, k = o.timingSpp, tw = o.timingWidth, th = o.timingHeight;
   for (const Shot& s : shots) {
-    for (const char* shading : {"whitted", "local"}) {
+    for (const auto& [shading, how] :
+         {std::pair{"whitted", Shading::Whitted}, std::pair{"local", Shading::Local}}) {
       double rasterMs = 0, rasterVis = 0;
       for (const char* pass : {"interleaved_raster", "interleaved_rt"}) {
         std::printf("experiment interleaved: timing %s, %s, %s\n", s.label.c_str(), pass, shading);
@@ -364,11 +394,15 @@ void timePerFrameTable(const InterleavedExperimentOptions& o, const std::vector<
         const std::string pl =
             std::string(pass) == "interleaved_rt" ? "interleaved-rt" : "interleaved-raster";
         const std::string P = pass;
+        const PipelineEdit edit =
+            editPass<InterleavedPass>(P, [&, how = how](InterleavedSettings& i) {
+              i.samples = n;
+              i.spp = k;
+              i.mode = s.mode;
+              i.shading = how;
+            });
         const RenderResult r =
-            renderShot(s, pl,
-                       {P + ".samples=" + std::to_string(n), P + ".spp=" + std::to_string(k),
-                        P + ".mode=" + s.mode, P + ".shading=" + shading},
-                       tw, th, o.shutter, 0, o.timingWarmup, o.timingFrames);
+            renderShot(s, pl, {edit}, tw, th, o.shutter, 0, o.timingWarmup, o.timingFrames);
         const double vis = r.partMs.count(P + "/visibility") ? r.partMs.at(P + "/visibility") : 0;
         const double shade = r.partMs.count(P + "/shade") ? r.partMs.at(P + "/shade") : 0;
         const double resolve = r.partMs.count(P + "/resolve") ? r.partMs.at(P + "/resolve") : 0;
@@ -388,11 +422,8 @@ void timePerFrameTable(const InterleavedExperimentOptions& o, const std::vector<
     }
     std::printf("experiment interleaved: timing %s, accumulation\n", s.label.c_str());
     std::fflush(stdout);
-    const RenderResult a =
-        renderShot(s, "accumulation-dof",
-                   {"accumulation.samples=" + std::to_string(n), "accumulation.mode=" + s.mode,
-                    "accumulation.shading=whitted"},
-                   tw, th, o.shutter, 0, o.timingWarmup, o.timingFrames);
+    const RenderResult a = renderShot(s, "accumulation-dof", accumulationSets(s, n), tw, th,
+                                      o.shutter, 0, o.timingWarmup, o.timingFrames);
     rows.push_back({s.label, "accumulation (brute force)", "whitted",
                     std::to_string(n) + " images, " + std::to_string(n) + " spp", fmt(a.frameMs, 1),
                     "-", "-", "-", "-"});
@@ -420,22 +451,21 @@ void strobingTable(const InterleavedExperimentOptions& o, const std::vector<Shot
   const int n = o.strobePairs;
   struct Variant {
     std::string name, pipeline;
-    std::vector<std::string> sets;
+    PipelineEdits sets;
   };
   const std::string N = std::to_string(n);
+  const auto tiles = [&](bool correlated) {
+    return editPass<InterleavedRasterPass>([=, mode = s.mode](InterleavedSettings& i) {
+      i.samples = n;
+      i.spp = 1;
+      i.mode = mode;
+      i.correlated = correlated;
+    });
+  };
   const std::vector<Variant> variants = {
-      {"colored_corner",
-       "interleaved-raster",
-       {"interleaved_raster.samples=" + N, "interleaved_raster.spp=1",
-        "interleaved_raster.mode=" + s.mode}},
-      {"colored_corner_correlated",
-       "interleaved-raster",
-       {"interleaved_raster.samples=" + N, "interleaved_raster.spp=1",
-        "interleaved_raster.mode=" + s.mode, "interleaved_raster.correlated=true"}},
-      {"accumulation",
-       "accumulation-dof",
-       {"accumulation.samples=" + N, "accumulation.mode=" + s.mode,
-        "accumulation.shading=whitted"}}};
+      {"colored_corner", "interleaved-raster", {tiles(false)}},
+      {"colored_corner_correlated", "interleaved-raster", {tiles(true)}},
+      {"accumulation", "accumulation-dof", accumulationSets(s, n)}};
   const Buffer refCrop = cropOf(visualizeBuffer(refs[si]), o.crop);
   writePng((fs::path(o.out) / "strobe_reference.png").string(), refCrop);
   report.image("strobe_reference.png", s.label + ": reference (crop)");
@@ -461,27 +491,37 @@ void hybridMotionBlurTable(const InterleavedExperimentOptions& o, const std::vec
   std::string check;
   for (size_t si = 0; si < shots.size(); ++si) {
     const Shot& s = shots[si];
-    if (s.mode != "motion_blur") continue;
+    if (s.mode != Mode::MotionBlur) continue;
     struct Variant {
       std::string name, pipeline;
-      std::vector<std::string> sets;
+      PipelineEdits sets;
+    };
+    const auto motionBlur = [](int k) {
+      return editPass<InterleavedRasterPass>([=](InterleavedSettings& i) {
+        i.mode = Mode::MotionBlur;
+        i.spp = k;
+      });
     };
     const std::vector<Variant> variants = {
         {"postfx only", "postfx-motion-blur", {}},
         {"hybrid", "hybrid-motion-blur", {}},
         {"hybrid, 4-spp sharp image, no TAA",
          "hybrid-motion-blur",
-         {"sharp.samples=4", "sharp.spp=4", "sharp.shading_rate=pixel", "sharp.view_jitter=0",
-          "taa_sharp.alpha=1", "taa_sharp.motion_alpha=1"}},
-        {"interleaved N 16, k 4",
-         "interleaved-raster",
-         {"interleaved_raster.mode=motion_blur", "interleaved_raster.spp=4"}},
-        {"interleaved N 16, k 2",
-         "interleaved-raster",
-         {"interleaved_raster.mode=motion_blur", "interleaved_raster.spp=2"}},
-        {"interleaved N 16, k 1",
-         "interleaved-raster",
-         {"interleaved_raster.mode=motion_blur", "interleaved_raster.spp=1"}}};
+         {editPass<InterleavedRasterPass>("sharp",
+                                          [](InterleavedSettings& i) {
+                                            i.samples = 4;
+                                            i.spp = 4;
+                                            i.shadingRate = InterleavedSettings::ShadingRate::Pixel;
+                                            i.viewJitter = false;
+                                          }),
+          editPass<TAAPass>("taa_sharp",
+                            [](TAASettings& t) {
+                              t.alpha = 1;
+                              t.motionAlpha = 1;
+                            })}},
+        {"interleaved N 16, k 4", "interleaved-raster", {motionBlur(4)}},
+        {"interleaved N 16, k 2", "interleaved-raster", {motionBlur(2)}},
+        {"interleaved N 16, k 1", "interleaved-raster", {motionBlur(1)}}};
     double fullMs = 0, fullSsim = 0, hybridMs = 0, hybridSsim = 0;
     // A moving sequence: the temporal passes see the motion they would in use, and every
     // renderer pays its per-frame scene update. Errors on its last frame.

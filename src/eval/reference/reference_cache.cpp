@@ -8,6 +8,7 @@
 #include "core/file_commit.h"
 #include "core/image_io.h"
 #include "passes/baselines/pt_reference.h"
+#include "pipeline/pass_edit.h"
 #include "pipeline/pass_times.h"
 #include "pipeline/renderer.h"
 #include "scene/scene_hash.h"
@@ -72,14 +73,14 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
 
   Pipeline p = Pipeline::load("reference");
   const ReferenceSettings& s = job.settings;
-  p.setParam("pt_reference.spp=" + std::to_string(s.spp), "reference");
-  p.setParam("pt_reference.time_limit=" + std::to_string(s.timeLimitS), "reference");
-  p.setParam("pt_reference.max_depth=" + std::to_string(s.path.maxDepth), "reference");
-  p.setParam(std::string("pt_reference.integrator=") + integratorName(s.integrator), "reference");
-  if (s.integrator == Integrator::Whitted) {
-    p.setParam("pt_reference.whitted_depth=" + std::to_string(s.whitted.maxDepth), "reference");
-  }
-  p.setParam(std::string("pt_reference.progress=") + (s.progress ? "true" : "false"), "reference");
+  editPass<PTReferencePass>([&](PTReferenceSettings& pt) {
+    pt.spp = s.spp;
+    pt.timeLimit = s.timeLimitS;
+    pt.maxDepth = s.path.maxDepth;
+    pt.integrator = s.integrator;
+    if (s.integrator == Integrator::Whitted) pt.whittedDepth = s.whitted.maxDepth;
+    pt.progress = s.progress;
+  })(p);
   RenderSettings rs{
       .width = job.width, .height = job.height, .seed = s.seed, .shutter = job.shutter};
   rs.stereo = job.stereo;
