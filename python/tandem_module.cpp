@@ -183,6 +183,21 @@ class PyRenderer {
     return d;
   }
   std::map<std::string, double> counters() const { return renderer_->context().counters; }
+  // One counter by its declared name: an error when no pass of the pipeline reports it, None
+  // when none did in the last frame (before the first, or a branch that did not run).
+  std::optional<double> counter(const std::string& name) const {
+    renderer_->pipeline().requireCounter(name, "counter");
+    const auto& c = renderer_->context().counters;
+    auto it = c.find(name);
+    return it == c.end() ? std::nullopt : std::optional<double>(it->second);
+  }
+  // Every counter the pipeline's passes declare, with its description.
+  std::map<std::string, std::string> declaredCounters() const {
+    std::map<std::string, std::string> d;
+    for (const auto& p : renderer_->pipeline().passes)
+      for (const CounterDesc& c : p->counters()) d[c.name] = c.doc;
+    return d;
+  }
   std::vector<std::string> buffers() const { return renderer_->pipeline().producedBuffers(); }
   int frame() const { return frame_; }
   void cut() { renderer_->cut(); }
@@ -333,6 +348,8 @@ PYBIND11_MODULE(_tandem, m) {
            py::arg("buffers") = std::vector<std::string>{})
       .def("timings", &PyRenderer::timings)
       .def("counters", &PyRenderer::counters)
+      .def("counter", &PyRenderer::counter)
+      .def("declared_counters", &PyRenderer::declaredCounters)
       .def("buffers", &PyRenderer::buffers)
       .def_property_readonly("frame", &PyRenderer::frame)
       .def("cut", &PyRenderer::cut);

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/file_commit.h"
 #include "core/image_io.h"
+#include "passes/common/visible_surfaces.h"
 #include "pipeline/aov.h"
 #include "pipeline/renderer.h"
 #include "verbs.h"
@@ -89,10 +90,12 @@ struct RenderVerb {
     }
     std::printf("  %-28s %9.2f ms\n", "frame", last.totalMs);
 
-    if (ctx.counters.count("raster/triangles_in"))
+    if (ctx.counters.count(RasterCounters::trianglesIn))
       std::printf("  raster: %.0f triangles, %.0f culled, %.0f clipped, %.0f set up and binned\n",
-                  ctx.counter("raster/triangles_in"), ctx.counter("raster/triangles_culled"),
-                  ctx.counter("raster/triangles_clipped"), ctx.counter("raster/triangles_binned"));
+                  ctx.counter(RasterCounters::trianglesIn),
+                  ctx.counter(RasterCounters::trianglesCulled),
+                  ctx.counter(RasterCounters::trianglesClipped),
+                  ctx.counter(RasterCounters::trianglesBinned));
     // Every output is staged first and renamed into place together: all files or none.
     const std::string& outName = renderer.pipeline().output;
     FileCommit files;

@@ -129,6 +129,16 @@ class Renderer:
         """The figures the passes reported for the last frame (rays per pixel, shares, ...)."""
         return self._r.counters()
 
+    def counter(self, name):
+        """One counter of the last frame by its declared name ("heuristic/selected"); None when
+        no pass reported it that frame. Raises tandem.Error when no pass of the pipeline
+        declares it (see declared_counters())."""
+        return self._r.counter(str(name))
+
+    def declared_counters(self):
+        """{name: description} of every counter the pipeline's passes report."""
+        return self._r.declared_counters()
+
     def buffers(self):
         """Names of the buffers the pipeline's passes write."""
         return self._r.buffers()

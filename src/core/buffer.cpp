@@ -36,6 +36,24 @@ const char* kindName(BufferKind k) {
   return "?";
 }
 
+std::vector<std::string> channelNamesOf(const BufferSlot& s) {
+  if (!s.channelNames.empty()) return s.channelNames;
+  if (s.kind == BufferKind::Record) return {};
+  if (s.channels == 1) return {};  // one value: the slot's name says what it is
+  const bool rgb = s.kind == BufferKind::Color || s.kind == BufferKind::Display;
+  if (s.channels == 3 && rgb) return {"r", "g", "b"};
+  if (s.channels == 3 && (s.kind == BufferKind::Position || s.kind == BufferKind::Normal))
+    return {"x", "y", "z"};
+  if (s.channels == 2 && s.kind == BufferKind::Motion) return {"dx", "dy"};
+  return {};
+}
+
+std::string channelList(const std::vector<std::string>& names) {
+  std::string o;
+  for (size_t i = 0; i < names.size(); ++i) o += (i ? ", " : "") + names[i];
+  return o;
+}
+
 std::string Extent::name() const {
   switch (scale) {
     case Scale::Frame:

@@ -68,7 +68,9 @@ struct Extent {
 // A pass's buffer slot: its name (fixed by the pass), channel count, kind, extent, and whether it
 // reads last frame's value of the buffer (a history input: valid unless the history was reset) or
 // may be missing (an optional input). A Record slot names the type it carries instead of
-// channels and an extent.
+// channels and an extent. A multi-channel slot names its channels (what each float means: "r",
+// "coc", "frames"), unless its kind names them (channelNamesOf); a pipeline checks that writer
+// and reader agree, and `tandem pipeline` shows them.
 struct BufferSlot {
   std::string slot;
   int channels = 1;
@@ -76,8 +78,25 @@ struct BufferSlot {
   Extent extent = Extent::frame();
   bool history = false;
   bool optional = false;
-  std::string recordType{};  // Record: the struct's name (a pipeline checks writer and reader)
+  std::string recordType{};                 // Record: the struct's name (checked like channels)
+  std::vector<std::string> channelNames{};  // one per channel; empty: by kind
+
+  // This slot with `names` as its channels (and as many channels).
+  BufferSlot named(std::vector<std::string> names) const {
+    BufferSlot s = *this;
+    s.channels = int(names.size());
+    s.channelNames = std::move(names);
+    return s;
+  }
 };
+
+// A slot's channel names: its own, else its kind's for the shapes that name themselves (3-channel
+// colour "r", "g", "b"; positions and normals "x", "y", "z"; motion "dx", "dy"). Empty for a
+// single channel (the slot's name says what it is) and for a multi-channel slot of another shape
+// that names none (a declaration bug the suite catches).
+std::vector<std::string> channelNamesOf(const BufferSlot& s);
+// "r, g, b" (for messages and docs).
+std::string channelList(const std::vector<std::string>& names);
 
 // A slot carrying a typed value of the struct named `type` (FrameContext::outputRecord).
 inline BufferSlot recordSlot(std::string slot, std::string type) {

@@ -22,7 +22,9 @@ const char* kIntro =
     "earlier pass with the same channel count, kind and extent (a history input, last frame's\n"
     "value, by any pass; an optional input may be produced by none). `tandem pipeline NAME` shows\n"
     "how one is wired. Each technique's passes live in their folder of `src/passes/`, one file\n"
-    "per pass type.\n";
+    "per pass type. The counters a pass reports each frame are listed under it (read them with\n"
+    "`tandem bench`, Python's `Renderer.counter(name)`); the shadow counters (`<pass>/shadow_*`)\n"
+    "take the pass's label in a pipeline.\n";
 
 const char* kTechniques[][2] = {
     {"common", "Common passes (G-buffers, shading, tone mapping)"},
@@ -88,12 +90,13 @@ const char* typeText(ParamType t) {
 void slots(std::ostringstream& o, const Pass& p) {
   const std::vector<BufferSlot> in = p.inputs(), out = p.outputs();
   if (in.empty() && out.empty()) return;
-  o << "| buffer | | channels | kind | extent |\n| --- | --- | ---: | --- | --- |\n";
-  // Channels, kind and extent; a record has no pixels, only the type it carries.
+  o << "| buffer | | channels | kind | extent |\n| --- | --- | --- | --- | --- |\n";
+  // Channels (named), kind and extent; a record has no pixels, only the type it carries.
   auto shape = [](const BufferSlot& s) {
     if (s.kind == BufferKind::Record) return " | | record `" + s.recordType + "` | |\n";
-    return " | " + std::to_string(s.channels) + " | " + kindName(s.kind) + " | " + s.extent.name() +
-           " |\n";
+    const std::vector<std::string> names = channelNamesOf(s);
+    return " | " + std::to_string(s.channels) + (names.empty() ? "" : ": " + channelList(names)) +
+           " | " + kindName(s.kind) + " | " + s.extent.name() + " |\n";
   };
   for (const BufferSlot& s : in)
     o << "| `" << s.slot << "` | reads" << (s.history ? ", last frame's" : "")
@@ -110,6 +113,14 @@ void params(std::ostringstream& o, const Pass& p) {
     o << "| `" << d.name << "` | " << typeText(d.type) << " | " << valueText(d, d.defaultValue)
       << " | " << rangeText(d) << " | " << cell(d.doc)
       << (d.invalidatesHistory ? " (an edit starts a new picture)" : "") << " |\n";
+  o << "\n";
+}
+
+void counters(std::ostringstream& o, const Pass& p) {
+  const std::vector<CounterDesc> cs = p.counters();
+  if (cs.empty()) return;
+  o << "| counter | reports |\n| --- | --- |\n";
+  for (const CounterDesc& c : cs) o << "| `" << c.name << "` | " << cell(c.doc) << " |\n";
   o << "\n";
 }
 
@@ -145,6 +156,7 @@ std::string passesMarkdown() {
       o << "### `" << e.type << "`\n\n" << d << (d.empty() || d.back() == '.' ? "" : ".") << "\n\n";
       slots(o, *p);
       params(o, *p);
+      counters(o, *p);
     }
   }
   o << "\n## Built-in pipelines (`pipelines/*.json`, embedded at build time)\n\n"

@@ -60,6 +60,13 @@ Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, i
   return b;
 }
 
+void FrameContext::report(const Pass& pass, const std::string& name, double value) {
+  if (!pass.declaresCounter(name))
+    throw std::logic_error("pass '" + pass.name() + "' reports counter '" + name +
+                           "', which it does not declare");
+  counters[name] = value;
+}
+
 double FrameContext::counter(const std::string& name, double fallback) const {
   auto it = counters.find(name);
   return it == counters.end() ? fallback : it->second;

@@ -37,7 +37,8 @@ struct FrameContext {
   double passRays = 0;                    // a pass adds the rays it traced; the pipeline records it
   std::vector<PassTiming> passParts;      // optional sub-timings a pass reports ("pass/part")
   // Figures passes report for the frame ("spp", "raster/triangles_in", ...); cleared each frame.
-  // Passes write them; readers use counter() (reading with operator[] would insert the name).
+  // Passes write them with report(), which checks the pass declares them (Pass::counters());
+  // readers use counter() (reading with operator[] would insert the name).
   std::map<std::string, double> counters;
   // Outputs nothing reads may be skipped: with keepAllOutputs off, a pass may leave out an
   // output that no pass reads (this frame or as history), that is not the pipeline's output and
@@ -51,6 +52,9 @@ struct FrameContext {
   bool isolatePasses = false;
 
   const Camera& camera() const { return views.front().camera; }  // the main view's, unjittered
+  // Records `pass`'s counter `name` for this frame: a logic_error when the pass does not declare
+  // it (so every name a reader can see is in some pass's declaration).
+  void report(const Pass& pass, const std::string& name, double value);
   // A counter this frame reported; `fallback` where no pass reported it.
   double counter(const std::string& name, double fallback) const;
   // A counter the caller knows a pass reports (a bug when it is missing).

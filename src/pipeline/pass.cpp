@@ -61,4 +61,10 @@ std::optional<BufferSlot> Pass::inputSlot(const std::string& slot) const {
   return findSlot(inputs(), slot);
 }
 
+bool Pass::declaresCounter(const std::string& name) const {
+  for (const CounterDesc& c : counters())
+    if (c.name == name) return true;
+  return false;
+}
+
 }  // namespace tandem

@@ -26,6 +26,14 @@ struct ParamDesc {
   bool invalidatesHistory = false;     // an edit resets every pass's history (a new picture)
 };
 
+// A figure a pass reports every frame it runs (FrameContext::report): declared with a short doc
+// so `tandem passes` lists it and a reader asking for a name no pass reports fails when the
+// pipeline loads (Pipeline::requireCounter), not with a silent zero.
+struct CounterDesc {
+  std::string name;  // the full name readers use ("heuristic/selected")
+  std::string doc{};
+};
+
 // What a pass asks of the next frame before it is rendered (the renderer merges every enabled
 // pass's request).
 struct FrameRequest {
@@ -41,6 +49,9 @@ class Pass {
   virtual std::vector<BufferSlot> inputs() const { return {}; }
   virtual std::vector<BufferSlot> outputs() const { return {}; }
   virtual std::vector<ParamDesc> params() const { return {}; }
+  // The counters the pass reports (default: none); reporting any other is a logic_error.
+  virtual std::vector<CounterDesc> counters() const { return {}; }
+  bool declaresCounter(const std::string& name) const;
   virtual void execute(FrameContext& ctx) = 0;
   // Asks for what the next frame needs (default: nothing).
   virtual void request(FrameRequest&) const {}

@@ -147,6 +147,17 @@ Pipeline Pipeline::fromJson(const Json& j, const std::string& source) {
   return p;
 }
 
+bool Pipeline::reportsCounter(const std::string& name) const {
+  for (const auto& p : passes)
+    if (p->declaresCounter(name)) return true;
+  return false;
+}
+
+void Pipeline::requireCounter(const std::string& name, const std::string& source) const {
+  if (!reportsCounter(name))
+    throw InputError(source, name, "no pass of pipeline '" + this->name + "' reports this counter");
+}
+
 void Pipeline::validate(const std::string& source) const {
   std::map<std::string, BufferSlot> available, produced;  // buffer -> producer's declaration
   for (const auto& p : passes)
@@ -174,6 +185,11 @@ void Pipeline::validate(const std::string& source) const {
         throw InputError(
             source, where,
             "input '" + buf + "' is " + kindName(out.kind) + ", expected " + kindName(in.kind));
+      if (out.channels == in.channels && in.channels > 1 &&
+          channelNamesOf(out) != channelNamesOf(in))
+        throw InputError(source, where,
+                         "input '" + buf + "' has channels (" + channelList(channelNamesOf(out)) +
+                             "), expected (" + channelList(channelNamesOf(in)) + ")");
       if (out.recordType != in.recordType)
         throw InputError(
             source, where,

@@ -49,6 +49,12 @@ class Pipeline {
   // which have no pixels, are not listed.
   std::vector<std::string> producedBuffers() const;
 
+  // Whether some pass reports counter `name` (Pass::counters()).
+  bool reportsCounter(const std::string& name) const;
+  // A reader's check when it loads the pipeline: throws InputError naming `source` and the
+  // counter when no pass of this pipeline declares it.
+  void requireCounter(const std::string& name, const std::string& source) const;
+
   // Sets a parameter from "label.param=value" (value as JSON, or a bare enum choice) on every
   // pass with that label; throws InputError naming `source` and the assignment.
   void setParam(const std::string& assignment, const std::string& source);

@@ -12,6 +12,8 @@ std::string slotText(const BufferSlot& s) {
   if (s.kind == BufferKind::Record) return "record " + s.recordType;
   std::ostringstream t;
   t << s.channels << " " << kindName(s.kind);
+  const std::vector<std::string> names = channelNamesOf(s);
+  if (!names.empty()) t << ": " << channelList(names);
   if (!(s.extent == Extent::frame())) t << ", " << s.extent.name();
   return t.str();
 }

@@ -5,13 +5,7 @@
 namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSlots() {
-  using K = BufferKind;
-  static const std::vector<BufferSlot> slots = {
-      {"depth", 1, K::Depth},       {"position", 3, K::Position}, {"normal", 3, K::Normal},
-      {"geo_normal", 3, K::Normal}, {"diffuse", 4, K::Material},  {"specular", 4, K::Material},
-      {"emission", 3, K::Color},    {"ambient", 3, K::Material},  {"optical", 3, K::Material},
-      {"object_id", 1, K::Id},      {"material_id", 1, K::Id},    {"motion", 2, K::Motion}};
-  return slots;
+  return gbufferLayout();
 }
 
 GBufferView GBufferView::create(const std::function<Buffer*(const BufferSlot&)>& target) {

@@ -1,18 +1,5 @@
-// The G-buffer (Walewski et al. 2019 Table 2, extended): named frame buffers written by the raster
-// and the ray-traced G-buffer passes alike, from the same SurfaceSample.
-//
-//   depth        1  reversed-Z depth (1 near plane, 0 background)
-//   position     3  world position
-//   normal       3  shading normal (normal map applied), world space
-//   geo_normal   3  geometric normal
-//   diffuse      4  diffuse albedo + diffuse opacity
-//   specular     4  specular colour + exponent
-//   emission     3  emitted radiance
-//   ambient      3  ambient colour
-//   optical      3  reflectivity, index of refraction, opacity
-//   object_id    1  object index, -1 for background
-//   material_id  1  material index, -1 for background
-//   motion       2  screen-space motion in pixels: this frame's position minus last frame's
+// The G-buffer (shading/gbuffer_layout.h: its targets and their channels): named frame buffers
+// written by the raster and the ray-traced G-buffer passes alike, from the same SurfaceSample.
 #pragma once
 #include <functional>
 #include <string>
@@ -21,6 +8,7 @@
 #include "core/buffer.h"
 #include "scene/frame_scene.h"
 #include "scene/view.h"
+#include "shading/gbuffer_layout.h"
 #include "shading/surface.h"
 
 namespace tandem {
@@ -47,13 +35,18 @@ struct GBufferView {
     put3(position + 3 * i, s.position);
     put3(normal + 3 * i, s.normal);
     put3(geoNormal + 3 * i, s.geoNormal);
-    put3(diffuse + 4 * i, s.diffuse);
-    diffuse[4 * i + 3] = s.diffuseOpacity;
-    put3(specular + 4 * i, s.specular);
-    specular[4 * i + 3] = s.specularExponent;
+    using D = DiffuseChannels;
+    using S = SpecularChannels;
+    using O = OpticalChannels;
+    put3(diffuse + D::kCount * i + D::kRgb, s.diffuse);
+    diffuse[D::kCount * i + D::kOpacity] = s.diffuseOpacity;
+    put3(specular + S::kCount * i + S::kRgb, s.specular);
+    specular[S::kCount * i + S::kExponent] = s.specularExponent;
     put3(emission + 3 * i, s.emission);
     put3(ambient + 3 * i, s.ambient);
-    put3(optical + 3 * i, {s.reflectivity, s.ior, s.opacity});
+    optical[O::kCount * i + O::kReflectivity] = s.reflectivity;
+    optical[O::kCount * i + O::kIor] = s.ior;
+    optical[O::kCount * i + O::kOpacity] = s.opacity;
     objectId[i] = float(s.object);
     materialId[i] = float(s.material);
     if (motion) motion[2 * i] = mv.x, motion[2 * i + 1] = mv.y;

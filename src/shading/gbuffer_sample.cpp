@@ -1,16 +1,18 @@
 #include "shading/gbuffer_sample.h"
 
+#include "shading/gbuffer_layout.h"
 #include "shading/shade_batch.h"
 
 namespace tandem {
 
 const std::vector<BufferSlot>& gbufferSampleSlots() {
-  using K = BufferKind;
-  static const std::vector<BufferSlot> slots = {
-      {"position", 3, K::Position}, {"normal", 3, K::Normal},     {"geo_normal", 3, K::Normal},
-      {"diffuse", 4, K::Material},  {"specular", 4, K::Material}, {"emission", 3, K::Color},
-      {"ambient", 3, K::Material},  {"optical", 3, K::Material},  {"object_id", 1, K::Id},
-      {"material_id", 1, K::Id}};
+  static const std::vector<BufferSlot> slots = [] {
+    std::vector<BufferSlot> s;
+    for (const char* n : {"position", "normal", "geo_normal", "diffuse", "specular", "emission",
+                          "ambient", "optical", "object_id", "material_id"})
+      s.push_back(gbufferSlot(n));
+    return s;
+  }();
   return slots;
 }
 
@@ -32,15 +34,18 @@ bool GBufferReader::read(int x, int y, SurfaceSample& s) const {
   s.position = v3(g_.position + 3 * i);
   s.normal = v3(g_.normal + 3 * i);
   s.geoNormal = v3(g_.geoNormal + 3 * i);
-  s.diffuse = v3(g_.diffuse + 4 * i);
-  s.diffuseOpacity = g_.diffuse[4 * i + 3];
-  s.specular = v3(g_.specular + 4 * i);
-  s.specularExponent = g_.specular[4 * i + 3];
+  using D = DiffuseChannels;
+  using S = SpecularChannels;
+  using O = OpticalChannels;
+  s.diffuse = v3(g_.diffuse + D::kCount * i + D::kRgb);
+  s.diffuseOpacity = g_.diffuse[D::kCount * i + D::kOpacity];
+  s.specular = v3(g_.specular + S::kCount * i + S::kRgb);
+  s.specularExponent = g_.specular[S::kCount * i + S::kExponent];
   s.emission = v3(g_.emission + 3 * i);
   s.ambient = v3(g_.ambient + 3 * i);
-  s.reflectivity = g_.optical[3 * i];
-  s.ior = g_.optical[3 * i + 1];
-  s.opacity = g_.optical[3 * i + 2];
+  s.reflectivity = g_.optical[O::kCount * i + O::kReflectivity];
+  s.ior = g_.optical[O::kCount * i + O::kIor];
+  s.opacity = g_.optical[O::kCount * i + O::kOpacity];
   s.object = int(g_.objectId[i]);
   s.material = int(g_.materialId[i]);
   return true;
@@ -57,9 +62,9 @@ bool GBufferReader::read(int x, int y, ShadeBatch& b, int lane) const {
   };
   put(F::PX, g_.position + 3 * i);
   put(F::NX, g_.normal + 3 * i);
-  put(F::DR, g_.diffuse + 4 * i);
-  put(F::SR, g_.specular + 4 * i);
-  b.f[F::EXP][lane] = g_.specular[4 * i + 3];
+  put(F::DR, g_.diffuse + DiffuseChannels::kCount * i + DiffuseChannels::kRgb);
+  put(F::SR, g_.specular + SpecularChannels::kCount * i + SpecularChannels::kRgb);
+  b.f[F::EXP][lane] = g_.specular[SpecularChannels::kCount * i + SpecularChannels::kExponent];
   put(F::ER, g_.emission + 3 * i);
   put(F::AR, g_.ambient + 3 * i);
   return true;

@@ -8,6 +8,7 @@
 //
 #include <hwy/highway.h>
 
+#include "shading/gbuffer_layout.h"
 #include "shading/gbuffer_sample.h"
 #include "shading/shade_batch.h"
 
@@ -58,6 +59,10 @@ bool ReadSpanImpl(const GBufferReader::Planes& g, size_t i0, size_t n, ShadeBatc
     put3(F::WX);
     hn::LoadInterleaved3(d, g.normal + 3 * p, a, c, e);
     put3(F::NX);
+    // Interleaved loads: rgb then the fourth channel (gbuffer_layout.h).
+    static_assert(DiffuseChannels::kRgb == 0 && DiffuseChannels::kCount == 4 &&
+                  SpecularChannels::kRgb == 0 && SpecularChannels::kExponent == 3 &&
+                  SpecularChannels::kCount == 4);
     hn::LoadInterleaved4(d, g.diffuse + 4 * p, a, c, e, w);
     put3(F::DR);
     hn::LoadInterleaved4(d, g.specular + 4 * p, a, c, e, w);

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "passes/baselines/pt_reference.h"
 #include "pipeline/aov.h"
 #include "pipeline/renderer.h"
 
@@ -170,7 +171,7 @@ void RenderWorker::loop() {
       f.timings = renderer->renderFrameAt(frameIndex, view.time, view.camera, view.camera);
       ++frameIndex;
       FrameContext& ctx = renderer->context();
-      f.samplesPerPixel = int(ctx.counter("spp", 0));
+      f.samplesPerPixel = int(ctx.counter(PTReferenceCounters::spp, 0));
       f.buffers = renderer->pipeline().producedBuffers();
       const std::string& outName = renderer->pipeline().output;
       f.shown = view.shownBuffer.empty() || !ctx.buffers.count(view.shownBuffer) ? outName

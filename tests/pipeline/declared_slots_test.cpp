@@ -4,6 +4,8 @@
 // and writes of undeclared buffers are logic errors naming the pass and the slot.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "pipeline/renderer.h"
@@ -58,6 +60,12 @@ TEST_P(DeclaredSlots, EveryPassReadsAndWritesOnlyWhatItDeclares) {
     cam.lookAt = cam.lookAt + Vec3(0.01f, 0, 0);
   }
   EXPECT_EQ(r.output().width, shot.stereo ? 96 : 48);
+  // Every counter the frames reported is declared by a pass of the pipeline (report() checks
+  // the pass; this catches a write around it).
+  for (const auto& [counter, value] : r.context().counters) {
+    EXPECT_TRUE(r.pipeline().reportsCounter(counter)) << name << ": " << counter;
+    EXPECT_TRUE(std::isfinite(value)) << name << ": " << counter;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinPipelines, DeclaredSlots,
@@ -72,7 +80,14 @@ INSTANTIATE_TEST_SUITE_P(BuiltinPipelines, DeclaredSlots,
 // A pass whose execute() does what a test asks of it.
 class ProbePass : public Pass {
  public:
-  enum class Does { ReadUndeclared, ReadHistoryAsInput, ReadByName, WriteUndeclared, Nothing };
+  enum class Does {
+    ReadUndeclared,
+    ReadHistoryAsInput,
+    ReadByName,
+    WriteUndeclared,
+    ReportUndeclared,
+    Nothing
+  };
   explicit ProbePass(Does d) : does_(d) {}
   std::string type() const override { return "probe"; }
   std::string description() const override { return "test"; }
@@ -82,7 +97,9 @@ class ProbePass : public Pass {
     return {{"src", 1}, last};
   }
   std::vector<BufferSlot> outputs() const override { return {{"dst", 1}}; }
+  std::vector<CounterDesc> counters() const override { return {{"probe/runs", "test"}}; }
   void execute(FrameContext& ctx) override {
+    ctx.report(*this, "probe/runs", 1);
     switch (does_) {
       case Does::ReadUndeclared:
         ctx.optionalInput(*this, "scr");
@@ -95,6 +112,9 @@ class ProbePass : public Pass {
         break;
       case Does::WriteUndeclared:
         ctx.buffers["stray"] = Buffer(1, 1, 1);
+        break;
+      case Does::ReportUndeclared:
+        ctx.report(*this, "probe/rnus", 1);
         break;
       case Does::Nothing:
         break;
@@ -149,6 +169,74 @@ TEST(DeclaredSlots, UndeclaredSlotsAreErrorsNamingPassAndSlot) {
   EXPECT_EQ(runProbe(D::ReadByName, true), "no buffer 'other' in this frame");
   EXPECT_EQ(runProbe(D::WriteUndeclared, true),
             "pass 'probe' wrote buffer 'stray', which it does not declare");
+  EXPECT_EQ(runProbe(D::ReportUndeclared, false),
+            "pass 'probe' reports counter 'probe/rnus', which it does not declare");
+}
+
+// A reader asks for counters when it loads the pipeline: a name no pass declares is an input
+// error naming the reader and the counter, before any frame.
+TEST(DeclaredCounters, ReadersAskForDeclaredNamesWhenTheyLoad) {
+  const Pipeline p = Pipeline::load("hybrid-heuristic");
+  EXPECT_TRUE(p.reportsCounter("heuristic/selected"));
+  EXPECT_TRUE(p.reportsCounter("rt_secondary/shadow_traced"));  // under the pass's label
+  EXPECT_NO_THROW(p.requireCounter("heuristic/selected", "reader"));
+  try {
+    p.requireCounter("heuristic/selectd", "reader");
+    ADD_FAILURE() << "a misspelt counter was accepted";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("reader"), std::string::npos) << m;
+    EXPECT_NE(m.find("heuristic/selectd"), std::string::npos) << m;
+    EXPECT_NE(m.find("hybrid-heuristic"), std::string::npos) << m;
+  }
+  // A pipeline without the pass does not report its counters.
+  EXPECT_FALSE(Pipeline::load("rt-only").reportsCounter("heuristic/selected"));
+}
+
+// Every multi-channel slot of every pass names each of its channels once (declared, or its
+// kind's: rgb, xyz, dx dy), so readers index channels by name and `tandem pipeline` shows them.
+TEST(DeclaredChannels, EveryMultiChannelSlotNamesItsChannels) {
+  for (const std::string& type : passTypes()) {
+    const std::unique_ptr<Pass> p = createPass(type);
+    std::vector<BufferSlot> slots = p->inputs();
+    for (const BufferSlot& s : p->outputs()) slots.push_back(s);
+    for (const BufferSlot& s : slots) {
+      if (s.kind == BufferKind::Record || s.channels == 1) continue;
+      const std::vector<std::string> names = channelNamesOf(s);
+      EXPECT_EQ(int(names.size()), s.channels) << type << "." << s.slot;
+      EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size())
+          << type << "." << s.slot << ": a channel named twice";
+    }
+  }
+}
+
+// A reader that expects other channels than the writer's is a load error naming both layouts.
+TEST(DeclaredChannels, WriterAndReaderMustAgree) {
+  Json j = Json::parse(Pipeline::builtinJson("hybrid-dof"));
+  // Bind dof_composite's bokeh (intensity, foreground) to rt_hit (near_share, rays): same
+  // channel count, kind and extent, different channels.
+  for (Json& pass : j["passes"])
+    if (pass["type"] == "dof_composite") pass["inputs"]["bokeh"] = "rt_hit";
+  try {
+    Pipeline::fromJson(j, "test.json");
+    ADD_FAILURE() << "mismatched channels were accepted";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("near_share, rays"), std::string::npos) << m;
+    EXPECT_NE(m.find("intensity, foreground"), std::string::npos) << m;
+  }
+}
+
+// Every registered pass declares each counter once, with a description.
+TEST(DeclaredCounters, DeclarationsAreUniqueAndDescribed) {
+  for (const std::string& type : passTypes()) {
+    const std::unique_ptr<Pass> p = createPass(type);
+    std::set<std::string> seen;
+    for (const CounterDesc& c : p->counters()) {
+      EXPECT_TRUE(seen.insert(c.name).second) << type << ": " << c.name << " twice";
+      EXPECT_FALSE(c.doc.empty()) << type << ": " << c.name;
+    }
+  }
 }
 
 }  // namespace

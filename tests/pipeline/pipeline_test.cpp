@@ -240,7 +240,9 @@ TEST(PipelineGraph, DescribesPassesBuffersAndHistory) {
   const Pipeline taa = Pipeline::load("deferred-taa");
   const std::string text = describePipeline(taa);
   EXPECT_NE(text.find("3. taa"), std::string::npos) << text;
-  EXPECT_NE(text.find("reads  taa (3 colour; last frame's)"), std::string::npos) << text;
+  EXPECT_NE(text.find("reads  taa (3 colour: r, g, b; last frame's)"), std::string::npos) << text;
+  // Channels by name: the G-buffer's diffuse target carries its opacity.
+  EXPECT_NE(text.find("writes diffuse (4 material: r, g, b, opacity)"), std::string::npos) << text;
   EXPECT_NE(text.find("history (kept for the next frame): taa"), std::string::npos) << text;
   const std::string dot = pipelineDot(taa);
   EXPECT_EQ(dot.rfind("digraph \"deferred-taa\" {", 0), 0u);

@@ -96,6 +96,16 @@ def test_budget_zero_traces_no_secondary_rays():
     assert c["heuristic/selected"] > 0 and c["rt_secondary/shadow_rays_per_pixel"] > 0
 
 
+def test_counters_are_read_by_declared_name():
+    r = tandem.Renderer("spheres", pipeline="hybrid-heuristic", width=32, height=18)
+    assert "heuristic/selected" in r.declared_counters()
+    assert r.counter("heuristic/selected") is None  # declared, nothing rendered yet
+    r.render()
+    assert r.counter("heuristic/selected") == r.counters()["heuristic/selected"]
+    with pytest.raises(tandem.Error, match="heuristic/selectd"):
+        r.counter("heuristic/selectd")
+
+
 def test_scene_and_pipeline_as_dicts():
     scene = {"base": "cornell",
              "objects": [{"name": "statue", "shape": "knot", "material": "red",

@@ -167,9 +167,9 @@ StaticRun renderStatic(const Scene& scene, const std::string& pipeline, const Pi
   run.groupMs = groupTimes(r.pipeline(), times);
   if (times.has("rt_dof")) run.rtDofMs = times.ofType("rt_dof");
   run.frameMs = summarize(total).median;
-  const auto& c = r.context().counters;
-  if (c.count("ray_mask/rays_per_pixel")) run.raysPerPixel = c.at("ray_mask/rays_per_pixel");
-  if (c.count("ray_mask/masked_share")) run.maskedShare = c.at("ray_mask/masked_share");
+  // The ray mask's counters, where it ran (the baselines have none; a row may disable it).
+  run.raysPerPixel = r.context().counter(RayMaskCounters::raysPerPixel, run.raysPerPixel);
+  run.maskedShare = r.context().counter(RayMaskCounters::maskedShare, run.maskedShare);
   return run;
 }
 

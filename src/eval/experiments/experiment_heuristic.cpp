@@ -15,6 +15,7 @@
 #include "eval/experiments/experiment_report.h"
 #include "eval/metrics/metrics.h"
 #include "passes/heuristic/heuristic.h"
+#include "passes/heuristic/rt_secondary.h"
 #include "passes/heuristic/ss_fallback.h"
 #include "pipeline/pass_edit.h"
 #include "pipeline/pass_times.h"
@@ -74,10 +75,9 @@ struct Run {
   std::string pipeline;
   std::unique_ptr<Renderer> renderer;
   bool heuristic = false;
-  double counter(const char* name) const {
-    auto it = renderer->context().counters.find(name);
-    return it == renderer->context().counters.end() ? 0.0 : it->second;
-  }
+  // A counter the pipeline declares (checked when the run loads); 0 on a frame that did not
+  // report it (rt_secondary cuts items only under a deadline).
+  double counter(const char* name) const { return renderer->context().counter(name, 0.0); }
 
   Run(const Scene& scene, const std::string& name, const PipelineEdits& edits,
       const HeuristicExperimentOptions& o)
@@ -87,6 +87,10 @@ struct Run {
     RenderSettings settings{.width = o.width, .height = o.height};
     renderer = std::make_unique<Renderer>(scene, std::move(p), settings);
     for (const auto& pass : renderer->pipeline().passes) heuristic |= pass->type() == "heuristic";
+    if (heuristic)
+      for (const char* c : {HeuristicCounters::selected, HeuristicCounters::nodes,
+                            HeuristicCounters::visibleObjects, RTSecondaryCounters::itemsCut})
+        renderer->pipeline().requireCounter(c, "experiment heuristic");
   }
 };
 
@@ -114,8 +118,8 @@ StaticResult runStatic(Run& run, const CameraDesc& cam, const HeuristicExperimen
   r.frame = summarize(frames).median;
   r.image = run.renderer->output();
   if (run.heuristic) {
-    r.selected = size_t(run.counter("heuristic/selected"));
-    r.visible = size_t(run.counter("heuristic/visible_objects"));
+    r.selected = size_t(run.counter(HeuristicCounters::selected));
+    r.visible = size_t(run.counter(HeuristicCounters::visibleObjects));
     // What was ray traced: the mask less the tiles a deadline cut.
     const FrameContext& ctx = run.renderer->context();
     r.mask = ctx.input(ctx.has("traced_mask") ? "traced_mask" : "heuristic_mask");
@@ -221,8 +225,9 @@ void cameraPath(const Scene& scene, const CameraDesc& cam, const HeuristicExperi
     bool within = std::abs(rtMs - o.budgetMs) <= o.tolerance * o.budgetMs;
     // The budget binds when something visible was left out (not selected, or cut by the
     // deadline); otherwise the RT stage simply had less to do than the budget allows.
-    bool binds = budget.counter("heuristic/selected") < budget.counter("heuristic/nodes") ||
-                 budget.counter("rt_secondary/items_cut") > 0;
+    bool binds =
+        budget.counter(HeuristicCounters::selected) < budget.counter(HeuristicCounters::nodes) ||
+        budget.counter(RTSecondaryCounters::itemsCut) > 0;
     res.withinBand += within;
     res.binding += binds;
     res.bindingWithin += binds && within;

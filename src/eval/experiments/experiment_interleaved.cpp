@@ -15,6 +15,7 @@
 #include "passes/baselines/accumulation.h"
 #include "passes/baselines/taa.h"
 #include "passes/interleaved/interleaved_raster.h"
+#include "passes/interleaved/postfx_motion_blur.h"
 #include "pipeline/aov.h"
 #include "pipeline/pass_edit.h"
 #include "pipeline/pass_times.h"
@@ -406,7 +407,7 @@ void timePerFrameTable(const InterleavedExperimentOptions& o, const std::vector<
         const double vis = r.partMs.count(P + "/visibility") ? r.partMs.at(P + "/visibility") : 0;
         const double shade = r.partMs.count(P + "/shade") ? r.partMs.at(P + "/shade") : 0;
         const double resolve = r.partMs.count(P + "/resolve") ? r.partMs.at(P + "/resolve") : 0;
-        const auto c = r.counters.find("interleaved_raster/triangles_set_up_per_pass");
+        const auto c = r.counters.find(InterleavedRasterCounters::setUpPerPass);
         rows.push_back({s.label, pl, shading, pixelsLabel(n, k), fmt(r.frameMs, 1), fmt(vis, 1),
                         fmt(shade, 1), fmt(resolve, 1),
                         c != r.counters.end() ? fmt(c->second, 0) : "-"});
@@ -553,7 +554,7 @@ void hybridMotionBlurTable(const InterleavedExperimentOptions& o, const std::vec
         e.ssim += x.ssim / o.seeds;
         e.flip += x.flip / o.seeds;
       }
-      const auto m = q.counters.find("postfx_motion_blur/masked_tiles_percent");
+      const auto m = q.counters.find(PostfxMotionBlurCounters::maskedTilesPercent);
       rows.push_back({s.label, v.name, fmt(t.frameMs, 1), fmt(e.rmse, 4), fmt(e.ssim, 4),
                       fmt(e.flip, 4), m != q.counters.end() ? fmt(m->second, 1) : "-"});
       const std::string file =

@@ -94,7 +94,7 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   const PassTimes times(r.pipeline(), ft);
   img.rays = uint64_t(times.raysOf("pt_reference"));
   img.samplingSeconds = times.partOf("pt_reference", "sampling") * 1e-3;
-  img.spp = int(r.context().counter("spp"));
+  img.spp = int(r.context().counter(PTReferenceCounters::spp));
   img.hdr = r.context().input("hdr");
   img.variance = r.context().input("variance");
   img.relativeError = relativeNoise(img.hdr, img.variance);

@@ -39,6 +39,12 @@ const ParamTable<AccumulationSettings>& AccumulationPass::tableFor() const {
   return table;
 }
 
+std::vector<CounterDesc> AccumulationPass::counters() const {
+  return {
+      {AccumulationCounters::trianglesBinned, "triangles binned over all sub-frames"},
+  };
+}
+
 void AccumulationPass::execute(FrameContext& ctx) {
   const AccumulationSettings& s = settings();
   const int n = s.samples;
@@ -92,7 +98,7 @@ void AccumulationPass::execute(FrameContext& ctx) {
   }
   ctx.passParts.push_back({"raster", rasterMs, 0});
   ctx.passParts.push_back({"shade", shadeMs, 0});
-  ctx.counters["accumulation/triangles_binned"] = double(triangles);
+  ctx.report(*this, AccumulationCounters::trianglesBinned, double(triangles));
   if (rt) ctx.passRays += double(rt->raysTraced() - raysBefore);
 }
 

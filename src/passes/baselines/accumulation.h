@@ -27,6 +27,11 @@ struct AccumulationSettings {
   Shading shading = Shading::Local;
 };
 
+// The counters AccumulationPass reports each frame (Pass::counters, FrameContext::report).
+struct AccumulationCounters {
+  static constexpr const char* trianglesBinned = "accumulation/triangles_binned";
+};
+
 class AccumulationPass : public SettingsPass<AccumulationSettings> {
  public:
   std::string type() const override { return "accumulation"; }
@@ -36,6 +41,7 @@ class AccumulationPass : public SettingsPass<AccumulationSettings> {
   }
   std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<AccumulationSettings>& tableFor() const override;

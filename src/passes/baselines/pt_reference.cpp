@@ -44,6 +44,12 @@ const ParamTable<PTReferenceSettings>& PTReferencePass::tableFor() const {
   return table;
 }
 
+std::vector<CounterDesc> PTReferencePass::counters() const {
+  return {
+      {PTReferenceCounters::spp, "samples per pixel accumulated so far"},
+  };
+}
+
 void PTReferencePass::execute(FrameContext& ctx) {
   const auto t0 = Clock::now();
   RayTracer& rt = ctx.rayTracer();  // (re)builds the BVH: reported apart from the sampling
@@ -101,7 +107,7 @@ void PTReferencePass::execute(FrameContext& ctx) {
         }
     }
   }
-  ctx.counters["spp"] = spp;
+  ctx.report(*this, PTReferenceCounters::spp, spp);
   ctx.passParts.push_back({"sampling", seconds * 1e3, ctx.passRays});
 }
 

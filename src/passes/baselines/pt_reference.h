@@ -24,6 +24,11 @@ struct PTReferenceSettings {
   int whittedDepth = 10;
 };
 
+// The counters PTReferencePass reports each frame (Pass::counters, FrameContext::report).
+struct PTReferenceCounters {
+  static constexpr const char* spp = "spp";
+};
+
 class PTReferencePass : public SettingsPass<PTReferenceSettings> {
  public:
   std::string type() const override { return "pt_reference"; }
@@ -34,6 +39,7 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
     return {{"hdr", 3}, {"variance", 1, BufferKind::Variance}};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
   void resetHistory() override { sums_.clear(); }
   // Splits the samples over `cluster`'s processes (MPI: every rank renders its rows, the image
   // is the same); null: this process alone.

@@ -15,7 +15,7 @@ const ParamTable<RTWhittedSettings>& RTWhittedPass::tableFor() const {
 }
 
 void RTWhittedPass::execute(FrameContext& ctx) {
-  WhittedFrame wf(ctx, settings().whitted);
+  WhittedFrame wf(ctx, *this, settings().whitted);
   const Scene& scene = *ctx.scene;
   Buffer& hdr = ctx.output(*this, "hdr");
   Buffer& ids = ctx.output(*this, "object_id");

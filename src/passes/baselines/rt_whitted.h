@@ -20,6 +20,7 @@ class RTWhittedPass : public SettingsPass<RTWhittedSettings> {
     return {{"hdr", 3}, {"object_id", 1, BufferKind::Id}};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override { return whittedCounters(*this); }
 
  protected:
   const ParamTable<RTWhittedSettings>& tableFor() const override;

@@ -10,7 +10,7 @@ std::vector<BufferSlot> RasterGBufferPass::outputs() const {
 }
 
 void RasterGBufferPass::execute(FrameContext& ctx) {
-  surfaces_.rasterize(ctx);
+  surfaces_.rasterize(ctx, *this);
   const auto t1 = Clock::now();
   GBufferView g = gbufferTargets(ctx, *this);
   writer_.beginFrame(ctx.frame);

@@ -16,6 +16,7 @@ class RasterGBufferPass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override { return RasterCounters::all(); }
 
  private:
   VisibleSurfaces surfaces_;

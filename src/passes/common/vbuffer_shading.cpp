@@ -15,7 +15,7 @@ std::vector<BufferSlot> VBufferShadingPass::outputs() const {
 }
 
 void VBufferShadingPass::execute(FrameContext& ctx) {
-  surfaces_.rasterize(ctx);
+  surfaces_.rasterize(ctx, *this);
   const auto t1 = Clock::now();
   Buffer& hdr = ctx.output(*this, "hdr");
   // The G-buffer only when something reads a field of it beyond depth and ids (a pass, an AOV,

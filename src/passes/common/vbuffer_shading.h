@@ -22,6 +22,7 @@ class VBufferShadingPass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override { return RasterCounters::all(); }
 
  private:
   VisibleSurfaces surfaces_;

@@ -2,7 +2,14 @@
 
 namespace tandem {
 
-void VisibleSurfaces::rasterize(FrameContext& ctx) {
+std::vector<CounterDesc> RasterCounters::all() {
+  return {{trianglesIn, "triangles submitted to the rasterizer, all views"},
+          {trianglesCulled, "triangles culled (back-facing, outside the frustum, too small)"},
+          {trianglesClipped, "triangles clipped against the near plane"},
+          {trianglesBinned, "triangles binned into tiles"}};
+}
+
+void VisibleSurfaces::rasterize(FrameContext& ctx, const Pass& pass) {
   const auto t0 = Clock::now();
   visibility_.resize(ctx.views.size());
   RasterStats total;
@@ -14,10 +21,10 @@ void VisibleSurfaces::rasterize(FrameContext& ctx) {
     total.trianglesClipped += s.trianglesClipped;
     total.trianglesBinned += s.trianglesBinned;
   }
-  ctx.counters["raster/triangles_in"] = double(total.trianglesIn);
-  ctx.counters["raster/triangles_culled"] = double(total.trianglesCulled);
-  ctx.counters["raster/triangles_clipped"] = double(total.trianglesClipped);
-  ctx.counters["raster/triangles_binned"] = double(total.trianglesBinned);
+  ctx.report(pass, RasterCounters::trianglesIn, double(total.trianglesIn));
+  ctx.report(pass, RasterCounters::trianglesCulled, double(total.trianglesCulled));
+  ctx.report(pass, RasterCounters::trianglesClipped, double(total.trianglesClipped));
+  ctx.report(pass, RasterCounters::trianglesBinned, double(total.trianglesBinned));
   ctx.passParts.push_back({"visibility", msSince(t0), 0});
 }
 

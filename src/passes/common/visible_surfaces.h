@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pipeline/frame_context.h"
+#include "pipeline/pass.h"
 #include "raster/rasterizer.h"
 #include "raster/triangle_planes.h"
 #include "shading/surface_resolve.h"
@@ -13,10 +14,19 @@
 
 namespace tandem {
 
+// The rasterizer's counters, reported by the pass that rasterizes (summed over the views).
+struct RasterCounters {
+  static constexpr const char* trianglesIn = "raster/triangles_in";
+  static constexpr const char* trianglesCulled = "raster/triangles_culled";
+  static constexpr const char* trianglesClipped = "raster/triangles_clipped";
+  static constexpr const char* trianglesBinned = "raster/triangles_binned";
+  static std::vector<CounterDesc> all();
+};
+
 class VisibleSurfaces {
  public:
-  // Rasterizes every view; reported as the pass part "visibility" and the raster/* counters.
-  void rasterize(FrameContext& ctx);
+  // Rasterizes every view; reported as `pass`'s part "visibility" and its raster/* counters.
+  void rasterize(FrameContext& ctx, const Pass& pass);
 
   // Triangles set up for one tile, with their barycentric planes: a triangle mostly covers
   // neighbouring pixels in this row and the rows below.

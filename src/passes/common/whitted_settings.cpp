@@ -57,23 +57,49 @@ WhittedSettings WhittedParams::settings() const {
   return w;
 }
 
-const ShadowMaps* shadowMapsFor(FrameContext& ctx, const WhittedParams& w) {
+namespace {
+
+// The shadow query counters' names under `pass`'s name.
+struct ShadowQueryCounters {
+  explicit ShadowQueryCounters(const Pass& pass) : key(pass.name() + "/") {}
+  std::string key;
+  std::string raysPerPixel() const { return key + "shadow_rays_per_pixel"; }
+  std::string traced() const { return key + "shadow_traced"; }
+  std::string culled() const { return key + "shadow_culled"; }
+  std::string lit() const { return key + "shadow_lit"; }
+  std::string shadowed() const { return key + "shadow_shadowed"; }
+};
+
+}  // namespace
+
+std::vector<CounterDesc> whittedCounters(const Pass& pass) {
+  const ShadowQueryCounters q(pass);
+  return {{ShadowMapCounters::staticRedraws, "shadow maps redrawn for static geometry so far"},
+          {ShadowMapCounters::movingRedraws, "shadow maps redrawn for moving geometry so far"},
+          {q.raysPerPixel(), "shadow rays traced per shaded pixel"},
+          {q.traced(), "share of light-surface pairs decided by a shadow ray"},
+          {q.culled(), "share of pairs culled (negligible light)"},
+          {q.lit(), "share of pairs the shadow maps classified as lit"},
+          {q.shadowed(), "share of pairs the shadow maps classified as shadowed"}};
+}
+
+const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w) {
   if (w.shadows == ShadowMode::Rays) return nullptr;
   const auto t0 = Clock::now();
   const ShadowMaps* maps = &ctx.shadowMaps(w.shadowMapSize);
   ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
-  ctx.counters["shadow_maps/static_redraws"] = maps->redraws();
-  ctx.counters["shadow_maps/moving_redraws"] = maps->movingRedraws();
+  ctx.report(pass, ShadowMapCounters::staticRedraws, maps->redraws());
+  ctx.report(pass, ShadowMapCounters::movingRedraws, maps->movingRedraws());
   return maps;
 }
 
-WhittedFrame::WhittedFrame(FrameContext& ctx, const WhittedParams& p)
+WhittedFrame::WhittedFrame(FrameContext& ctx, const Pass& pass, const WhittedParams& p)
     : rt(ctx.rayTracer()),
       shading(ShadingContext::from(*ctx.scene)),
       whitted(rt, *ctx.scene, shading, p.settings()),
       raysBefore_(rt.raysTraced()) {
   whitted.countShadows(&tally);
-  whitted.useShadowMaps(shadowMapsFor(ctx, p));
+  whitted.useShadowMaps(shadowMapsFor(ctx, pass, p));
 }
 
 void WhittedFrame::finish(FrameContext& ctx, const Pass& pass, double pixels) {
@@ -82,13 +108,13 @@ void WhittedFrame::finish(FrameContext& ctx, const Pass& pass, double pixels) {
 }
 
 void reportShadows(FrameContext& ctx, const Pass& p, const ShadowCounts& c, double pixels) {
-  const std::string key = p.name() + "/";
+  const ShadowQueryCounters q(p);
   const double pairs = double(std::max<uint64_t>(c.pairs(), 1));
-  ctx.counters[key + "shadow_rays_per_pixel"] = double(c.traced) / std::max(pixels, 1.0);
-  ctx.counters[key + "shadow_traced"] = double(c.traced) / pairs;
-  ctx.counters[key + "shadow_culled"] = double(c.culled) / pairs;
-  ctx.counters[key + "shadow_lit"] = double(c.lit) / pairs;
-  ctx.counters[key + "shadow_shadowed"] = double(c.shadowed) / pairs;
+  ctx.report(p, q.raysPerPixel(), double(c.traced) / std::max(pixels, 1.0));
+  ctx.report(p, q.traced(), double(c.traced) / pairs);
+  ctx.report(p, q.culled(), double(c.culled) / pairs);
+  ctx.report(p, q.lit(), double(c.lit) / pairs);
+  ctx.report(p, q.shadowed(), double(c.shadowed) / pairs);
 }
 
 }  // namespace tandem

@@ -25,16 +25,26 @@ struct WhittedParams {
 };
 const ParamTable<WhittedParams>& whittedTable();
 
+// The counters of the frame's shadow maps, reported by the pass that brings them up to date.
+struct ShadowMapCounters {
+  static constexpr const char* staticRedraws = "shadow_maps/static_redraws";
+  static constexpr const char* movingRedraws = "shadow_maps/moving_redraws";
+};
+
+// What a pass that shades with Whitted rays reports (its Pass::counters() includes these): the
+// shadow maps' redraws and its shadow queries ("<name>/shadow_traced", ...; reportShadows).
+std::vector<CounterDesc> whittedCounters(const Pass& pass);
+
 // The frame's shadow maps when `w` uses them (drawn or brought up to date here; a pass part
-// "shadow_maps" times that), else null.
-const ShadowMaps* shadowMapsFor(FrameContext& ctx, const WhittedParams& w);
+// "shadow_maps" times that, `pass` reports their counters), else null.
+const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w);
 
 // One frame of a pass that shades with Whitted rays: the shading context, the tracer with the
 // pass's settings and the frame's shadow maps, and the tally of its shadow queries. finish()
 // reports the shadow counters and every ray the pass traced (primary rays included).
 class WhittedFrame {
  public:
-  WhittedFrame(FrameContext& ctx, const WhittedParams& p);
+  WhittedFrame(FrameContext& ctx, const Pass& pass, const WhittedParams& p);
   WhittedFrame(const WhittedFrame&) = delete;  // the tracer points at the shading context
   WhittedFrame& operator=(const WhittedFrame&) = delete;
   // `pixels`: the pass's shaded pixels (the shadow counters are shares per pixel).

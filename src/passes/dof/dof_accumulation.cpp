@@ -10,28 +10,24 @@
 namespace tandem {
 
 std::vector<BufferSlot> DofAccumulationPass::inputs() const {
-  std::vector<BufferSlot> in = {
-      {"rt_near", dof::kLayerChannels, BufferKind::Color, Extent::any()},
-      {"rt_far", dof::kLayerChannels, BufferKind::Color, Extent::any()},
-      {"rt_hit", dof::kHitChannels, BufferKind::Mask, Extent::any()},
-      {"rt_far_position", dof::kFarPositionChannels, BufferKind::Position, Extent::any()},
-      {"motion", 2, BufferKind::Motion}};
-  for (const char* h : {"acc_near", "acc_far"}) {
-    BufferSlot s{h, 5, BufferKind::Color, Extent::any()};
+  std::vector<BufferSlot> in = {dof::layerSlot("rt_near"),
+                                dof::layerSlot("rt_far"),
+                                dof::hitSlot(),
+                                dof::farPositionSlot(),
+                                {"motion", 2, BufferKind::Motion}};
+  for (BufferSlot s : {dof::AccChannels::slot("acc_near"), dof::AccChannels::slot("acc_far"),
+                       dof::MomentChannels::slot()}) {
     s.history = true;
     in.push_back(s);
   }
-  BufferSlot moments{"acc_moments", 3, BufferKind::List, Extent::any()};
-  moments.history = true;
-  in.push_back(moments);
   return in;
 }
 
 std::vector<BufferSlot> DofAccumulationPass::outputs() const {
-  return {{"acc_near", 5, BufferKind::Color, Extent::any()},
-          {"acc_far", 5, BufferKind::Color, Extent::any()},
-          {"acc_moments", 3, BufferKind::List, Extent::any()},
-          {"rt_color", dof::RtChannels::kCount, BufferKind::Color, Extent::any()},
+  return {dof::AccChannels::slot("acc_near"),
+          dof::AccChannels::slot("acc_far"),
+          dof::MomentChannels::slot(),
+          dof::RtChannels::slot("rt_color"),
           {"dof_variance", 1, BufferKind::Variance, Extent::any()}};
 }
 
@@ -77,15 +73,13 @@ void reprojectFar(const Buffer& farPosIn, int x, int y, const View& view, float 
   Vec3 farP(0.0f);
   float farW = 0.0f;
   if (farPosIn.at(x, y)[dof::kFarPositionValid] > 0) {
-    const float* p = farPosIn.at(x, y);
-    farP = Vec3(p[0], p[1], p[2]);
+    farP = farPosIn.rgb(x, y);  // x, y, z
     farW = 1.0f;
   } else {
     for (int j = std::max(y - 1, 0); j <= std::min(y + 1, h - 1); ++j)
-      for (int i = std::max(x - 1, 0); i <= std::min(x + 1, w - 1); ++i) {
-        const float* p = farPosIn.at(i, j);
-        if (p[dof::kFarPositionValid] > 0) farP = farP + Vec3(p[0], p[1], p[2]), farW += 1.0f;
-      }
+      for (int i = std::max(x - 1, 0); i <= std::min(x + 1, w - 1); ++i)
+        if (farPosIn.at(i, j)[dof::kFarPositionValid] > 0)
+          farP = farP + farPosIn.rgb(i, j), farW += 1.0f;
     if (farW > 0) farP = farP * (1.0f / farW);
   }
   Vec2 prevPixel;
@@ -98,16 +92,25 @@ void reprojectFar(const Buffer& farPosIn, int x, int y, const View& view, float 
 // Temporal gradient: the change of luminance beyond two standard deviations of the samples'
 // noise, relative to the brighter of the two, raises the current weight.
 float adaptiveAlpha(float alpha, float lum, const float* hn, const float* hf, const float* hm) {
-  const float hsum = hn[3] + hf[3];
+  using A = dof::AccChannels;
+  using M = dof::MomentChannels;
+  const float hsum = hn[A::kShare] + hf[A::kShare];
   const float histLum =
-      hsum > 0 ? luminance(Vec3(hn[0] + hf[0], hn[1] + hf[1], hn[2] + hf[2])) / hsum : lum;
-  const float sigma = std::sqrt(std::max(hm[1] - hm[0] * hm[0], 0.0f));
+      hsum > 0 ? luminance(dof::rgbAt(hn, A::kRgb) + dof::rgbAt(hf, A::kRgb)) / hsum : lum;
+  const float sigma = std::sqrt(std::max(hm[M::kMeanSquare] - hm[M::kMean] * hm[M::kMean], 0.0f));
   const float lambda =
       dof::saturate((std::abs(lum - histLum) - 2.0f * sigma) / std::max({lum, histLum, 1e-3f}));
   return alpha + (1.0f - alpha) * lambda;
 }
 
 }  // namespace
+
+std::vector<CounterDesc> DofAccumulationPass::counters() const {
+  return {
+      {DofAccumulationCounters::meanVariance, "mean per-pixel variance of the accumulated image"},
+      {DofAccumulationCounters::varianceAbove1e6, "share of pixels whose variance exceeds 1e-6"},
+  };
+}
 
 void DofAccumulationPass::execute(FrameContext& ctx) {
   const Buffer& nearIn = ctx.input(*this, "rt_near");
@@ -143,7 +146,9 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       // Far: the mean far-field hit of the pixel's rays, else of its 3x3 neighbourhood's.
       float fxp = nx, fyp = ny;
       reprojectFar(farPosIn, x, y, view, scale, fxp, fyp);
-      float hn[5] = {}, hf[5] = {}, hm[3] = {};
+      using A = dof::AccChannels;
+      using M = dof::MomentChannels;
+      float hn[A::kCount] = {}, hf[A::kCount] = {}, hm[M::kCount] = {};
       const bool haveNear = history(prevNear, nx, ny, hn) && history(prevMoments, nx, ny, hm);
       const bool haveFar = history(prevFar, fxp, fyp, hf);
       const bool haveHistory = haveNear && haveFar;
@@ -152,8 +157,8 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       const float* cn = nearIn.at(x, y);
       const float* cf = farIn.at(x, y);
       // This frame's merged sample (the mean of its rays).
-      const float lum = luminance(lerp(Vec3(cf[0], cf[1], cf[2]), Vec3(cn[0], cn[1], cn[2]), hc));
-      float age = haveHistory ? hm[2] : 0.0f;
+      const float lum = luminance(lerp(dof::rgbAt(cf, 0), dof::rgbAt(cn, 0), hc));
+      float age = haveHistory ? hm[M::kFrames] : 0.0f;
       float alpha = rays > 0 ? std::max(minAlpha, 1.0f / (age + 1.0f)) : 0.0f;
       if (!haveHistory) {
         for (float& v : hn) v = 0.0f;
@@ -164,51 +169,56 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       } else if (adaptive && rays > 0) {
         alpha = adaptiveAlpha(alpha, lum, hn, hf, hm);
       }
-      const float curNear[5] = {hc * cn[0], hc * cn[1], hc * cn[2], hc, hc * cn[dof::kLayerCoc]};
+      // This frame's layers premultiplied by their shares (rt_near, rt_far: rgb then CoC).
+      float curNear[A::kCount], curFar[A::kCount];
       const float hf1 = 1.0f - hc;
-      const float curFar[5] = {hf1 * cf[0], hf1 * cf[1], hf1 * cf[2], hf1,
-                               hf1 * cf[dof::kLayerCoc]};
+      for (int k = 0; k < 3; ++k)
+        curNear[A::kRgb + k] = hc * cn[k], curFar[A::kRgb + k] = hf1 * cf[k];
+      curNear[A::kShare] = hc, curFar[A::kShare] = hf1;
+      curNear[A::kCoc] = hc * cn[dof::kLayerCoc], curFar[A::kCoc] = hf1 * cf[dof::kLayerCoc];
       float* an = accNear.at(x, y);
       float* af = accFar.at(x, y);
-      for (int c = 0; c < 5; ++c) {
+      for (int c = 0; c < A::kCount; ++c) {
         an[c] = hn[c] + (curNear[c] - hn[c]) * alpha;
         af[c] = hf[c] + (curFar[c] - hf[c]) * alpha;
       }
 
       // Merge: near and far normalised by their accumulated shares, then lerped by the hit
       // ratio (this frame's while the pixel moves).
-      const float H = an[3], F = af[3], total = H + F;
+      const float H = an[A::kShare], F = af[A::kShare], total = H + F;
       float* o = color.at(x, y);
       float* am = accMoments.at(x, y);
-      am[2] = std::min(age + (rays > 0 ? 1.0f : 0.0f), 1000.0f);
+      am[M::kFrames] = std::min(age + (rays > 0 ? 1.0f : 0.0f), 1000.0f);
       if (total <= 1e-6f) {
         for (int c = 0; c < dof::RtChannels::kCount; ++c) o[c] = 0.0f;
-        am[0] = am[1] = 0.0f;
+        am[M::kMean] = am[M::kMeanSquare] = 0.0f;
         continue;
       }
       const bool moving = view.cameraMoved || mv[0] * mv[0] + mv[1] * mv[1] > motionPx * motionPx;
       float hr = H / total;
       if (moving && rays > 0) hr = hc;
-      const Vec3 nearC = H > 1e-6f ? Vec3(an[0], an[1], an[2]) * (1.0f / H) : Vec3(0.0f);
-      const Vec3 farC = F > 1e-6f ? Vec3(af[0], af[1], af[2]) * (1.0f / F) : Vec3(0.0f);
-      const float nearCoc = H > 1e-6f ? an[4] / H : 0.0f, farCoc = F > 1e-6f ? af[4] / F : 0.0f;
+      const Vec3 nearC = H > 1e-6f ? dof::rgbAt(an, A::kRgb) * (1.0f / H) : Vec3(0.0f);
+      const Vec3 farC = F > 1e-6f ? dof::rgbAt(af, A::kRgb) * (1.0f / F) : Vec3(0.0f);
+      const float nearCoc = H > 1e-6f ? an[A::kCoc] / H : 0.0f;
+      const float farCoc = F > 1e-6f ? af[A::kCoc] / F : 0.0f;
       if (H <= 1e-6f) hr = 0.0f;
       if (F <= 1e-6f) hr = 1.0f;
       const Vec3 c = lerp(farC, nearC, hr);
-      o[0] = c.x, o[1] = c.y, o[2] = c.z;
+      using C = dof::RtChannels;
+      o[C::kRgb] = c.x, o[C::kRgb + 1] = c.y, o[C::kRgb + 2] = c.z;
       // Temporal moments of each frame's merged ray-traced luminance (Schied et al. 2017), and
       // from them the variance of the accumulated mean (the frames' variance over the number
       // the moving average effectively holds): large at new or changing content and at
       // unconverged bokeh, small where the accumulation has converged.
       if (rays > 0) {
-        am[0] = hm[0] + (lum - hm[0]) * alpha;
-        am[1] = hm[1] + (lum * lum - hm[1]) * alpha;
+        am[M::kMean] = hm[M::kMean] + (lum - hm[M::kMean]) * alpha;
+        am[M::kMeanSquare] = hm[M::kMeanSquare] + (lum * lum - hm[M::kMeanSquare]) * alpha;
       } else {
-        am[0] = hm[0], am[1] = hm[1];
+        am[M::kMean] = hm[M::kMean], am[M::kMeanSquare] = hm[M::kMeanSquare];
       }
-      const float frames = std::min(std::max(am[2], 1.0f), (2.0f - minAlpha) / minAlpha);
-      variance.at(x, y)[0] = std::max(am[1] - am[0] * am[0], 0.0f) / frames;
-      using C = dof::RtChannels;
+      const float frames = std::min(std::max(am[M::kFrames], 1.0f), (2.0f - minAlpha) / minAlpha);
+      variance.at(x, y)[0] =
+          std::max(am[M::kMeanSquare] - am[M::kMean] * am[M::kMean], 0.0f) / frames;
       o[C::kCoc] = farCoc + (nearCoc - farCoc) * hr;
       o[C::kHit] = hr;
       o[C::kCoverage] = 1.0f;
@@ -218,9 +228,9 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
   double mean = 0, above = 0;
   for (float v : variance.data) mean += v, above += v > 1e-6f;
   const double n = double(std::max<size_t>(1, variance.data.size()));
-  ctx.counters["dof_accumulation/mean_variance"] = mean / n;
+  ctx.report(*this, DofAccumulationCounters::meanVariance, mean / n);
   // Share of pixels whose variance alone adds a ray at m = 10 with the paper's weight 1e5.
-  ctx.counters["dof_accumulation/variance_above_1e-6"] = above / n;
+  ctx.report(*this, DofAccumulationCounters::varianceAbove1e6, above / n);
   Buffer& varOut = ctx.output(*this, "dof_variance", w, h);
   varOut.data = gaussianBlur(variance, settings().varianceBlur).data;
 }

@@ -29,6 +29,12 @@ struct DofAccumulationSettings {
   float varianceBlur = 1;
 };
 
+// The counters DofAccumulationPass reports each frame (Pass::counters, FrameContext::report).
+struct DofAccumulationCounters {
+  static constexpr const char* meanVariance = "dof_accumulation/mean_variance";
+  static constexpr const char* varianceAbove1e6 = "dof_accumulation/variance_above_1e-6";
+};
+
 class DofAccumulationPass : public SettingsPass<DofAccumulationSettings> {
  public:
   std::string type() const override { return "dof_accumulation"; }
@@ -40,6 +46,7 @@ class DofAccumulationPass : public SettingsPass<DofAccumulationSettings> {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<DofAccumulationSettings>& tableFor() const override;

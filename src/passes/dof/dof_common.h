@@ -19,19 +19,54 @@ constexpr float kZoneOfFocusCoc = 1.41421356f;  // √2 px: one sensor cell's di
 // samples divide by it) and the near field's own colour.
 struct RtChannels {
   static constexpr int kRgb = 0, kCoc = 3, kHit = 4, kCoverage = 5, kNear = 6, kCount = 9;
+  static BufferSlot slot(std::string name) {
+    return BufferSlot{std::move(name), 0, BufferKind::Color, Extent::any()}.named(
+        {"r", "g", "b", "coc", "hit", "coverage", "near_r", "near_g", "near_b"});
+  }
 };
 
 // The channels rt_dof writes and dof_accumulation reads: rt_near and rt_far hold a layer's mean
 // colour and CoC; rt_hit the near share of the pixel's rays and how many there were;
 // rt_far_position the mean far hit and whether any ray hit the far field.
 constexpr int kLayerCoc = 3, kLayerChannels = 4;
+inline BufferSlot layerSlot(std::string name) {
+  return BufferSlot{std::move(name), 0, BufferKind::Color, Extent::any()}.named(
+      {"r", "g", "b", "coc"});
+}
+constexpr int kHitNearShare = 0, kHitRays = 1, kHitChannels = 2;
+inline BufferSlot hitSlot() {
+  return BufferSlot{"rt_hit", 0, BufferKind::Mask, Extent::any()}.named({"near_share", "rays"});
+}
+constexpr int kFarPositionValid = 3, kFarPositionChannels = 4;
+inline BufferSlot farPositionSlot() {
+  return BufferSlot{"rt_far_position", 0, BufferKind::Position, Extent::any()}.named(
+      {"x", "y", "z", "valid"});
+}
+// dof_accumulation's histories: acc_near and acc_far hold a layer's colour and CoC premultiplied
+// by its share of the rays, and that share; acc_moments the temporal moments of the merged
+// luminance and the frames they average.
+struct AccChannels {
+  static constexpr int kRgb = 0, kShare = 3, kCoc = 4, kCount = 5;
+  static BufferSlot slot(std::string name) {
+    return BufferSlot{std::move(name), 0, BufferKind::Color, Extent::any()}.named(
+        {"r", "g", "b", "share", "coc"});
+  }
+};
+struct MomentChannels {
+  static constexpr int kMean = 0, kMeanSquare = 1, kFrames = 2, kCount = 3;
+  static BufferSlot slot() {
+    return BufferSlot{"acc_moments", 0, BufferKind::List, Extent::any()}.named(
+        {"mean", "mean_square", "frames"});
+  }
+};
 // The channels of postfx_dof's bokeh buffer: the bokeh intensity (the share of reaching taps
 // that are highlights) and the share of the gather's weight from foreground taps.
 struct BokehChannels {
   static constexpr int kIntensity = 0, kForeground = 1, kCount = 2;
+  static BufferSlot slot() {
+    return BufferSlot{"bokeh", 0, BufferKind::Mask}.named({"intensity", "foreground"});
+  }
 };
-constexpr int kHitNearShare = 0, kHitRays = 1, kHitChannels = 2;
-constexpr int kFarPositionValid = 3, kFarPositionChannels = 4;
 
 // `fine_coc`, declared by dof_composite (below this |CoC| in frame pixels it gathers the sharp
 // image at full resolution) and by ray_mask (which then traces no rays there): one range and
@@ -43,6 +78,11 @@ inline ParamDesc fineCocParam(std::string doc) {
 
 // A hit ratio or foreground share below this is no silhouette (the noise floor of a few rays).
 constexpr float kSilhouette = 0.02f;
+
+// Three consecutive channels from `offset` of a pixel (an rgb or xyz group) as a vector.
+inline Vec3 rgbAt(const float* pixel, int offset) {
+  return Vec3(pixel[offset], pixel[offset + 1], pixel[offset + 2]);
+}
 
 inline float saturate(float x) {
   return std::clamp(x, 0.0f, 1.0f);

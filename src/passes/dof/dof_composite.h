@@ -46,8 +46,8 @@ class DofCompositePass : public SettingsPass<DofCompositeSettings> {
            "bokeh, far field by hit ratio (Tan et al. 2022 §3.3, eq. 7)";
   }
   std::vector<BufferSlot> inputs() const override {
-    BufferSlot rt{"rt_recon", dof::RtChannels::kCount, BufferKind::Color, Extent::any()};
-    BufferSlot postfx{"postfx", 3}, bokeh{"bokeh", dof::BokehChannels::kCount, BufferKind::Mask};
+    BufferSlot rt = dof::RtChannels::slot("rt_recon");
+    BufferSlot postfx{"postfx", 3}, bokeh = dof::BokehChannels::slot();
     rt.optional = postfx.optional = bokeh.optional = true;
     return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, postfx, bokeh, rt};
   }

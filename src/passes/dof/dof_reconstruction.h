@@ -26,12 +26,10 @@ class DofReconstructionPass : public SettingsPass<DofReconstructionSettings> {
            "§3.2.4)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"rt_color", dof::RtChannels::kCount, BufferKind::Color, Extent::any()},
+    return {dof::RtChannels::slot("rt_color"),
             {"dof_variance", 1, BufferKind::Variance, Extent::any()}};
   }
-  std::vector<BufferSlot> outputs() const override {
-    return {{"rt_recon", dof::RtChannels::kCount, BufferKind::Color, Extent::any()}};
-  }
+  std::vector<BufferSlot> outputs() const override { return {dof::RtChannels::slot("rt_recon")}; }
   void execute(FrameContext& ctx) override;
 
  protected:

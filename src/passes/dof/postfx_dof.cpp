@@ -105,7 +105,7 @@ HalfGrid downsample(const Buffer& hdr, const Buffer& cocIn, const Buffer& specIn
           const int sx = std::min(2 * x + i, W - 1), sy = std::min(2 * y + j, H - 1);
           cmin = std::min(cmin, cocIn.at(sx, sy)[0]);
           // A bright specular highlight: a specular surface, and brighter than white.
-          const float* s = specIn.at(sx, sy);
+          const float* s = specIn.at(sx, sy) + SpecularChannels::kRgb;
           if (luminance(Vec3(s[0], s[1], s[2])) >= specThreshold &&
               luminance(hdr.rgb(sx, sy)) >= bokehLuminance)
             highlight = 1.0f;

@@ -21,6 +21,7 @@
 #pragma once
 #include "passes/dof/dof_common.h"
 #include "pipeline/param_table.h"
+#include "shading/gbuffer_layout.h"
 
 namespace tandem {
 
@@ -40,10 +41,10 @@ class PostfxDofPass : public SettingsPass<PostfxDofSettings> {
            "(eq. 1), bokeh intensity, 3x3 median (Tan et al. 2022 §3.1)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, {"specular", 4, BufferKind::Material}};
+    return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, gbufferSlot("specular")};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"postfx", 3}, {"bokeh", dof::BokehChannels::kCount, BufferKind::Mask}};
+    return {{"postfx", 3}, dof::BokehChannels::slot()};
   }
   void execute(FrameContext& ctx) override;
 

@@ -14,7 +14,7 @@ namespace tandem {
 std::vector<BufferSlot> RayMaskPass::inputs() const {
   BufferSlot variance{"dof_variance", 1, BufferKind::Variance, Extent::any()};
   variance.history = true;
-  BufferSlot bokeh{"bokeh", dof::BokehChannels::kCount, BufferKind::Mask};
+  BufferSlot bokeh = dof::BokehChannels::slot();
   bokeh.optional = true;
   return {{"position", 3, BufferKind::Position},
           {"normal", 3, BufferKind::Normal},
@@ -131,6 +131,13 @@ class NearDilation {
 
 }  // namespace
 
+std::vector<CounterDesc> RayMaskPass::counters() const {
+  return {
+      {RayMaskCounters::raysPerPixel, "lens rays per pixel, averaged over the frame"},
+      {RayMaskCounters::maskedShare, "share of pixels that get lens rays"},
+  };
+}
+
 void RayMaskPass::execute(FrameContext& ctx) {
   const Buffer& position = ctx.input(*this, "position");
   const Buffer& normal = ctx.input(*this, "normal");
@@ -200,8 +207,8 @@ void RayMaskPass::execute(FrameContext& ctx) {
   });
   double total = 0, masked = 0;
   for (size_t i = 0; i < mask.pixelCount(); ++i) total += mask.data[i], masked += mask.data[i] > 0;
-  ctx.counters["ray_mask/rays_per_pixel"] = total / double(mask.pixelCount());
-  ctx.counters["ray_mask/masked_share"] = masked / double(mask.pixelCount());
+  ctx.report(*this, RayMaskCounters::raysPerPixel, total / double(mask.pixelCount()));
+  ctx.report(*this, RayMaskCounters::maskedShare, masked / double(mask.pixelCount()));
 }
 
 }  // namespace tandem

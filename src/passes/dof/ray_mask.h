@@ -33,6 +33,12 @@ struct RayMaskSettings {
   Resolution resolution = Resolution::Half;
 };
 
+// The counters RayMaskPass reports each frame (Pass::counters, FrameContext::report).
+struct RayMaskCounters {
+  static constexpr const char* raysPerPixel = "ray_mask/rays_per_pixel";
+  static constexpr const char* maskedShare = "ray_mask/masked_share";
+};
+
 class RayMaskPass : public SettingsPass<RayMaskSettings> {
  public:
   std::string type() const override { return "ray_mask"; }
@@ -45,6 +51,7 @@ class RayMaskPass : public SettingsPass<RayMaskSettings> {
     return {{"ray_mask", 1, BufferKind::Count, Extent::any()}};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<RayMaskSettings>& tableFor() const override;

@@ -183,6 +183,16 @@ void writePixel(const PixelSums& p, int x, int y, Buffer& nearOut, Buffer& farOu
 
 }  // namespace
 
+std::vector<CounterDesc> RTDofPass::counters() const {
+  std::vector<CounterDesc> c = whittedCounters(*this);
+  c.insert(c.end(), {
+                        {RTDofCounters::lensRays, "lens rays traced (the ray mask summed)"},
+                        {RTDofCounters::reusedShare,
+                         "share of lens rays that took the sharp image's colour (reuse_raster)"},
+                    });
+  return c;
+}
+
 void RTDofPass::execute(FrameContext& ctx) {
   const Buffer& mask = ctx.input(*this, "ray_mask");
   const int w = mask.width, h = mask.height;
@@ -196,7 +206,7 @@ void RTDofPass::execute(FrameContext& ctx) {
   std::vector<Camera> cams;
   for (const View& v : ctx.views) cams.push_back(v.camera);
   const float scale = float(ctx.width) / float(w);  // frame pixels per mask pixel
-  WhittedFrame wf(ctx, settings().whitted);
+  WhittedFrame wf(ctx, *this, settings().whitted);
   const ThinLens lens = ThinLens::of(cams.front());  // the same lens in every view
   const float nearT = cams.front().desc.nearPlane;
   const Buffer* sharp = ctx.optionalInput(*this, "hdr");
@@ -232,9 +242,10 @@ void RTDofPass::execute(FrameContext& ctx) {
   wf.finish(ctx, *this, double(w) * double(h));
   double lensRays = 0;
   for (size_t i = 0; i < mask.pixelCount(); ++i) lensRays += mask.data[i];
-  ctx.counters["rt_dof/lens_rays"] = lensRays;
+  ctx.report(*this, RTDofCounters::lensRays, lensRays);
   // Share of lens rays that took the sharp image's colour (reuse_raster) instead of shading.
-  ctx.counters["rt_dof/reused_share"] = lensRays > 0 ? double(reusedTotal.load()) / lensRays : 0.0;
+  ctx.report(*this, RTDofCounters::reusedShare,
+             lensRays > 0 ? double(reusedTotal.load()) / lensRays : 0.0);
 }
 
 }  // namespace tandem

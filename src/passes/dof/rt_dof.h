@@ -21,6 +21,12 @@ struct RTDofSettings {
   bool reuseRaster = false;
 };
 
+// The counters RTDofPass reports each frame (Pass::counters, FrameContext::report).
+struct RTDofCounters {
+  static constexpr const char* lensRays = "rt_dof/lens_rays";
+  static constexpr const char* reusedShare = "rt_dof/reused_share";
+};
+
 class RTDofPass : public SettingsPass<RTDofSettings> {
  public:
   std::string type() const override { return "rt_dof"; }
@@ -35,12 +41,11 @@ class RTDofPass : public SettingsPass<RTDofSettings> {
     return {{"ray_mask", 1, BufferKind::Count, Extent::any()}, sharp, depth};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"rt_near", dof::kLayerChannels, BufferKind::Color, Extent::any()},
-            {"rt_far", dof::kLayerChannels, BufferKind::Color, Extent::any()},
-            {"rt_hit", dof::kHitChannels, BufferKind::Mask, Extent::any()},
-            {"rt_far_position", dof::kFarPositionChannels, BufferKind::Position, Extent::any()}};
+    return {dof::layerSlot("rt_near"), dof::layerSlot("rt_far"), dof::hitSlot(),
+            dof::farPositionSlot()};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<RTDofSettings>& tableFor() const override;

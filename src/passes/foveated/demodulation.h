@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "core/buffer.h"
+#include "shading/gbuffer_layout.h"
 
 namespace tandem {
 
@@ -16,7 +17,7 @@ struct Demodulation {
   bool enabled = true;
 
   float albedo(int x, int y, int k) const {
-    const float a = diffuse.at(x, y)[k];
+    const float a = diffuse.at(x, y)[DiffuseChannels::kRgb + k];
     return enabled && depth.at(x, y)[0] > 0 && a > 0.01f ? std::min(a, 1.0f) : 1.0f;
   }
   float emitted(int x, int y, int k) const {

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "core/profiler.h"
+#include "passes/foveated/foveation.h"
 #include "passes/foveated/primary_surface.h"
 #include "pipeline/frame_context.h"
 #include "rt/diffuse_gi.h"
@@ -17,7 +18,7 @@ namespace tandem {
 
 std::vector<BufferSlot> FoveatedPTPass::inputs() const {
   std::vector<BufferSlot> slots = PrimarySurfaces::slots();
-  slots.push_back({"fov_coords", 3, BufferKind::List, Extent::any()});
+  slots.push_back(CoordChannels::slot());
   return slots;
 }
 
@@ -29,6 +30,14 @@ const ParamTable<FoveatedPTSettings>& FoveatedPTPass::tableFor() const {
                                   "irradiance where the path is",
                            .choices = {"uniform", "grid"}});
   return table;
+}
+
+std::vector<CounterDesc> FoveatedPTPass::counters() const {
+  return {
+      {FoveatedPTCounters::lightGridBuilt, "1 on a frame that built the light grid"},
+      {FoveatedPTCounters::lightGridProbeRays, "rays the light grid's build traced"},
+      {FoveatedPTCounters::samples, "path samples traced"},
+  };
 }
 
 void FoveatedPTPass::execute(FrameContext& ctx) {
@@ -53,8 +62,8 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
       grid_ = std::make_unique<LightGrid>(DiffuseGI::buildGrid(*ctx.scene, shading, &rt));
       gridKey_ = key;
       gridScene_ = ctx.scene;
-      ctx.counters["foveated_pt/light_grid_built"] = 1;
-      ctx.counters["foveated_pt/light_grid_probe_rays"] = double(grid_->probeRays());
+      ctx.report(*this, FoveatedPTCounters::lightGridBuilt, 1);
+      ctx.report(*this, FoveatedPTCounters::lightGridProbeRays, double(grid_->probeRays()));
       ctx.passParts.push_back({"light_grid", msSince(t0), 0});
     }
     grid = grid_.get();
@@ -70,7 +79,8 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
     for (size_t k = range.begin(); k != range.end(); ++k) {
       const View& v = ctx.views[k / listed];
       const float* c = coords.at(int(k % listed), 0);
-      const int ex = int(c[0]), ey = int(c[1]), spp = int(c[2]);
+      using K = CoordChannels;
+      const int ex = int(c[K::kX]), ey = int(c[K::kY]), spp = int(c[K::kSpp]);
       if (ex >= v.width() || ey >= v.height()) continue;
       const int x = ex + v.x, y = ey + v.y;
       Vec3 sum(0.0f);
@@ -104,7 +114,7 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
     samples += localSamples;
   });
   ctx.passRays += double(rays.load());
-  ctx.counters["foveated_pt/samples"] = double(samples.load());
+  ctx.report(*this, FoveatedPTCounters::samples, double(samples.load()));
 }
 
 }  // namespace tandem

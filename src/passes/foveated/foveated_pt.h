@@ -23,6 +23,13 @@ struct FoveatedPTSettings {
   LightSelection lightSelection = LightSelection::Grid;
 };
 
+// The counters FoveatedPTPass reports each frame (Pass::counters, FrameContext::report).
+struct FoveatedPTCounters {
+  static constexpr const char* lightGridBuilt = "foveated_pt/light_grid_built";
+  static constexpr const char* lightGridProbeRays = "foveated_pt/light_grid_probe_rays";
+  static constexpr const char* samples = "foveated_pt/samples";
+};
+
 class FoveatedPTPass : public SettingsPass<FoveatedPTSettings> {
  public:
   std::string type() const override { return "foveated_pt"; }
@@ -34,6 +41,7 @@ class FoveatedPTPass : public SettingsPass<FoveatedPTSettings> {
     return {{"pt_noisy", 3, BufferKind::Color}, {"pt_variance", 1, BufferKind::Variance}};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<FoveatedPTSettings>& tableFor() const override;

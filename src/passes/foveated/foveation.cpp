@@ -77,6 +77,14 @@ FoveationDesc FoveationPass::desc(int width, int height) const {
   return d;
 }
 
+std::vector<CounterDesc> FoveationPass::counters() const {
+  return {
+      {FoveationCounters::recomputed, "1 when the sample distribution was recomputed this frame"},
+      {FoveationCounters::listed, "pixels listed for sampling, all views"},
+      {FoveationCounters::samples, "samples the distribution asks for, all views"},
+  };
+}
+
 void FoveationPass::execute(FrameContext& ctx) {
   const View& eye = ctx.views.front();
   FoveationDesc d = desc(eye.width(), eye.height());
@@ -94,9 +102,10 @@ void FoveationPass::execute(FrameContext& ctx) {
     valid_ = true;
     ctx.passParts.push_back({"distribution", msSince(t0), 0});
   }
-  ctx.counters["foveation/recomputed"] = rebuild ? 1 : 0;
-  ctx.counters["foveation/listed"] = double(map_.coords.size() * ctx.views.size());
-  ctx.counters["foveation/samples"] = double(map_.totalSamples() * int64_t(ctx.views.size()));
+  ctx.report(*this, FoveationCounters::recomputed, rebuild ? 1 : 0);
+  ctx.report(*this, FoveationCounters::listed, double(map_.coords.size() * ctx.views.size()));
+  ctx.report(*this, FoveationCounters::samples,
+             double(map_.totalSamples() * int64_t(ctx.views.size())));
   Buffer& coords = ctx.output(*this, "fov_coords", int(map_.coords.size()), 1);
   Buffer& mask = ctx.output(*this, "fov_mask");
   Buffer& layer = ctx.output(*this, "fov_layer");
@@ -104,9 +113,9 @@ void FoveationPass::execute(FrameContext& ctx) {
   for (size_t i = 0; i < map_.coords.size(); ++i) {
     const uint32_t px = map_.coords[i];
     float* c = coords.at(int(i), 0);
-    c[0] = float(px % uint32_t(map_.width));
-    c[1] = float(px / uint32_t(map_.width));
-    c[2] = float(map_.spp[px]);
+    c[CoordChannels::kX] = float(px % uint32_t(map_.width));
+    c[CoordChannels::kY] = float(px / uint32_t(map_.width));
+    c[CoordChannels::kSpp] = float(map_.spp[px]);
   }
   mask.fill(0.0f);
   layer.fill(2.0f);

@@ -26,6 +26,22 @@ struct FoveationSettings {
   int seed = 0;
 };
 
+// The channels of fov_coords, one record per listed pixel: its coordinates in the eye's image and
+// the samples it takes.
+struct CoordChannels {
+  static constexpr int kX = 0, kY = 1, kSpp = 2, kCount = 3;
+  static BufferSlot slot() {
+    return BufferSlot{"fov_coords", 0, BufferKind::List, Extent::any()}.named({"x", "y", "spp"});
+  }
+};
+
+// The counters FoveationPass reports each frame (Pass::counters, FrameContext::report).
+struct FoveationCounters {
+  static constexpr const char* recomputed = "foveation/recomputed";
+  static constexpr const char* listed = "foveation/listed";
+  static constexpr const char* samples = "foveation/samples";
+};
+
 class FoveationPass : public SettingsPass<FoveationSettings> {
  public:
   std::string type() const override { return "foveation"; }
@@ -34,11 +50,11 @@ class FoveationPass : public SettingsPass<FoveationSettings> {
            "§4.2)";
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"fov_coords", 3, BufferKind::List, Extent::any()},
-            {"fov_mask", 1, BufferKind::Mask},
-            {"fov_layer", 1, BufferKind::Id}};
+    return {
+        CoordChannels::slot(), {"fov_mask", 1, BufferKind::Mask}, {"fov_layer", 1, BufferKind::Id}};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
   // The distribution the parameters describe for an eye of width x height (what execute uses).
   FoveationDesc desc(int width, int height) const;
   const FoveationMap& map() const { return map_; }

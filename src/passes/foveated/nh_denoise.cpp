@@ -11,6 +11,7 @@
 #include "passes/foveated/atrous.h"
 #include "passes/foveated/demodulation.h"
 #include "pipeline/frame_context.h"
+#include "shading/gbuffer_layout.h"
 
 namespace tandem {
 
@@ -223,7 +224,7 @@ std::vector<BufferSlot> NHDenoisePass::inputs() const {
           {"normal", 3, BufferKind::Normal},
           {"position", 3, BufferKind::Position},
           {"depth", 1, BufferKind::Depth},
-          {"diffuse", 4, BufferKind::Material},
+          gbufferSlot("diffuse"),
           {"emission", 3, BufferKind::Color},
           {"fov_mask", 1, BufferKind::Mask},
           {"fov_layer", 1, BufferKind::Id},
@@ -293,6 +294,16 @@ const ParamTable<NHDenoiseSettings>& NHDenoisePass::tableFor() const {
                        "pt_direct and add pt_direct back (beyond the thesis; needs direct_light)",
                 .choices = {"none", "direct"}});
   return table;
+}
+
+std::vector<CounterDesc> NHDenoisePass::counters() const {
+  std::vector<CounterDesc> c{
+      {NHDenoiseCounters::levelsRun, "À-Trous levels run (the deepest region's)"}};
+  for (int r = 0; r < NHDenoiseCounters::kMaxRegions; ++r)
+    c.push_back(
+        {NHDenoiseCounters::levelsRegion(r),
+         "levels region " + std::to_string(r) + " chose from its noise (levels_from = variance)"});
+  return c;
 }
 
 void NHDenoisePass::execute(FrameContext& ctx) {
@@ -392,7 +403,7 @@ void NHDenoisePass::execute(FrameContext& ctx) {
       const double perArea = noise.variance / (double(mean) * mean) / std::max(noise.density, 1e-3);
       regions[r].levels = std::clamp(
           int(std::ceil(std::log(std::max(perArea / target, 1.0)) / std::log(4.0))), 1, 10);
-      ctx.counters["nh_denoise/levels_region" + std::to_string(r)] = regions[r].levels;
+      ctx.report(*this, NHDenoiseCounters::levelsRegion(int(r)), regions[r].levels);
     }
   }
   ctx.passParts.push_back({"setup", msSince(t0), 0});
@@ -411,7 +422,7 @@ void NHDenoisePass::execute(FrameContext& ctx) {
                      : dm.colour(img.c[k][i], x, y, k);
       }
     });
-  ctx.counters["nh_denoise/levels_run"] = double(steps_.size());
+  ctx.report(*this, NHDenoiseCounters::levelsRun, double(steps_.size()));
 }
 
 }  // namespace tandem

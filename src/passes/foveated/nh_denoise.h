@@ -41,6 +41,14 @@ struct NHDenoiseSettings {
   Split split = Split::Direct;
 };
 
+// The counters NHDenoisePass reports each frame.
+struct NHDenoiseCounters {
+  static constexpr const char* levelsRun = "nh_denoise/levels_run";
+  static constexpr int kMaxRegions = 3;
+  // Levels chosen for region r (levels_from = variance).
+  static std::string levelsRegion(int r) { return "nh_denoise/levels_region" + std::to_string(r); }
+};
+
 class NHDenoisePass : public SettingsPass<NHDenoiseSettings> {
  public:
   std::string type() const override { return "nh_denoise"; }
@@ -50,6 +58,7 @@ class NHDenoisePass : public SettingsPass<NHDenoiseSettings> {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{"denoised", 3, BufferKind::Color}}; }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
   // The (region, step width) of every level the last frame ran, in order (Algorithm 1).
   const std::vector<std::pair<int, int>>& lastSteps() const { return steps_; }
 

@@ -7,6 +7,7 @@
 #include "passes/foveated/demodulation.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/view_tiles.h"
+#include "shading/gbuffer_layout.h"
 
 namespace tandem {
 
@@ -21,7 +22,7 @@ void setVec3At(float* px, int c, Vec3 v) {
 }  // namespace
 
 std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
-  BufferSlot history{"pt_history", HistoryChannels::kCount, BufferKind::List};
+  BufferSlot history = HistoryChannels::slot();
   history.history = true;
   BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
   variance.optional = true;
@@ -32,7 +33,7 @@ std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
           {"position", 3, BufferKind::Position},
           {"normal", 3, BufferKind::Normal},
           {"depth", 1, BufferKind::Depth},
-          {"diffuse", 4, BufferKind::Material},
+          gbufferSlot("diffuse"),
           {"emission", 3, BufferKind::Color},
           variance,
           history};
@@ -71,6 +72,12 @@ const ParamTable<PeripheryAccumulationSettings>& PeripheryAccumulationPass::tabl
   return table;
 }
 
+std::vector<CounterDesc> PeripheryAccumulationPass::counters() const {
+  return {
+      {PeripheryAccumulationCounters::meanFrames, "mean frames accumulated per pixel with history"},
+  };
+}
+
 void PeripheryAccumulationPass::execute(FrameContext& ctx) {
   const Buffer& noisy = ctx.input(*this, "pt_noisy");
   const Buffer& mask = ctx.input(*this, "fov_mask");
@@ -104,6 +111,9 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
     // motion (< 1/2 px per frame) away every frame and let the history lag behind; the normal
     // keeps a lit face from bleeding into a shaded one across a crease, which positions within
     // the tolerance would allow.
+    // out: illumination rgb and frames, in pt_history's order from kIllumination.
+    static_assert(H::kFrames == H::kIllumination + 3);
+    constexpr int kOutFrames = H::kFrames - H::kIllumination;
     auto reproject = [&](int x, int y, Vec3 p, Vec3 nrm, float out[4]) {
       const float* mv = motion.at(x, y);
       const float bx = float(x) - mv[0], by = float(y) - mv[1];  // in pixel indices
@@ -148,7 +158,7 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
         // In illumination units (texture is this frame's): this frame's sample where listed,
         // else the history alone (an unlisted pixel keeps what the surface had).
         Vec3 result = Vec3(hist[0], hist[1], hist[2]);
-        float n = hist[3];
+        float n = hist[kOutFrames];
         if (listed) {
           const Vec3 c = noisy.rgb(x, y);
           result = Vec3(dm.illumination(c.x, x, y, 0), dm.illumination(c.y, x, y, 1),
@@ -156,9 +166,9 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
           n = 1.0f;
         }
         if (listed && reprojected) {
-          const float alpha = std::max(1.0f / (hist[3] + 1.0f), alphaMin);
+          const float alpha = std::max(1.0f / (hist[kOutFrames] + 1.0f), alphaMin);
           result = Vec3(hist[0], hist[1], hist[2]) * (1.0f - alpha) + result * alpha;
-          n = std::min(hist[3] + 1.0f, cap);
+          n = std::min(hist[kOutFrames] + 1.0f, cap);
         }
         for (int k = 0; k < 3; ++k) out[k] = dm.colour(result[k], x, y, k);
         accumMask.at(x, y)[0] = 1.0f;
@@ -175,8 +185,8 @@ void PeripheryAccumulationPass::execute(FrameContext& ctx) {
     historyPixels += tilePixels;
   });
   const double count = historyPixels.load();
-  ctx.counters["periphery_accumulation/mean_frames"] =
-      count > 0 ? historyFrames.load() / count : 0.0;
+  ctx.report(*this, PeripheryAccumulationCounters::meanFrames,
+             count > 0 ? historyFrames.load() / count : 0.0);
 }
 
 }  // namespace tandem

@@ -24,6 +24,10 @@ namespace tandem {
 // it averages, and the world position and normal of the surface it belongs to.
 struct HistoryChannels {
   static constexpr int kIllumination = 0, kFrames = 3, kPosition = 4, kNormal = 7, kCount = 10;
+  static BufferSlot slot() {
+    return BufferSlot{"pt_history", 0, BufferKind::List}.named(
+        {"r", "g", "b", "frames", "x", "y", "z", "nx", "ny", "nz"});
+  }
 };
 
 struct PeripheryAccumulationSettings {
@@ -33,6 +37,11 @@ struct PeripheryAccumulationSettings {
   float normalTolerance = 25;  // degrees
   bool demodulate = true;
   bool fillUnlisted = true;
+};
+
+// The counters PeripheryAccumulationPass reports each frame (Pass::counters, FrameContext::report).
+struct PeripheryAccumulationCounters {
+  static constexpr const char* meanFrames = "periphery_accumulation/mean_frames";
 };
 
 class PeripheryAccumulationPass : public SettingsPass<PeripheryAccumulationSettings> {
@@ -46,9 +55,10 @@ class PeripheryAccumulationPass : public SettingsPass<PeripheryAccumulationSetti
     return {{"pt_accum", 3, BufferKind::Color},
             {"pt_accum_variance", 1, BufferKind::Variance},
             {"pt_accum_mask", 1, BufferKind::Mask},
-            {"pt_history", HistoryChannels::kCount, BufferKind::List}};
+            HistoryChannels::slot()};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<PeripheryAccumulationSettings>& tableFor() const override;

@@ -6,6 +6,7 @@
 
 #include "pipeline/frame_context.h"
 #include "pipeline/pass.h"
+#include "shading/gbuffer_layout.h"
 #include "shading/surface.h"
 
 namespace tandem {
@@ -16,7 +17,7 @@ struct PrimarySurfaces {
   // The G-buffer slots read (position, normal, geo_normal, diffuse, emission, depth).
   static std::vector<BufferSlot> slots() {
     return {{"position", 3, BufferKind::Position}, {"normal", 3, BufferKind::Normal},
-            {"geo_normal", 3, BufferKind::Normal}, {"diffuse", 4, BufferKind::Material},
+            {"geo_normal", 3, BufferKind::Normal}, gbufferSlot("diffuse"),
             {"emission", 3, BufferKind::Color},    {"depth", 1, BufferKind::Depth}};
   }
   static PrimarySurfaces of(const FrameContext& ctx, const Pass& pass) {
@@ -29,7 +30,8 @@ struct PrimarySurfaces {
     s.position = position.rgb(x, y);
     s.normal = normal.rgb(x, y);
     s.geoNormal = geoNormal.rgb(x, y);
-    s.diffuse = Vec3(diffuse.at(x, y)[0], diffuse.at(x, y)[1], diffuse.at(x, y)[2]);
+    const float* a = diffuse.at(x, y) + DiffuseChannels::kRgb;
+    s.diffuse = Vec3(a[0], a[1], a[2]);
     s.emission = emission.rgb(x, y);
     return s;
   }

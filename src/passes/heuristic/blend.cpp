@@ -31,8 +31,8 @@ void BlendPass::execute(FrameContext& ctx) {
         // taken as 0), as for an unselected object, unless a fallback stands in for it.
         const float* op = optical.at(x, y);
         const bool traceM = m[kReflection] > 0.5f, traceR = m[kRefraction] > 0.5f;
-        const float om = traceM || hasFallback ? op[0] : 0.0f;
-        const float orr = traceR || hasFallback ? 1.0f - op[2] : 0.0f;
+        const float om = traceM || hasFallback ? op[OpticalChannels::kReflectivity] : 0.0f;
+        const float orr = traceR || hasFallback ? 1.0f - op[OpticalChannels::kOpacity] : 0.0f;
         const Vec3 refl = traceM        ? M.rgb(x, y)
                           : hasFallback ? loadVec3(fb + fallback::kReflection)
                                         : Vec3(0.0f);

@@ -7,6 +7,7 @@
 #pragma once
 #include "passes/heuristic/effect_channels.h"
 #include "pipeline/pass.h"
+#include "shading/gbuffer_layout.h"
 
 namespace tandem {
 
@@ -17,16 +18,20 @@ class BlendPass : public Pass {
     return "Combine lighting with ray-traced effects (eq. 4-6)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"hdr", 3},
-            {"shadow", 3},
-            {"reflection", 3},
-            {"refraction", 3},
-            {"optical", 3, BufferKind::Material},
-            {"heuristic_mask", kEffectCount, BufferKind::Mask},
-            {.slot = "fallback", .channels = fallback::kChannels, .optional = true}};
+    return {
+        {"hdr", 3},        {"shadow", 3},          {"reflection", 3},
+        {"refraction", 3}, gbufferSlot("optical"), effectSlot("heuristic_mask", BufferKind::Mask),
+        optionalFallback()};
   }
   std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
   void execute(FrameContext& ctx) override;
+
+ private:
+  static BufferSlot optionalFallback() {
+    BufferSlot s = fallback::slot();
+    s.optional = true;
+    return s;
+  }
 };
 
 }  // namespace tandem

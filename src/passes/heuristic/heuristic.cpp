@@ -395,6 +395,19 @@ void HeuristicPass::writeMask(const FrameContext& ctx, const Buffer& ids,
       1 << 14);
 }
 
+std::vector<CounterDesc> HeuristicPass::counters() const {
+  return {
+      {HeuristicCounters::selected, "nodes chosen for ray tracing this frame"},
+      {HeuristicCounters::nodes,
+       "candidate nodes (objects, or object-effect pairs with per_effect)"},
+      {HeuristicCounters::visibleObjects, "objects evaluated (visible in some view)"},
+      {HeuristicCounters::budget, "the ray budget the selection filled"},
+      {HeuristicCounters::selectedCost, "estimated cost of the selected nodes"},
+      {HeuristicCounters::partialFraction,
+       "share of the partially selected node that is traced (0 when none)"},
+  };
+}
+
 void HeuristicPass::execute(FrameContext& ctx) {
   const HeuristicSettings& s = settings();
   const Scene& scene = *ctx.scene;
@@ -434,12 +447,12 @@ void HeuristicPass::execute(FrameContext& ctx) {
   if (partial_.id >= 0) selectedLast_[nodeObject(partial_.id)] |= nodeBits(partial_.id);
   // For experiments and the viewer: what was selected out of what (nodes: objects, or
   // object-effect pairs with per_effect).
-  ctx.counters["heuristic/selected"] = double(selected_.size());
-  ctx.counters["heuristic/nodes"] = double(nodes.size());
-  ctx.counters["heuristic/visible_objects"] = double(evaluated_.size());
-  ctx.counters["heuristic/budget"] = budget_;
-  ctx.counters["heuristic/selected_cost"] = selectedCost_;
-  ctx.counters["heuristic/partial_fraction"] = partial_.id >= 0 ? partial_.fraction : 0.0;
+  ctx.report(*this, HeuristicCounters::selected, double(selected_.size()));
+  ctx.report(*this, HeuristicCounters::nodes, double(nodes.size()));
+  ctx.report(*this, HeuristicCounters::visibleObjects, double(evaluated_.size()));
+  ctx.report(*this, HeuristicCounters::budget, budget_);
+  ctx.report(*this, HeuristicCounters::selectedCost, selectedCost_);
+  ctx.report(*this, HeuristicCounters::partialFraction, partial_.id >= 0 ? partial_.fraction : 0.0);
   writeOrder(nodes, s.perEffect, ctx.output(*this, "heuristic_order", int(n), 1));
   writeMask(ctx, ids, selected, partialR2, ctx.output(*this, "heuristic_mask"));
 }

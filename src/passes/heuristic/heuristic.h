@@ -135,6 +135,16 @@ struct HeuristicSettings {
   double overcommit = 1.6;
 };
 
+// The counters HeuristicPass reports each frame (Pass::counters, FrameContext::report).
+struct HeuristicCounters {
+  static constexpr const char* selected = "heuristic/selected";
+  static constexpr const char* nodes = "heuristic/nodes";
+  static constexpr const char* visibleObjects = "heuristic/visible_objects";
+  static constexpr const char* budget = "heuristic/budget";
+  static constexpr const char* selectedCost = "heuristic/selected_cost";
+  static constexpr const char* partialFraction = "heuristic/partial_fraction";
+};
+
 class HeuristicPass : public SettingsPass<HeuristicSettings> {
  public:
   std::string type() const override { return "heuristic"; }
@@ -145,11 +155,11 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
     return {{"object_id", 1, BufferKind::Id}, rtStatsSlot(true)};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"heuristic_mask", kEffectCount, BufferKind::Mask},
-            rtRequestSlot(false),
-            {"heuristic_order", kEffectCount, BufferKind::List, Extent::any()}};
+    return {effectSlot("heuristic_mask", BufferKind::Mask), rtRequestSlot(false),
+            effectSlot("heuristic_order", BufferKind::List, Extent::any())};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
   void resetHistory() override;
 
   const std::vector<ObjectHeuristic>& lastEvaluation() const { return evaluated_; }

@@ -38,20 +38,22 @@ const ParamTable<RTSecondarySettings>& RTSecondaryPass::tableFor() const {
 
 std::vector<BufferSlot> RTSecondaryPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
-  in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
+  in.push_back(effectSlot("heuristic_mask", BufferKind::Mask));
   in.push_back(rtRequestSlot(true));
-  in.push_back({.slot = "heuristic_order",
-                .channels = kEffectCount,
-                .kind = BufferKind::List,
-                .extent = Extent::any(),
-                .optional = true});
+  BufferSlot order = effectSlot("heuristic_order", BufferKind::List, Extent::any());
+  order.optional = true;
+  in.push_back(order);
   return in;
 }
 
 std::vector<BufferSlot> RTSecondaryPass::outputs() const {
-  return {{"shadow", 3},       {"reflection", 3},
-          {"refraction", 3},   {"traced_mask", kEffectCount, BufferKind::Mask},
-          {"shadow_class", 3}, rtStatsSlot(false)};
+  // shadow_class: each pixel's shares of its light-surface pairs, shown as red, green, blue.
+  return {{"shadow", 3},
+          {"reflection", 3},
+          {"refraction", 3},
+          effectSlot("traced_mask", BufferKind::Mask),
+          BufferSlot{"shadow_class"}.named({"traced", "lit", "shadowed"}),
+          rtStatsSlot(false)};
 }
 
 namespace {
@@ -254,6 +256,15 @@ RtStats gatherStats(tbb::combinable<EffectTallies>& tallies, size_t objects, boo
 
 }  // namespace
 
+std::vector<CounterDesc> RTSecondaryPass::counters() const {
+  std::vector<CounterDesc> c = whittedCounters(*this);
+  c.insert(c.end(), {
+                        {RTSecondaryCounters::itemsCut,
+                         "ranked tiles left untraced at the deadline (with a deadline)"},
+                    });
+  return c;
+}
+
 void RTSecondaryPass::execute(FrameContext& ctx) {
   const auto start = Clock::now();
   const TickRate tickRate;
@@ -268,7 +279,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   // every shadow traced without culling keeps the per-block path, exactly as it always drew.
   const bool tiled = ws.shadows != ShadowMode::Rays || ws.shadowCull > 0;
   ShadowTally shadowTally;
-  const ShadowMaps* shadowMaps = shadowMapsFor(ctx, settings().whitted);
+  const ShadowMaps* shadowMaps = shadowMapsFor(ctx, *this, settings().whitted);
   whitted.useShadowMaps(shadowMaps);
   whitted.countShadows(&shadowTally);
   // Classified shadows per pixel (viewer / AOV): R traced, G lit, B shadowed, as shares of the
@@ -328,7 +339,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         rankTiles(ctx.views, mask, ids, order,
                   [&](int x0, int y0, int x1, int y1) { job.clearTile(x0, y0, x1, y1); });
     const size_t cut = traceUntilDeadline(queue, deadline, traceTile);
-    ctx.counters["rt_secondary/items_cut"] = double(cut);
+    ctx.report(*this, RTSecondaryCounters::itemsCut, double(cut));
     if (cut == 0) deadline = {};  // nothing was cut: the tail says nothing
   } else {
     parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {

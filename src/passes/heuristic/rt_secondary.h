@@ -21,6 +21,11 @@ struct RTSecondarySettings {
   float outsideMaskShadow = 0;
 };
 
+// The counters RTSecondaryPass reports each frame (Pass::counters, FrameContext::report).
+struct RTSecondaryCounters {
+  static constexpr const char* itemsCut = "rt_secondary/items_cut";
+};
+
 class RTSecondaryPass : public SettingsPass<RTSecondarySettings> {
  public:
   std::string type() const override { return "rt_secondary"; }
@@ -31,6 +36,7 @@ class RTSecondaryPass : public SettingsPass<RTSecondarySettings> {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
   void resetHistory() override { tailMs_ = 0; }
 
  protected:

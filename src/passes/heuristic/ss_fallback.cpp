@@ -9,6 +9,7 @@
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
 #include "rt/whitted.h"
+#include "shading/gbuffer_layout.h"
 #include "shading/shade_batch.h"
 
 namespace tandem {
@@ -62,7 +63,7 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
 std::vector<BufferSlot> ScreenSpaceFallbackPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
   in.push_back({"hdr", 3});
-  in.push_back({"heuristic_mask", kEffectCount, BufferKind::Mask});
+  in.push_back(effectSlot("heuristic_mask", BufferKind::Mask));
   return in;
 }
 
@@ -109,7 +110,7 @@ Vec3 marchScreen(const Frame& f, const View& v, Vec3 p, Vec3 r, int steps, float
     if (behind > 0 && (self >= 0 || behind < thickness * t + 0.02f)) {
       // A mirror or glass pixel's raster colour is not what it shows: the sky stands in.
       const float* op = f.optical.at(fx, fy);
-      if (op[0] > 0 || op[2] < 1) break;
+      if (op[OpticalChannels::kReflectivity] > 0 || op[OpticalChannels::kOpacity] < 1) break;
       return f.hdr.rgb(fx, fy);
     }
   }
@@ -134,8 +135,10 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
     for (size_t i = b; i < e; ++i) {
       const float id = objectId.data[i];
       if (id < 0) continue;
-      const float *op = &optical.data[3 * i], *m = &mask.data[size_t(kEffectCount) * i];
-      if ((op[0] > 0 && m[kReflection] < 0.5f) || (op[2] < 1 && m[kRefraction] < 0.5f))
+      const float *op = &optical.data[OpticalChannels::kCount * i],
+                  *m = &mask.data[size_t(kEffectCount) * i];
+      if ((op[OpticalChannels::kReflectivity] > 0 && m[kReflection] < 0.5f) ||
+          (op[OpticalChannels::kOpacity] < 1 && m[kRefraction] < 0.5f))
         ++local[size_t(id)];
     }
   });
@@ -151,8 +154,9 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
                     [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
   std::vector<uint8_t> wanted(scene.objects.size(), 0);
   for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
-  ctx.counters["ss_fallback/probes_drawn"] = probes_.update(
-      ctx.frame, shading, wanted, s.probeSize, s.probeRefresh, 2 * size_t(s.maxProbes));
+  ctx.report(*this, FallbackCounters::probesDrawn,
+             probes_.update(ctx.frame, shading, wanted, s.probeSize, s.probeRefresh,
+                            2 * size_t(s.maxProbes)));
   ctx.passParts.push_back({"probes", msSince(t0), 0});
 }
 
@@ -273,8 +277,10 @@ void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, i
       if (id < 0) continue;
       const float* op = f.optical.at(x, y);
       const float* m = job.mask.at(x, y);
-      const bool reflect = mode != FallbackMode::Off && op[0] > 0 && m[kReflection] < 0.5f;
-      const bool refract = mode != FallbackMode::Off && op[2] < 1 && m[kRefraction] < 0.5f;
+      const bool reflect = mode != FallbackMode::Off && op[OpticalChannels::kReflectivity] > 0 &&
+                           m[kReflection] < 0.5f;
+      const bool refract =
+          mode != FallbackMode::Off && op[OpticalChannels::kOpacity] < 1 && m[kRefraction] < 0.5f;
       const bool shadow = job.shadows && m[kShadow] < 0.5f;
       if (!reflect && !refract && !shadow) continue;
       Vec3 o, d;
@@ -287,7 +293,8 @@ void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, i
       auto look = [&](Vec3 r, int self) {
         if (mode == FallbackMode::Probe) {  // refraction: out through the object first
           Vec3 from = p;
-          const Vec3 dir = self < 0 ? r : job.probes.exitDirection(id, p, r, op[1], from);
+          const Vec3 dir =
+              self < 0 ? r : job.probes.exitDirection(id, p, r, op[OpticalChannels::kIor], from);
           return job.probes.lookupFrom(f.scene, id, from, dir, job.bounds);
         }
         return mode == FallbackMode::Environment
@@ -304,7 +311,8 @@ void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, i
         // Entering the object (the G-buffer holds front faces): the refracted direction, the
         // object itself not counted as what lies behind it.
         Vec3 t;
-        if (!refractDir(d, n, 1.0f / std::max(op[1], 1e-3f), t)) t = reflectDir(d, n);
+        if (!refractDir(d, n, 1.0f / std::max(op[OpticalChannels::kIor], 1e-3f), t))
+          t = reflectDir(d, n);
         const Vec3 c = look(t, id);
         px[fallback::kRefraction] = c.x, px[fallback::kRefraction + 1] = c.y,
         px[fallback::kRefraction + 2] = c.z;
@@ -314,6 +322,13 @@ void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, i
 }
 
 }  // namespace
+
+std::vector<CounterDesc> ScreenSpaceFallbackPass::counters() const {
+  return {
+      {FallbackCounters::probesDrawn, "reflection probes (re)drawn this frame"},
+      {FallbackCounters::shadowMapRedraws, "shadow maps redrawn so far (with shadow-map shadows)"},
+  };
+}
 
 void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const FallbackSettings& s = settings();
@@ -362,7 +377,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
         occludedFractions(shadowed, position, normal, geoNormal, shading, *shadowMaps, lights);
     shadeShadows(shadowed, occluded, g, shading, lights, out);
   });
-  if (shadowMaps) ctx.counters["ss_fallback/shadow_map_redraws"] = shadowMaps->redraws();
+  if (shadowMaps) ctx.report(*this, FallbackCounters::shadowMapRedraws, shadowMaps->redraws());
 }
 
 }  // namespace tandem

@@ -34,6 +34,12 @@ struct FallbackSettings {
   float thickness = 0.05f;
 };
 
+// The counters ScreenSpaceFallbackPass reports each frame (Pass::counters, FrameContext::report).
+struct FallbackCounters {
+  static constexpr const char* probesDrawn = "ss_fallback/probes_drawn";
+  static constexpr const char* shadowMapRedraws = "ss_fallback/shadow_map_redraws";
+};
+
 class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
  public:
   std::string type() const override { return "ss_fallback"; }
@@ -41,8 +47,9 @@ class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
     return "Screen-space reflection/refraction (or sky) where no ray was traced";
   }
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override { return {{"fallback", fallback::kChannels}}; }
+  std::vector<BufferSlot> outputs() const override { return {fallback::slot()}; }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
   void resetHistory() override { probes_ = {}; }
 
  protected:

@@ -115,6 +115,18 @@ struct InterleavedPass::Frame {
   ShadowTally* tally;
 };
 
+std::vector<CounterDesc> InterleavedPass::counters() const {
+  const InterleavedCounters c(*this);
+  std::vector<CounterDesc> all = whittedCounters(*this);
+  all.insert(all.end(), {{c.passes(), "(time, lens) passes n of the tile pattern"},
+                         {c.samplesPerPixel(), "samples per pixel k"},
+                         {c.minSimilarTimeDistance(),
+                          "smallest distance in pixels between samples of similar time"},
+                         {c.footprintTimeDiscrepancy(),
+                          "mean discrepancy of the times under a pixel's filter footprint"}});
+  return all;
+}
+
 void InterleavedPass::execute(FrameContext& ctx) {
   const InterleavedSettings& s = settings();
   const int n = s.samples, k = s.spp;
@@ -144,7 +156,7 @@ void InterleavedPass::execute(FrameContext& ctx) {
           ShadingContext::from(*ctx.scene),
           rt,
           s.whitted.settings(),
-          rt ? shadowMapsFor(ctx, s.whitted) : nullptr,
+          rt ? shadowMapsFor(ctx, *this, s.whitted) : nullptr,
           &shadowTally};
   for (int j = 0; j < n; ++j)
     f.taus[size_t(j)] = !s.time()            ? 0.0f
@@ -157,10 +169,11 @@ void InterleavedPass::execute(FrameContext& ctx) {
   ctx.passParts.push_back({"visibility", visMs_, 0});
   ctx.passParts.push_back({"shade", shadeMs_, 0});
   ctx.passParts.push_back({"resolve", resolveMs_, 0});
-  ctx.counters[type() + "/passes"] = double(n);
-  ctx.counters[type() + "/samples_per_pixel"] = double(k);
-  ctx.counters[type() + "/min_similar_time_distance_px"] = tiles.quality.minSimilarTimeDistance;
-  ctx.counters[type() + "/footprint_time_discrepancy"] = tiles.quality.meanFootprintDiscrepancy;
+  const InterleavedCounters c(*this);
+  ctx.report(*this, c.passes(), double(n));
+  ctx.report(*this, c.samplesPerPixel(), double(k));
+  ctx.report(*this, c.minSimilarTimeDistance(), tiles.quality.minSimilarTimeDistance);
+  ctx.report(*this, c.footprintTimeDiscrepancy(), tiles.quality.meanFootprintDiscrepancy);
 }
 
 void InterleavedPass::renderView(FrameContext& ctx, const Frame& f, const View& v) {
@@ -495,9 +508,9 @@ void InterleavedPass::writeViewerBuffers(const Frame& f, const View& v, Buffer* 
             for (int x = 0; x < SW; ++x) {
               const int j = L.pair[y * size_t(SW) + size_t(x)];
               float* o = samplesOut->at(x + v.x * shape.sx, int(y) + v.y * shape.sy);
-              o[0] = f.taus[size_t(j)];
-              o[1] = f.pairs[size_t(j)].u1;
-              o[2] = f.pairs[size_t(j)].u2;
+              o[SampleChannels::kTime] = f.taus[size_t(j)];
+              o[SampleChannels::kLensU] = f.pairs[size_t(j)].u1;
+              o[SampleChannels::kLensV] = f.pairs[size_t(j)].u2;
             }
         },
         16);

@@ -65,6 +65,27 @@ struct InterleavedSettings {
   bool time() const { return mode != Mode::Dof; }
 };
 
+// The channels of sample_time_lens, one per sample of the strata grid: its shutter fraction and
+// lens coordinates (shown as red, green, blue).
+struct SampleChannels {
+  static constexpr int kTime = 0, kLensU = 1, kLensV = 2, kCount = 3;
+  static BufferSlot slot() {
+    return BufferSlot{"sample_time_lens", 0, BufferKind::Mask, Extent::any()}.named(
+        {"time", "lens_u", "lens_v"});
+  }
+};
+
+// The counters every interleaved pass reports, under its type: "<type>/passes", ... (with Whitted
+// shading also whittedCounters()).
+struct InterleavedCounters {
+  explicit InterleavedCounters(const Pass& pass) : key(pass.type() + "/") {}
+  std::string key;
+  std::string passes() const { return key + "passes"; }
+  std::string samplesPerPixel() const { return key + "samples_per_pixel"; }
+  std::string minSimilarTimeDistance() const { return key + "min_similar_time_distance_px"; }
+  std::string footprintTimeDiscrepancy() const { return key + "footprint_time_discrepancy"; }
+};
+
 class InterleavedPass : public SettingsPass<InterleavedSettings> {
  public:
   std::vector<BufferSlot> inputs() const override {
@@ -74,13 +95,14 @@ class InterleavedPass : public SettingsPass<InterleavedSettings> {
   }
   std::vector<BufferSlot> outputs() const override {
     return {{"hdr", 3},
-            {"sample_time_lens", 3, BufferKind::Mask, Extent::any()},
+            SampleChannels::slot(),
             {"tile_layout", 1, BufferKind::Id},
             {"velocity", 2, BufferKind::Motion},
             {"view_depth", 1, BufferKind::Color},
             {"motion", 2, BufferKind::Motion}};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<InterleavedSettings>& tableFor() const override;

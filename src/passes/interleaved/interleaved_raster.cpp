@@ -6,6 +6,16 @@
 
 namespace tandem {
 
+std::vector<CounterDesc> InterleavedRasterPass::counters() const {
+  using C = InterleavedRasterCounters;
+  std::vector<CounterDesc> all = InterleavedPass::counters();
+  all.insert(all.end(), {{C::setUpPerPass, "triangles set up per (time, lens) pass"},
+                         {C::setUpMax, "most triangles set up by one pass"},
+                         {C::setUpMin, "fewest triangles set up by one pass"},
+                         {C::staticSetUpOnce, "static triangles set up once for all passes"}});
+  return all;
+}
+
 void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& layout,
                                        const std::vector<Camera>& cams,
                                        const std::vector<float>& taus, const uint8_t* active,
@@ -58,10 +68,11 @@ void InterleavedRasterPass::visibility(FrameContext& ctx, const SampleLayout& la
     setUpMax = std::max(setUpMax, double(stats.trianglesBinned));
     setUpMin = std::min(setUpMin, double(stats.trianglesBinned));
   }
-  ctx.counters["interleaved_raster/triangles_set_up_per_pass"] = setUp / double(cams.size());
-  ctx.counters["interleaved_raster/triangles_set_up_max"] = setUpMax;
-  ctx.counters["interleaved_raster/triangles_set_up_min"] = std::min(setUpMin, setUpMax);
-  ctx.counters["interleaved_raster/static_triangles_set_up_once"] = shared;
+  using C = InterleavedRasterCounters;
+  ctx.report(*this, C::setUpPerPass, setUp / double(cams.size()));
+  ctx.report(*this, C::setUpMax, setUpMax);
+  ctx.report(*this, C::setUpMin, std::min(setUpMin, setUpMax));
+  ctx.report(*this, C::staticSetUpOnce, shared);
 }
 
 }  // namespace tandem

@@ -6,6 +6,14 @@
 
 namespace tandem {
 
+// What interleaved rasterization reports besides InterleavedCounters.
+struct InterleavedRasterCounters {
+  static constexpr const char* setUpPerPass = "interleaved_raster/triangles_set_up_per_pass";
+  static constexpr const char* setUpMax = "interleaved_raster/triangles_set_up_max";
+  static constexpr const char* setUpMin = "interleaved_raster/triangles_set_up_min";
+  static constexpr const char* staticSetUpOnce = "interleaved_raster/static_triangles_set_up_once";
+};
+
 class InterleavedRasterPass : public InterleavedPass {
  public:
   std::string type() const override { return "interleaved_raster"; }
@@ -13,6 +21,7 @@ class InterleavedRasterPass : public InterleavedPass {
     return "Interleaved rasterization: one pass per (time, lens) pair of T into the samples "
            "whose tile slot carries it (Foster 2015)";
   }
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   void visibility(FrameContext& ctx, const SampleLayout& layout, const std::vector<Camera>& cams,

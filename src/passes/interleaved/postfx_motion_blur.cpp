@@ -175,6 +175,12 @@ struct ViewBlur {
 
 }  // namespace
 
+std::vector<CounterDesc> PostfxMotionBlurPass::counters() const {
+  return {
+      {PostfxMotionBlurCounters::maskedTilesPercent, "percentage of tiles the blur mask covers"},
+  };
+}
+
 void PostfxMotionBlurPass::execute(FrameContext& ctx) {
   const Buffer& C = ctx.input(*this, "hdr");
   const Buffer& V = ctx.input(*this, "velocity");
@@ -203,8 +209,8 @@ void PostfxMotionBlurPass::execute(FrameContext& ctx) {
     for (float m : vb.tileMask) masked += m > 0;
     pixels += vb.tileMask.size();
   }
-  ctx.counters["postfx_motion_blur/masked_tiles_percent"] =
-      pixels ? 100.0 * double(masked) / double(pixels) : 0.0;
+  ctx.report(*this, PostfxMotionBlurCounters::maskedTilesPercent,
+             pixels ? 100.0 * double(masked) / double(pixels) : 0.0);
 }
 
 }  // namespace tandem

@@ -27,6 +27,11 @@ struct PostfxMotionBlurSettings {
   Mask mask = Mask::Spread;
 };
 
+// The counters PostfxMotionBlurPass reports each frame (Pass::counters, FrameContext::report).
+struct PostfxMotionBlurCounters {
+  static constexpr const char* maskedTilesPercent = "postfx_motion_blur/masked_tiles_percent";
+};
+
 class PostfxMotionBlurPass : public SettingsPass<PostfxMotionBlurSettings> {
  public:
   std::string type() const override { return "postfx_motion_blur"; }
@@ -41,6 +46,7 @@ class PostfxMotionBlurPass : public SettingsPass<PostfxMotionBlurSettings> {
     return {{"mb_postfx", 3}, {"mb_mask", 1, BufferKind::Mask}};
   }
   void execute(FrameContext& ctx) override;
+  std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<PostfxMotionBlurSettings>& tableFor() const override;
