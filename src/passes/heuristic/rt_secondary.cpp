@@ -313,7 +313,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
                            timed,
                            tiled};
   const ShadowTile tileJob{g,     mask,       ids,      ctx.input(*this, "geo_normal"),
-                           scene, shading,    rt,       shadowMaps,
+                           scene, shading,    &rt,      shadowMaps,
                            ws,    job.shadow, classOut, classLight,
                            timed, order};
   // `rank` < 0: every masked effect, every output written. Otherwise (a deadline's work item) only

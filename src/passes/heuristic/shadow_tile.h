@@ -26,7 +26,7 @@ struct ShadowTile {
   const Buffer &mask, &ids, &geoNormal;
   const Scene& scene;
   const ShadingContext& shading;
-  const RayTracer& rt;
+  const RayTracer* rt;     // null with settings.shadows = Maps (nothing is traced)
   const ShadowMaps* maps;  // null: every shadow that culling leaves is traced
   const WhittedSettings& settings;
   Buffer& shadow;
@@ -34,6 +34,10 @@ struct ShadowTile {
   int classLight;       // the light `classes` shows, -1 all
   bool timed;           // count ticks per object
   const Buffer* order;  // heuristic_order: which node rank each pixel's shadow belongs to
+  // ss_fallback: the pixels whose shadow the mask leaves out, S written at `shadowChannel` of
+  // `shadow` and 1 at `coverChannel` (>= 0) where it was.
+  bool unselected = false;
+  int shadowChannel = 0, coverChannel = -1;
 };
 
 // (traced, lit, shadowed) shares of lane j's lights that reach it (classes of 8-bit ShadowClass

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "passes/heuristic/rt_feedback.h"
+#include "passes/heuristic/shadow_tile.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/view_tiles.h"
@@ -34,6 +35,12 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
                              .choices = {"off", "shadow_map"}})
           .add(&S::shadowMapSize,
                {.name = "shadow_map_size", .min = 64, .max = 8192, .doc = "shadow map resolution"})
+          .add(&S::shadowCull,
+               {.name = "shadow_cull",
+                .min = 0,
+                .max = 1,
+                .doc = "no shadow for a light below this share of a pixel's irradiance (as "
+                       "rt_secondary culls its shadow rays; 0: every light that reaches it)"})
           .add(&S::probeSize, {.name = "probe_size",
                                .min = 8,
                                .max = 1024,
@@ -73,12 +80,6 @@ struct Frame {
   const Buffer &hdr, &position, &objectId, &optical;
   const Scene& scene;
   float reach;  // longest march: the scene's diagonal
-};
-
-// A pixel the shadow maps stand in for, and its view direction.
-struct ShadowPixel {
-  int x, y;
-  Vec3 d;
 };
 
 // Colour seen from p along unit direction r in view v: the first frame pixel whose surface the
@@ -162,113 +163,19 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
 
 namespace {
 
-// The occluded fraction of each light at each pixel (occluded[light * count + pixel]). A light
-// the surface faces away from, or that does not reach it, adds nothing whatever its map says: no
-// lookup. Looked up 16 points at a time (the SIMD kernel), light by light; only the position and
-// the two normals are read.
-std::vector<float> occludedFractions(const std::vector<ShadowPixel>& shadowed,
-                                     const Buffer& position, const Buffer& normal,
-                                     const Buffer& geoNormal, const ShadingContext& shading,
-                                     const ShadowMaps& maps, size_t lights) {
-  const size_t count = shadowed.size();
-  std::vector<float> occluded(lights * count);
-  constexpr size_t W = 16;
-  for (size_t k0 = 0; k0 < count; k0 += W) {
-    const size_t n = std::min(W, count - k0);
-    float px[W] = {}, py[W] = {}, pz[W] = {}, nx[W] = {}, ny[W] = {}, nz[W] = {};
-    Vec3 shadingNormal[W];
-    for (size_t k = 0; k < n; ++k) {
-      const int x = shadowed[k0 + k].x, y = shadowed[k0 + k].y;
-      const float *p = position.at(x, y), *gn = geoNormal.at(x, y);
-      px[k] = p[0], py[k] = p[1], pz[k] = p[2];
-      nx[k] = gn[0], ny[k] = gn[1], nz[k] = gn[2];
-      shadingNormal[k] = normal.rgb(x, y);
-    }
-    for (size_t i = 0; i < lights; ++i) {
-      float lit[W] = {}, vis[W] = {};
-      for (size_t k = 0; k < n; ++k) {
-        const LightSample ls = sampleLight(shading.lights[i], {px[k], py[k], pz[k]});
-        lit[k] = dot(shadingNormal[k], ls.wi) > 0.0f && maxComponent(ls.radiance) > 0.0f;
-      }
-      maps.visibilityBatch(i, px, py, pz, nx, ny, nz, lit, int(n), vis);
-      for (size_t k = 0; k < n; ++k)
-        occluded[i * count + k0 + k] = lit[k] > 0 ? 1.0f - vis[k] : 0.0f;
-    }
-  }
-  return occluded;
-}
-
-// As rt_secondary (Listing 8a): S = 1 - the light the occluders block, from one shading call
-// weighted by each light's occluded fraction. Pixels no map shadows keep S = 1 unshaded, and a
-// batch evaluates only the lights that shadow one of its lanes (the others add exactly 0).
-void shadeShadows(const std::vector<ShadowPixel>& shadowed, const std::vector<float>& occluded,
-                  const GBufferReader& g, const ShadingContext& shading, size_t lights,
-                  Buffer& out) {
-  using F = ShadeBatch;
-  const size_t count = shadowed.size();
-  ShadeBatch batch;
-  std::vector<float> blocked(3 * lights * ShadeBatch::kMax);
-  std::vector<uint32_t> batchLights;
-  batchLights.reserve(lights);
-  size_t lane[ShadeBatch::kMax];
-  auto flush = [&] {
-    batchLights.clear();
-    for (size_t i = 0; i < lights; ++i)
-      for (int j = 0; j < batch.count; ++j)
-        if (occluded[i * count + lane[j]] > 0.0f) {
-          batchLights.push_back(uint32_t(i));
-          break;
-        }
-    for (uint32_t i : batchLights)
-      for (int j = 0; j < batch.count; ++j)
-        for (size_t c = 0; c < 3; ++c)
-          blocked[(3 * i + c) * ShadeBatch::kMax + size_t(j)] = occluded[i * count + lane[j]];
-    batch.lights = batchLights.data();
-    batch.lightCount = batchLights.size();
-    shadeBatch(batch, shading, blocked.data(), ShadeBatch::kMax);
-    for (int j = 0; j < batch.count; ++j) {
-      const Vec3 s = shadowFromBlocked(batch, j, shading.ambient);
-      float* px = out.at(shadowed[lane[j]].x, shadowed[lane[j]].y) + fallback::kShadow;
-      px[0] = s.x, px[1] = s.y, px[2] = s.z;
-    }
-    batch.count = 0;
-  };
-  batch.count = 0;
-  for (size_t k = 0; k < count; ++k) {
-    float* px = out.at(shadowed[k].x, shadowed[k].y);
-    px[fallback::kCoversShadow] = 1.0f;
-    bool any = false;
-    for (size_t i = 0; i < lights; ++i) any |= occluded[i * count + k] > 0.0f;
-    if (!any) {
-      px[fallback::kShadow] = px[fallback::kShadow + 1] = px[fallback::kShadow + 2] = 1.0f;
-      continue;
-    }
-    // The G-buffer straight into the lane (as deferred shading reads it); the viewer is -d.
-    const int l = batch.count;
-    g.read(shadowed[k].x, shadowed[k].y, batch, l);
-    const Vec3 wo = -shadowed[k].d;
-    batch.f[F::WX][l] = wo.x, batch.f[F::WY][l] = wo.y, batch.f[F::WZ][l] = wo.z;
-    lane[batch.count++] = k;
-    if (batch.count == ShadeBatch::kMax) flush();
-  }
-  if (batch.count) flush();
-}
-
 struct EffectsJob {
   const Frame& f;
   const Buffer &normal, &mask;
   FallbackMode mode;
-  bool shadows;
   const ReflectionProbes& probes;
   Bounds3 bounds;
   int steps;
   float thickness;
 };
 
-// Writes what stands in for the tile's untraced reflections and refractions, and lists the
-// pixels whose untraced shadow the maps stand in for.
-void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, int y1, Buffer& out,
-                 std::vector<ShadowPixel>& shadowed) {
+// Writes what stands in for the tile's untraced reflections and refractions.
+void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, int y1,
+                 Buffer& out) {
   const Frame& f = job.f;
   const FallbackMode mode = job.mode;
   for (int y = y0; y < y1; ++y)
@@ -281,12 +188,9 @@ void effectsTile(const EffectsJob& job, const View& v, int x0, int y0, int x1, i
                            m[kReflection] < 0.5f;
       const bool refract =
           mode != FallbackMode::Off && op[OpticalChannels::kOpacity] < 1 && m[kRefraction] < 0.5f;
-      const bool shadow = job.shadows && m[kShadow] < 0.5f;
-      if (!reflect && !refract && !shadow) continue;
+      if (!reflect && !refract) continue;
       Vec3 o, d;
       v.jitteredCamera.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
-      if (shadow) shadowed.push_back({x, y, d});
-      if (!reflect && !refract) continue;
       const Vec3 p = f.position.rgb(x, y);
       Vec3 n = job.normal.rgb(x, y);
       if (dot(n, d) > 0) n = -n;
@@ -335,7 +239,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const FallbackMode mode = s.mode;
   const bool shadows = s.shadows == FallbackSettings::Shadows::ShadowMap;
   const GBufferReader g = gbufferSource(ctx, *this);
-  const Buffer& position = ctx.input(*this, "position");
+  const Buffer& position = ctx.input(*this, "position");  // (hdr, position: the march)
   const Buffer& normal = ctx.input(*this, "normal");
   const Buffer& geoNormal = ctx.input(*this, "geo_normal");
   Buffer& out = ctx.output(*this, "fallback");
@@ -361,21 +265,38 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const Bounds3 b = scene.bounds(ctx.frame.time);
   const Frame f{ctx.input(*this, "hdr"),     position, ctx.input(*this, "object_id"),
                 ctx.input(*this, "optical"), scene,    std::max(length(b.hi - b.lo), 0.1f)};
-  const EffectsJob job{f,    normal,  ctx.input(*this, "heuristic_mask"),
-                       mode, shadows, probes_,
-                       b,    s.steps, s.thickness};
-  const size_t lights = scene.lights.size();
+  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  const EffectsJob job{f, normal, mask, mode, probes_, b, s.steps, s.thickness};
+  // Unselected shadows as rt_secondary's classified shadows with the maps deciding every pair
+  // (the same culling of negligible lights, lookups 16 lanes at a time, S shaded only for the
+  // lights something blocks), written into the fallback's shadow channels.
+  WhittedSettings ws;
+  ws.shadows = ShadowMode::Maps;
+  ws.shadowCull = s.shadowCull;
+  ShadowCounts counts;  // not reported: ss_fallback traces nothing
+  const ShadowTile shadowJob{.g = g,
+                             .mask = mask,
+                             .ids = ctx.input(*this, "object_id"),
+                             .geoNormal = geoNormal,
+                             .scene = scene,
+                             .shading = shading,
+                             .rt = nullptr,
+                             .maps = shadowMaps,
+                             .settings = ws,
+                             .shadow = out,
+                             .classes = nullptr,
+                             .classLight = -1,
+                             .timed = false,
+                             .order = nullptr,
+                             .unselected = true,
+                             .shadowChannel = fallback::kShadow,
+                             .coverChannel = fallback::kCoversShadow};
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
-    // The tile's shadow pixels are gathered first and looked up light by light (one map's texels
-    // stay in cache across the tile), then shaded in batches: per light and channel a row of
-    // lanes holding the occluded fraction (rt_secondary's Listing 8a sum, 16 pixels at a time).
-    std::vector<ShadowPixel> shadowed;
-    shadowed.reserve(size_t(x1 - x0) * size_t(y1 - y0));
-    effectsTile(job, v, x0, y0, x1, y1, out, shadowed);
-    if (shadowed.empty()) return;
-    const std::vector<float> occluded =
-        occludedFractions(shadowed, position, normal, geoNormal, shading, *shadowMaps, lights);
-    shadeShadows(shadowed, occluded, g, shading, lights, out);
+    effectsTile(job, v, x0, y0, x1, y1, out);
+    if (shadows) {
+      ShadowCounts local;
+      classifiedShadowTile(shadowJob, v, x0, y0, x1, y1, -1, nullptr, local);
+    }
   });
   if (shadowMaps) ctx.report(*this, FallbackCounters::shadowMapRedraws, shadowMaps->redraws());
 }

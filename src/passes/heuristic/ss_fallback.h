@@ -7,8 +7,9 @@
 // Mode "environment" skips the march and takes the sky; mode "probe" (the default: it measures
 // best) looks up a small cube map drawn from the object's centre (reflection_probes.h). Unselected
 // shadows come from the frame's raster shadow maps (raster/shadow_maps.h, shared with classified
-// shadows at the same size) through the same shading call rt_secondary
-// uses. Both "off" is the paper's rule, for its tables. Inputs: the G-buffer sample slots, hdr,
+// shadows at the same size) through rt_secondary's classified shadow tile (shadow_tile.h) with the
+// maps deciding every pair: the same culling of negligible lights, the same shading of S. Both
+// "off" is the paper's rule, for its tables. Inputs: the G-buffer sample slots, hdr,
 // heuristic_mask. Output: fallback = reflection RGB, refraction RGB, shadow RGB (eq. 4's S), then
 // flags: 1 where reflection/refraction were written, 1 where the shadow was.
 #pragma once
@@ -27,6 +28,7 @@ struct FallbackSettings {
   Mode mode = Mode::Probe;
   Shadows shadows = Shadows::ShadowMap;
   int shadowMapSize = 1024;
+  float shadowCull = 0.004f;  // as rt_secondary's shadow_cull (WhittedParams)
   int probeSize = 128;
   int maxProbes = 32;
   int probeRefresh = 2;
