@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 
 #include "core/error.h"
 #include "core/json_fields.h"
@@ -97,15 +98,23 @@ class PyRenderer {
         std::make_unique<Renderer>(scene_, loadPipelineSpec(pipeline, pipelineJson), settings_);
   }
 
-  void set(const std::string& assignment) { renderer_->pipeline().setParam(assignment, "set"); }
+  void set(const std::string& assignment) {
+    const auto lock = exclusive();
+    renderer_->pipeline().setParam(assignment, "set");
+  }
 
-  std::string cameraJson() const { return cameraToJson(camera_).dump(); }
+  std::string cameraJson() const {
+    const auto lock = exclusive();
+    return cameraToJson(camera_).dump();
+  }
   void setCamera(const std::string& json) {
+    const auto lock = exclusive();
     camera_ = cameraFromJson(parseJson(json, "camera"), "camera", camera_);
     fitNearPlane(camera_);
   }
 
   std::vector<py::dict> lights() const {
+    const auto lock = exclusive();
     std::vector<py::dict> out;
     for (const Light& l : scene_.lights) {
       py::dict d;
@@ -123,6 +132,7 @@ class PyRenderer {
   }
   // Replaces the scene's lights (scene-file "lights" entries); temporal history starts over.
   void setLights(const std::string& json) {
+    const auto lock = exclusive();
     const Json arr = parseJson(json, "lights");
     if (!arr.is_array()) throw InputError("lights", "", "expected a list of lights");
     std::vector<Light> lights;
@@ -132,14 +142,22 @@ class PyRenderer {
     renderer_->setScene(scene_);
   }
 
-  float shutter() const { return settings_.shutter; }
+  float shutter() const {
+    const auto lock = exclusive();
+    return settings_.shutter;
+  }
   void setShutter(float s) {
+    const auto lock = exclusive();
     if (!(s >= 0.0f && s <= 10.0f)) throw InputError("Renderer", "shutter", "must be in [0, 10]");
     settings_.shutter = s;
     rebuildIfLive();
   }
-  bool stereo() const { return settings_.stereo.enabled; }
+  bool stereo() const {
+    const auto lock = exclusive();
+    return settings_.stereo.enabled;
+  }
   void setStereo(bool on) {
+    const auto lock = exclusive();
     StereoDesc st = scene_.stereo;
     st.enabled = on;
     settings_.stereo = fitStereoToModel(scene_, camera_, st, false);
@@ -150,10 +168,18 @@ class PyRenderer {
   // --frames`), without the GIL; returns the named buffers of the last one (all when `names` is
   // empty).
   py::dict render(int frames, const std::vector<std::string>& names) {
+    const auto lock = exclusive();
     if (frames < 1) throw InputError("render", "frames", "must be at least 1");
     {
       py::gil_scoped_release release;
-      for (int i = 0; i < frames; ++i) last_ = renderer_->renderFrame(frame_++, camera_);
+      for (int i = 0; i < frames; ++i) {
+        last_ = renderer_->renderFrame(frame_++, camera_);
+        // Ctrl-C between frames: KeyboardInterrupt (the frame in flight finishes).
+        if (i + 1 < frames) {
+          py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        }
+      }
     }
     // Records (typed values passes hand each other) have no pixels to return.
     std::map<std::string, const Buffer*> buffers;
@@ -175,6 +201,7 @@ class PyRenderer {
   }
 
   py::dict timings() const {
+    const auto lock = exclusive();
     py::dict passes;
     for (const PassTiming& p : last_.passes) passes[p.name.c_str()] = p.ms;
     py::dict d;
@@ -182,10 +209,14 @@ class PyRenderer {
     d["passes"] = passes;
     return d;
   }
-  std::map<std::string, double> counters() const { return renderer_->context().counters; }
+  std::map<std::string, double> counters() const {
+    const auto lock = exclusive();
+    return renderer_->context().counters;
+  }
   // One counter by its declared name: an error when no pass of the pipeline reports it, None
   // when none did in the last frame (before the first, or a branch that did not run).
   std::optional<double> counter(const std::string& name) const {
+    const auto lock = exclusive();
     renderer_->pipeline().requireCounter(name, "counter");
     const auto& c = renderer_->context().counters;
     auto it = c.find(name);
@@ -193,19 +224,35 @@ class PyRenderer {
   }
   // Every counter the pipeline's passes declare, with its description.
   std::map<std::string, std::string> declaredCounters() const {
+    const auto lock = exclusive();
     std::map<std::string, std::string> d;
     for (const auto& p : renderer_->pipeline().passes)
       for (const CounterDesc& c : p->counters()) d[c.name] = c.doc;
     return d;
   }
-  std::vector<std::string> buffers() const { return renderer_->pipeline().producedBuffers(); }
-  int frame() const { return frame_; }
-  void cut() { renderer_->cut(); }
+  std::vector<std::string> buffers() const {
+    const auto lock = exclusive();
+    return renderer_->pipeline().producedBuffers();
+  }
+  int frame() const {
+    const auto lock = exclusive();
+    return frame_;
+  }
+  void cut() {
+    const auto lock = exclusive();
+    renderer_->cut();
+  }
   const Scene& scene() const { return scene_; }
   const CameraDesc& camera() const { return camera_; }
   const RenderSettings& settings() const { return settings_; }
 
  private:
+  // One call at a time on one Renderer: another Python thread's call waits for it (with the GIL
+  // released while it waits, so the running call can take it back to return its result).
+  std::unique_lock<std::mutex> exclusive() const {
+    py::gil_scoped_release release;
+    return std::unique_lock<std::mutex>(mutex_);
+  }
   void rebuildIfLive() {
     if (!renderer_) return;
     const Json current = renderer_->pipeline().toJson();  // keeps the parameters set so far
@@ -220,6 +267,7 @@ class PyRenderer {
   std::unique_ptr<Renderer> renderer_;
   FrameTimings last_;
   int frame_ = 0;
+  mutable std::mutex mutex_;
 };
 
 py::dict reference(const std::string& scene, const std::string& sceneJson,

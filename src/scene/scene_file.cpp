@@ -1,8 +1,11 @@
 // Tandem scene files (JSON): primitives and model files placed with transforms, materials with
 // every property of Walewski et al. 2019 Table 1, lights, environment, camera, camera path,
 // animation and heuristic parameters. The format is documented in docs/scene-format.md.
+#include <algorithm>
 #include <filesystem>
 #include <map>
+#include <system_error>
+#include <vector>
 
 #include "core/assets.h"
 #include "core/image_io.h"
@@ -362,7 +365,41 @@ Light lightFromJson(const Json& j, const std::string& source, size_t index) {
   return readLight(FileCtx{source, fs::path("."), unused, {}, {}}, j, index);
 }
 
+namespace {
+
+// The scene files being loaded on this thread, outermost first: a file reached again through
+// `base` or an object's `file` is a cycle, and the chain is bounded however it is written.
+thread_local std::vector<std::string> tLoading;
+constexpr size_t kMaxSceneNesting = 32;
+
+class LoadingFile {
+ public:
+  explicit LoadingFile(const std::string& path) {
+    std::error_code ec;
+    fs::path key = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    const std::string k = ec ? fs::path(path).lexically_normal().string() : key.string();
+    auto chain = [&] {
+      std::string s;
+      for (const std::string& p : tLoading) s += fs::path(p).filename().string() + " -> ";
+      return s + fs::path(path).filename().string();
+    };
+    if (std::find(tLoading.begin(), tLoading.end(), k) != tLoading.end())
+      throw InputError(path, "", "the scene refers to itself (" + chain() + ")");
+    if (tLoading.size() >= kMaxSceneNesting)
+      throw InputError(path, "",
+                       "scene files nest deeper than " + std::to_string(kMaxSceneNesting) +
+                           " (" + chain() + ")");
+    tLoading.push_back(k);
+  }
+  ~LoadingFile() { tLoading.pop_back(); }
+  LoadingFile(const LoadingFile&) = delete;
+  LoadingFile& operator=(const LoadingFile&) = delete;
+};
+
+}  // namespace
+
 Scene loadSceneFile(const std::string& path) {
+  const LoadingFile guard(path);
   return loadSceneJson(readJsonFile(path), path, fs::path(path).parent_path().string());
 }
 

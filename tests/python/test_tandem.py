@@ -261,3 +261,81 @@ def test_seed_examples_print_their_table(script):
     rows = [line for line in out.splitlines() if line.startswith("| ") and "---" not in line]
     assert len(rows) >= 4, out
     assert all("nan" not in row for row in rows), out
+
+
+def test_one_renderer_shared_by_threads_renders_whole_frames():
+    # A static, non-temporal shot: every frame is the same picture, whoever renders it.
+    r = tandem.Renderer("cornell", pipeline="deferred", width=48, height=27)
+    expected = r.render()["output"].copy()
+    errors, frames = [], []
+
+    def work():
+        try:
+            for _ in range(15):
+                frames.append(r.render(buffers=["output"])["output"].copy())
+        except Exception as e:  # noqa: BLE001 - any failure fails the test below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors
+    assert len(frames) == 30
+    for f in frames:
+        assert np.array_equal(f, expected)
+    assert r.frame == 31
+
+
+def test_setters_wait_for_a_render_in_another_thread():
+    r = tandem.Renderer("cornell", pipeline="deferred", width=48, height=27)
+    shapes, errors = [], []
+
+    def render():
+        try:
+            for _ in range(20):
+                shapes.append(r.render(buffers=["output"])["output"].shape)
+        except Exception as e:  # noqa: BLE001
+            errors.append(e)
+
+    t = threading.Thread(target=render)
+    t.start()
+    for i in range(20):
+        r.stereo = i % 2 == 0
+        r.shutter = 0.01 * i
+    t.join()
+    assert not errors
+    # Each frame is whole: the mono or the stereo (side-by-side) image, never a mix.
+    assert set(shapes) <= {(27, 48, 3), (27, 96, 3)}
+
+
+def test_a_scene_that_names_itself_is_an_error():
+    d = scratch("self_scene")
+    with open(os.path.join(d, "a.json"), "w") as f:
+        f.write('{"base": "b.json"}')
+    with open(os.path.join(d, "b.json"), "w") as f:
+        f.write('{"base": "a.json"}')
+    with pytest.raises(tandem.Error, match=r"refers to itself \(a.json -> b.json -> a.json\)"):
+        tandem.Renderer(os.path.join(d, "a.json"))
+
+
+def test_ctrl_c_stops_a_long_render():
+    code = ("import tandem, sys\n"
+            "r = tandem.Renderer('cornell', pipeline='deferred', width=32, height=18)\n"
+            "print('ready', flush=True)\n"
+            "r.render(frames=10**9)\n")
+    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "ready"
+    import signal
+    import time
+    time.sleep(0.5)
+    start = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    try:
+        _, err = p.communicate(timeout=10)
+    finally:
+        p.kill()
+    assert time.monotonic() - start < 2.0
+    assert p.returncode != 0 and "KeyboardInterrupt" in err

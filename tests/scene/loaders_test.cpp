@@ -382,3 +382,40 @@ TEST(Primitives, TorusKnotIsAClosedOutwardTubeInTheUnitCube) {
   for (const Vec3& p : m.positions)
     for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(p[k]), 1.0f + 1e-5f);
 }
+
+// A scene file reached again through `base` or an object's `file` (itself, or along a chain) is an
+// input error naming the chain, never a stack overflow; a chain is bounded however it is written.
+TEST(SceneFile, ScenesThatReferToThemselvesAreErrorsNamingTheChain) {
+  auto dir = scratchDir("scene_cycles");
+  auto message = [&](const std::string& file) {
+    try {
+      loadScene((dir / file).string());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  writeText(dir / "self.json", R"({"base": "self.json"})");
+  EXPECT_NE(message("self.json").find("refers to itself (self.json -> self.json)"),
+            std::string::npos)
+      << message("self.json");
+  writeText(dir / "a.json", R"({"base": "b.json"})");
+  writeText(dir / "b.json", R"({"base": "c.json"})");
+  writeText(dir / "c.json", R"({"base": "cornell", "objects": [{"file": "a.json"}]})");
+  const std::string chain = message("a.json");
+  EXPECT_NE(chain.find("a.json -> b.json -> c.json -> a.json"), std::string::npos) << chain;
+  EXPECT_NE(chain.find("objects[0]"), std::string::npos) << chain;  // where c.json names it
+  writeText(dir / "obj.json", R"({"base": "cornell", "objects": [{"file": "obj.json"}]})");
+  EXPECT_NE(message("obj.json").find("refers to itself"), std::string::npos);
+  // A long chain without a cycle: bounded.
+  for (int i = 0; i < 40; ++i)
+    writeText(dir / ("n" + std::to_string(i) + ".json"),
+              R"({"base": "n)" + std::to_string(i + 1) + R"(.json"})");
+  writeText(dir / "n40.json", R"({"base": "cornell"})");
+  EXPECT_NE(message("n0.json").find("nest deeper than 32"), std::string::npos);
+  // The same file twice side by side is no cycle.
+  writeText(dir / "twice.json", R"({"base": "cornell", "objects": [{"file": ")" +
+                                    writeTetrahedronObj(dir) + R"("}, {"file": ")" +
+                                    writeTetrahedronObj(dir) + R"("}]})");
+  EXPECT_EQ(message("twice.json"), "loaded");
+}
