@@ -19,6 +19,7 @@
 #include "eval/metrics/metrics.h"
 #include "eval/reference/reference_cache.h"
 #include "pipeline/aov.h"
+#include "pipeline/render_limits.h"
 #include "pipeline/renderer.h"
 #include "scene/camera_json.h"
 #include "scene/default_lights.h"
@@ -83,14 +84,16 @@ Buffer fromArray(const py::array_t<float, py::array::c_style | py::array::forcec
 
 class PyRenderer {
  public:
+  // Sizes and the shutter come as doubles (Python checked they are integral / real numbers) so
+  // that the CLI's checks (render_limits.h) decide their ranges, before the scene loads.
   PyRenderer(const std::string& scene, const std::string& sceneJson, const std::string& pipeline,
-             const std::string& pipelineJson, int width, int height, bool stereo, float shutter,
-             uint64_t seed)
-      : scene_(loadSceneSpec(scene, sceneJson)), camera_(defaultCamera(scene_)) {
-    if (width < 1 || width > 16384 || height < 1 || height > 16384)
-      throw InputError("Renderer", "width/height", "must be in [1, 16384]");
-    settings_.width = width;
-    settings_.height = height;
+             const std::string& pipelineJson, double width, double height, bool stereo,
+             double shutter, uint64_t seed)
+      : scene_((checkFrameSize("Renderer", "width", "height", width, height, stereo),
+                checkShutter("Renderer", "shutter", shutter), loadSceneSpec(scene, sceneJson))),
+        camera_(defaultCamera(scene_)) {
+    settings_.width = int(width);
+    settings_.height = int(height);
     settings_.seed = seed;
     setShutter(shutter);
     setStereo(stereo);
@@ -146,9 +149,9 @@ class PyRenderer {
     const auto lock = exclusive();
     return settings_.shutter;
   }
-  void setShutter(float s) {
+  void setShutter(double s) {
     const auto lock = exclusive();
-    if (!(s >= 0.0f && s <= 10.0f)) throw InputError("Renderer", "shutter", "must be in [0, 10]");
+    checkShutter("Renderer", "shutter", s);
     settings_.shutter = s;
     rebuildIfLive();
   }
@@ -271,26 +274,28 @@ class PyRenderer {
 };
 
 py::dict reference(const std::string& scene, const std::string& sceneJson,
-                   const std::string& integrator, int spp, int width, int height,
-                   const std::string& cameraJson, float time, float shutter, bool stereo,
+                   const std::string& integrator, double spp, double width, double height,
+                   const std::string& cameraJson, double time, double shutter, bool stereo,
                    const std::string& cache, uint64_t seed) {
+  // The CLI's checks (render_limits.h), before the scene loads.
+  checkFrameSize("reference", "width", "height", width, height, stereo);
+  checkSpp("reference", "spp", spp);
+  checkTime("reference", "time", time);
+  checkShutter("reference", "shutter", shutter);
   const Scene s = loadSceneSpec(scene, sceneJson);
   ReferenceJob job;
   job.scene = &s;
   CameraDesc cam = defaultCamera(s);
   if (!cameraJson.empty()) cam = cameraFromJson(parseJson(cameraJson, "camera"), "camera", cam);
   job.camera = job.shutterCamera = cam;  // the renderer's camera: a still one
-  job.time = time;
-  job.shutter = shutter;
-  if (width < 1 || width > 16384 || height < 1 || height > 16384)
-    throw InputError("reference", "width/height", "must be in [1, 16384]");
-  job.width = width;
-  job.height = height;
+  job.time = float(time);
+  job.shutter = float(shutter);
+  job.width = int(width);
+  job.height = int(height);
   StereoDesc st = s.stereo;
   st.enabled = stereo;
   job.stereo = fitStereoToModel(s, cam, st, false);
-  if (spp < 1) throw InputError("reference", "spp", "must be at least 1");
-  job.settings.spp = spp;
+  job.settings.spp = int(spp);
   job.settings.seed = seed;
   if (integrator == "whitted")
     job.settings.integrator = Integrator::Whitted;
@@ -319,6 +324,8 @@ py::dict compare(const py::array_t<float, py::array::c_style | py::array::forcec
   Buffer ba = fromArray(a, "a"), bb = fromArray(b, "b");
   if (ba.width != bb.width || ba.height != bb.height || ba.channels != bb.channels)
     throw InputError("compare", "b", "shape differs from a's");
+  requireFinitePixels(ba, "compare", "a");
+  requireFinitePixels(bb, "compare", "b");
   Buffer ssimMap, flipMap;
   ImageMetrics m;
   double f = 0;
@@ -347,6 +354,7 @@ std::string runExperimentPy(const std::string& name, const std::string& out,
                             int staticFrames, int pathFrames, double budget, double budgetMs,
                             int threads) {
   ExperimentRequest r;
+  r.fromPython = true;
   r.name = name;
   r.o.out = out;
   r.o.scenes = scenes;
@@ -381,7 +389,7 @@ PYBIND11_MODULE(_tandem, m) {
 
   py::class_<PyRenderer>(m, "Renderer")
       .def(py::init<const std::string&, const std::string&, const std::string&, const std::string&,
-                    int, int, bool, float, uint64_t>(),
+                    double, double, bool, double, uint64_t>(),
            py::arg("scene"), py::arg("scene_json"), py::arg("pipeline"), py::arg("pipeline_json"),
            py::arg("width"), py::arg("height"), py::arg("stereo"), py::arg("shutter"),
            py::arg("seed"))

@@ -1,13 +1,12 @@
 #include "cli_options.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "pipeline/render_limits.h"
 #include "pipeline/renderer.h"
 #include "scene/default_lights.h"
 #include "scene/loaders.h"
@@ -172,18 +171,14 @@ void validateRenderOptions(const RenderOptions& o) {
   if (!o.resolution.empty() && o.resolution != "fhd" && o.resolution != "quest2")
     throw InputError("command line", "--resolution",
                      "expected fhd or quest2, got '" + o.resolution + "'");
-  if (o.width < 1 || o.width > 16384)
-    throw InputError("command line", "--width", "must be in [1, 16384]");
-  if (o.height < 1 || o.height > 16384)
-    throw InputError("command line", "--height", "must be in [1, 16384]");
+  checkFrameSize("command line", "--width", "--height", o.width, o.height, o.stereo);
   if (o.frames < 1 || o.frames > 1000000)
     throw InputError("command line", "--frames", "must be in [1, 1000000]");
   if (o.threads < 0 || o.threads > 4096)
     throw InputError("command line", "--threads", "must be in [0, 4096]");
   if (o.vfov != 0 && !(o.vfov > 0 && o.vfov < 180))
     throw InputError("command line", "--vfov", "must be in (0, 180)");
-  if (!(o.shutter >= 0 && o.shutter <= 1000))
-    throw InputError("command line", "--shutter", "must be in [0, 1000] seconds");
+  checkShutter("command line", "--shutter", o.shutter);
   if (o.aperture && !(*o.aperture >= 0 && *o.aperture <= 1000))
     throw InputError("command line", "--aperture", "must be in [0, 1000] metres");
   if (o.focus && !(*o.focus > 0 && *o.focus <= 1e9))
@@ -205,19 +200,6 @@ void validateRenderOptions(const RenderOptions& o) {
       throw InputError(
           "command line", "--out",
           "'" + o.out + "': Tandem writes .png and .exr files (or a folder: end it with /)");
-  }
-  // The frame's buffers need at least ~175 bytes a pixel (G-buffer, history, outputs): refuse a
-  // size the machine cannot hold before allocating it.
-  const double pixels = double(o.width) * double(o.height) * (o.stereo ? 2.0 : 1.0);
-  const double need = pixels * 175.0;
-  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (have > 0 && need > 0.9 * have) {
-    char msg[200];
-    std::snprintf(msg, sizeof msg,
-                  "%d x %d%s needs about %.1f GiB for its buffers; this machine has %.1f GiB",
-                  o.width, o.height, o.stereo ? " (stereo)" : "", need / 1073741824.0,
-                  have / 1073741824.0);
-    throw InputError("command line", "--width / --height", msg);
   }
 }
 

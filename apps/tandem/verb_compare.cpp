@@ -30,6 +30,8 @@ VerbRunner addCompareVerb(CLI::App& app) {
                        std::to_string(b.width) + "x" + std::to_string(b.height) + " differs from " +
                            args->a + " (" + std::to_string(a.width) + "x" +
                            std::to_string(a.height) + ")");
+    requireFinitePixels(a, args->a, "pixels");
+    requireFinitePixels(b, args->b, "pixels");
     Buffer map;
     ImageMetrics m = compareImages(a, b, args->heatmap.empty() ? nullptr : &map);
     // FLIP compares what a viewer sees: HDR images tonemapped as `render` writes them.

@@ -14,6 +14,7 @@
 #include "eval/reference/reference_cache.h"
 #include "mpi_cluster.h"
 #include "pipeline/aov.h"
+#include "pipeline/render_limits.h"
 #include "rt/diffuse_gi.h"
 #include "verbs.h"
 
@@ -33,15 +34,14 @@ struct ReferenceVerb {
 
   void validate() {
     validateRenderOptions(opts);
-    if (spp < 1 || spp > (1 << 20))
-      throw InputError("command line", "--spp", "must be in [1, 1048576]");
+    checkSpp("command line", "--spp", spp);
     if (maxDepth == -1) maxDepth = integrator == "whitted" ? 10 : 16;
     if (maxDepth < 1 || maxDepth > 1024)
       throw InputError("command line", "--max-depth", "must be in [1, 1024]");
     if (!(timeLimit >= 0)) throw InputError("command line", "--time-limit", "must be >= 0 seconds");
     if (integrator != "path" && integrator != "whitted" && integrator != "diffuse-gi")
       throw InputError("command line", "--integrator", "expected path, whitted or diffuse-gi");
-    if (!std::isfinite(time)) throw InputError("command line", "--time", "must be finite");
+    checkTime("command line", "--time", time);
   }
 
   int run() {

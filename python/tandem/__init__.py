@@ -15,6 +15,8 @@ JSON (docs/pipelines.md). Bad input raises tandem.Error (a ValueError) with the 
 prints. Rendering releases the GIL. See docs/python.md.
 """
 import csv
+import math
+import numbers
 import json
 import os
 
@@ -23,6 +25,72 @@ from ._tandem import Error
 
 __all__ = ["Renderer", "Error", "reference", "compare", "experiment", "experiments", "pipelines",
            "default_cache"]
+
+
+# Arguments are checked for their type here (an integer that is integral, a bool that is a
+# bool, a finite number, a dict or a list where one belongs), each failure a tandem.Error
+# naming the call and the argument as the CLI names its options; their ranges are checked by
+# the same C++ code the CLI runs (render_limits.h).
+def _fail(where, field, problem):
+    raise Error(f"{where}: {field}: {problem}" if field else f"{where}: {problem}")
+
+
+def _integer(value, where, field):
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return int(value)
+    if (isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value)
+            and float(value).is_integer()):
+        return int(value)
+    _fail(where, field, f"expected an integer, got {value!r}")
+
+
+def _real(value, where, field):
+    if not isinstance(value, numbers.Real) or isinstance(value, bool):
+        _fail(where, field, f"expected a number, got {value!r}")
+    if not math.isfinite(value):
+        _fail(where, field, f"must be finite, got {value!r}")
+    return float(value)
+
+
+def _boolean(value, where, field):
+    if isinstance(value, bool) or type(value).__name__ == "bool_":  # numpy's too
+        return bool(value)
+    _fail(where, field, f"expected True or False, got {value!r}")
+
+
+def _seed(value, where):
+    seed = _integer(value, where, "seed")
+    if not 0 <= seed < 2**64:
+        _fail(where, "seed", f"must be in [0, 2^64), got {seed}")
+    return seed
+
+
+def _size(value, where, field):
+    """A width or height: integral here, its range in C++ (passed on as a float)."""
+    return float(_integer(value, where, field))
+
+
+def _strings(value, where, field):
+    if isinstance(value, (str, bytes)) or not isinstance(value, (list, tuple)) or not all(
+            isinstance(v, str) for v in value):
+        _fail(where, field, f"expected a list of names, got {value!r}")
+    return list(value)
+
+
+def _mapping(value, where, field):
+    if not isinstance(value, dict):
+        _fail(where, field, f"expected a dict, got {value!r}")
+    return value
+
+
+def _json(value, where):
+    """JSON text of a dict or list from Python, NaN and Inf refused by name (JSON has neither)."""
+    try:
+        return json.dumps(value, allow_nan=False)
+    except ValueError:
+        _fail(where, "", "values must be finite numbers (NaN and Inf are not)")
+    except TypeError as e:
+        _fail(where, "", str(e))
 
 
 def _spec(value, what):
@@ -54,10 +122,20 @@ class Renderer:
                  stereo=False, shutter=0.0, seed=0, camera=None, lights=None, sets=None):
         scene_name, scene_json = _spec(scene, "scene")
         pipe_name, pipe_json = _spec(pipeline, "pipeline")
+        w, h = _size(width, "Renderer", "width"), _size(height, "Renderer", "height")
+        stereo = _boolean(stereo, "Renderer", "stereo")
+        shutter = _real(shutter, "Renderer", "shutter")
+        seed = _seed(seed, "Renderer")
+        if camera is not None:
+            _mapping(camera, "Renderer", "camera")
+        if lights is not None and not isinstance(lights, (list, tuple)):
+            _fail("Renderer", "lights", f"expected a list of lights, got {lights!r}")
+        if sets is not None:
+            _mapping(sets, "Renderer", "sets")
         self._scene = (scene_name, scene_json)
-        self._r = _tandem.Renderer(scene_name, scene_json, pipe_name, pipe_json, int(width),
-                                   int(height), bool(stereo), float(shutter), int(seed))
-        self.width, self.height = int(width), int(height)
+        self._r = _tandem.Renderer(scene_name, scene_json, pipe_name, pipe_json, w, h, stereo,
+                                   shutter, seed)
+        self.width, self.height = int(w), int(h)
         if camera:
             self.set_camera(**camera)
         if lights is not None:
@@ -68,6 +146,10 @@ class Renderer:
     def set(self, name, value=None):
         """Sets a pass parameter, checked as --set is: set("heuristic.budget", 1e5) or
         set("heuristic.budget=1e5")."""
+        if not isinstance(name, str):
+            _fail("set", "name", f"expected \"pass.param\", got {name!r}")
+        if isinstance(value, float) and not math.isfinite(value):
+            _fail("set", name, f"must be finite, got {value!r}")
         self._r.set(name if value is None else f"{name}={_json_value(value)}")
 
     @property
@@ -82,7 +164,7 @@ class Renderer:
     def set_camera(self, **fields):
         """Changes the given camera fields (scene-file names: position, lookAt, up, vfov,
         aperture, focalLength, focusDistance, sensorWidth, blades, ...); the rest stay."""
-        self._r.set_camera(json.dumps(fields))
+        self._r.set_camera(_json(fields, "camera"))
 
     @property
     def lights(self):
@@ -91,7 +173,9 @@ class Renderer:
     @lights.setter
     def lights(self, lights):
         """Replaces the scene's lights with scene-file "lights" entries (history starts over)."""
-        self._r.set_lights(json.dumps(list(lights)))
+        if not isinstance(lights, (list, tuple)) or not all(isinstance(l, dict) for l in lights):
+            _fail("lights", "", f"expected a list of light dicts, got {lights!r}")
+        self._r.set_lights(_json(list(lights), "lights"))
 
     @property
     def shutter(self):
@@ -99,7 +183,7 @@ class Renderer:
 
     @shutter.setter
     def shutter(self, seconds):
-        self._r.shutter = float(seconds)
+        self._r.shutter = _real(seconds, "Renderer", "shutter")
 
     @property
     def stereo(self):
@@ -107,7 +191,7 @@ class Renderer:
 
     @stereo.setter
     def stereo(self, on):
-        self._r.stereo = bool(on)
+        self._r.stereo = _boolean(on, "Renderer", "stereo")
 
     @property
     def frame(self):
@@ -119,7 +203,11 @@ class Renderer:
         (height, width[, channels]): "hdr", "output" (display-encoded, what the PNG holds),
         "depth", "normal", "object_id" and every other buffer the pipeline's passes write, or
         only those named in `buffers` (each a copy: naming few saves the copying)."""
-        return self._r.render(int(frames), list(buffers or []))
+        frames = _integer(frames, "render", "frames")
+        if frames < 1:
+            _fail("render", "frames", f"must be at least 1, got {frames}")
+        names = [] if buffers is None else _strings(buffers, "render", "buffers")
+        return self._r.render(min(frames, 2**31 - 1), names)
 
     def timings(self):
         """Milliseconds of the last frame: {"frame": total, "passes": {label: ms}}."""
@@ -167,15 +255,26 @@ def reference(scene="cornell", integrator="path", spp=64, width=640, height=360,
     converged). Cached as the CLI caches (cache="" renders anew). Returns {"hdr", "output",
     "variance", "spp", "seconds", "from_cache"}."""
     name, text = _spec(scene, "scene")
-    return _tandem.reference(name, text, integrator, int(spp), int(width), int(height),
-                             json.dumps(camera) if camera else "", float(time), float(shutter),
-                             bool(stereo), default_cache() if cache is None else cache, int(seed))
+    where = "reference"
+    if not isinstance(integrator, str):
+        _fail(where, "integrator", f"expected path, whitted or diffuse-gi, got {integrator!r}")
+    if camera is not None:
+        _mapping(camera, where, "camera")
+    if cache is not None and not isinstance(cache, (str, os.PathLike)):
+        _fail(where, "cache", f"expected a folder, got {cache!r}")
+    return _tandem.reference(
+        name, text, integrator, float(_integer(spp, where, "spp")),
+        _size(width, where, "width"), _size(height, where, "height"),
+        _json(camera, "camera") if camera else "", _real(time, where, "time"),
+        _real(shutter, where, "shutter"), _boolean(stereo, where, "stereo"),
+        os.fspath(default_cache() if cache is None else cache), _seed(seed, where))
 
 
 def compare(a, b, hdr=False, maps=False):
     """RMSE, PSNR, SSIM and FLIP between two images (a is the reference for FLIP). `hdr`:
     FLIP sees both tonemapped as `render` writes them. `maps`: also "ssim_map" and "flip_map"."""
-    return _tandem.compare(a, b, bool(hdr), bool(maps))
+    return _tandem.compare(a, b, _boolean(hdr, "compare", "hdr"),
+                           _boolean(maps, "compare", "maps"))
 
 
 def _number(text):
@@ -193,10 +292,29 @@ def experiment(name, out=None, scenes=None, width=0, height=0, warmup=-1, frames
                budget_ms=-1.0, threads=0):
     """Runs `tandem experiment NAME` with the same overrides; returns {"out": folder,
     "tables": {table: [row dicts]}}, the tables it wrote as CSV, numbers as numbers."""
+    where = "experiment"
+
+    def count(value, field):
+        # Integral here; the range is checked in C++ (the CLI's check), as far as an int holds.
+        v = _integer(value, where, field)
+        if not -2**31 <= v < 2**31:
+            _fail(where, field, f"out of range, got {v}")
+        return v
+
+    if not isinstance(name, (str, os.PathLike)):
+        _fail(where, "name", f"expected an experiment name or file, got {name!r}")
+    if out is not None and not isinstance(out, (str, os.PathLike)):
+        _fail(where, "out", f"expected a folder, got {out!r}")
+    if cache is not None and not isinstance(cache, (str, os.PathLike)):
+        _fail(where, "cache", f"expected a folder, got {cache!r}")
     folder = _tandem.run_experiment(
-        name, out or "", list(scenes or []), int(width), int(height), int(warmup), int(frames),
-        int(spp), default_cache() if cache is None else cache, bool(no_cache),
-        int(static_frames), int(path_frames), float(budget), float(budget_ms), int(threads))
+        os.fspath(name), os.fspath(out or ""),
+        [] if scenes is None else _strings(scenes, where, "scenes"), count(width, "width"),
+        count(height, "height"), count(warmup, "warmup"), count(frames, "frames"),
+        count(spp, "spp"), os.fspath(default_cache() if cache is None else cache),
+        _boolean(no_cache, where, "no_cache"), count(static_frames, "static_frames"),
+        count(path_frames, "path_frames"), _real(budget, where, "budget"),
+        _real(budget_ms, where, "budget_ms"), count(threads, "threads"))
     tables = {}
     for entry in sorted(os.listdir(folder)):
         if entry.endswith(".csv"):

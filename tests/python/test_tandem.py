@@ -339,3 +339,54 @@ def test_ctrl_c_stops_a_long_render():
         p.kill()
     assert time.monotonic() - start < 2.0
     assert p.returncode != 0 and "KeyboardInterrupt" in err
+
+
+BAD_ARGUMENTS = [
+    (lambda: tandem.Renderer(width=2.7), "Renderer: width: expected an integer"),
+    (lambda: tandem.Renderer(width=10**10), "Renderer: width: must be in [1, 16384]"),
+    (lambda: tandem.Renderer(height=0), "Renderer: height: must be in [1, 16384]"),
+    (lambda: tandem.Renderer(stereo="no"), "Renderer: stereo: expected True or False"),
+    (lambda: tandem.Renderer(shutter=float("nan")), "Renderer: shutter: must be finite"),
+    (lambda: tandem.Renderer(shutter=-1), "Renderer: shutter: must be in [0, 1000] seconds"),
+    (lambda: tandem.Renderer(seed=-5), "Renderer: seed: must be in [0, 2^64)"),
+    (lambda: tandem.Renderer(lights=5), "Renderer: lights: expected a list of lights"),
+    (lambda: tandem.Renderer(camera=[1, 2, 3]), "Renderer: camera: expected a dict"),
+    (lambda: tandem.Renderer(sets=[1, 2]), "Renderer: sets: expected a dict"),
+    (lambda: tandem.reference(time=float("nan")), "reference: time: must be finite"),
+    (lambda: tandem.reference(shutter=-1), "reference: shutter: must be in [0, 1000] seconds"),
+    (lambda: tandem.reference(spp=0), "reference: spp: must be in [1, 1048576]"),
+    (lambda: tandem.reference(width=2.5), "reference: width: expected an integer"),
+    (lambda: tandem.reference(stereo=1), "reference: stereo: expected True or False"),
+    (lambda: tandem.experiment("taa", width=-5), "experiment: width: must be in [1, 16384]"),
+    (lambda: tandem.experiment("taa", frames=1.5), "experiment: frames: expected an integer"),
+]
+
+
+@pytest.mark.parametrize("call,message", BAD_ARGUMENTS)
+def test_bad_arguments_raise_errors_naming_them(call, message):
+    with pytest.raises(tandem.Error) as e:
+        call()
+    assert message in str(e.value)
+
+
+def test_bad_render_and_camera_arguments_are_named():
+    r = tandem.Renderer("cornell", pipeline="deferred", width=16, height=9)
+    for call, message in [
+            (lambda: r.render(frames=1.9), "render: frames: expected an integer"),
+            (lambda: r.render(frames=0), "render: frames: must be at least 1"),
+            (lambda: r.render(buffers="output"), "render: buffers: expected a list of names"),
+            (lambda: r.set_camera(position=[float("nan"), 0, 0]), "camera: values must be finite"),
+            (lambda: setattr(r, "stereo", "yes"), "Renderer: stereo: expected True or False"),
+            (lambda: setattr(r, "lights", [1]), "lights: expected a list of light dicts")]:
+        with pytest.raises(tandem.Error) as e:
+            call()
+        assert message in str(e.value)
+    assert r.frame == 0  # nothing rendered
+
+
+def test_compare_refuses_non_finite_pixels_by_count():
+    a = np.zeros((2, 2, 3), np.float32)
+    b = a.copy()
+    b[0, 1, 2] = np.nan
+    with pytest.raises(tandem.Error, match=r"compare: b: 1 of 4 pixels are not finite"):
+        tandem.compare(a, b)

@@ -169,7 +169,43 @@ int gallery(const nlohmann::json& j, const Overrides& v) {
 
 }  // namespace
 
+namespace {
+
+// The overrides' ranges (0 or -1: not given), checked before anything runs; the CLI and Python
+// both come through here.
+std::string fmtNumber(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+void checkOverrides(const ExperimentRequest& r) {
+  auto range = [&r](std::string field, double v, double unset, double lo, double hi) {
+    if (!r.fromPython) {
+      std::replace(field.begin(), field.end(), '_', '-');
+      field = "--" + field;
+    }
+    if (v != unset && !(v >= lo && v <= hi))
+      throw InputError(
+          r.fromPython ? "experiment" : "command line", field,
+          "must be in [" + fmtNumber(lo) + ", " + fmtNumber(hi) + "] (got " + fmtNumber(v) + ")");
+  };
+  range("width", r.o.width, 0, 1, 16384);
+  range("height", r.o.height, 0, 1, 16384);
+  range("warmup", r.o.warmup, -1, 0, 100000);
+  range("frames", r.o.frames, 0, 1, 1000000);
+  range("spp", r.o.spp, 0, 1, 1 << 20);
+  range("static_frames", r.staticFrames, -1, 1, 1000000);
+  range("path_frames", r.pathFrames, -1, 1, 1000000);
+  range("threads", r.threads, 0, 1, 4096);
+  range("budget", r.budget, -1, 0, 1e30);
+  range("budget_ms", r.budgetMs, -1, 1e-3, 1e9);
+}
+
+}  // namespace
+
 int runExperiment(const ExperimentRequest& r) {
+  checkOverrides(r);
   const fs::path file = resolveExperiment(r.name);
   std::ifstream in(file);
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);

@@ -17,6 +17,8 @@ struct ExperimentRequest {
   ExperimentOverrides o;
   int staticFrames = -1, pathFrames = -1, threads = 0;  // -1: not given
   double budget = -1, budgetMs = -1;                    // heuristic runner; -1: not given
+  // Who asks, for error messages: the CLI's options are "--width", Python's arguments "width".
+  bool fromPython = false;
 };
 
 // The folder of the built-in experiments (experiments/ in the source tree).

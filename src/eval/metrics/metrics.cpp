@@ -1,5 +1,6 @@
 #include "eval/metrics/metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -79,6 +80,20 @@ double ssim(const Buffer& a, const Buffer& b, Buffer* map) {
     }
   }
   return total / (double(W) * H * C);
+}
+
+void requireFinitePixels(const Buffer& img, const std::string& source, const std::string& field) {
+  const size_t c = size_t(std::max(img.channels, 1));
+  size_t bad = 0;
+  for (size_t p = 0; p < img.data.size(); p += c) {
+    bool finite = true;
+    for (size_t k = 0; k < c; ++k) finite &= std::isfinite(img.data[p + k]);
+    bad += !finite;
+  }
+  if (bad > 0)
+    throw InputError(source, field,
+                     std::to_string(bad) + " of " + std::to_string(img.pixelCount()) +
+                         " pixels are not finite (NaN or Inf)");
 }
 
 ImageMetrics compareImages(const Buffer& a, const Buffer& b, Buffer* ssimMap) {

@@ -6,6 +6,8 @@
 //    dynamic range L = 1, computed per channel over the full image (window clipped at borders,
 //    renormalised), then averaged over pixels and channels.
 #pragma once
+#include <string>
+
 #include "core/buffer.h"
 
 namespace tandem {
@@ -19,6 +21,9 @@ double psnr(const Buffer& a, const Buffer& b, double peak = 1.0);
 // Mean SSIM; when `map` is given it receives the per-pixel SSIM averaged over channels.
 double ssim(const Buffer& a, const Buffer& b, Buffer* map = nullptr);
 ImageMetrics compareImages(const Buffer& a, const Buffer& b, Buffer* ssimMap = nullptr);
+// Metrics of images holding NaN or Inf would be NaN: an InputError naming `source`, `field` and
+// how many pixels are not finite.
+void requireFinitePixels(const Buffer& img, const std::string& source, const std::string& field);
 
 // False-colour heat map of values in [0, maxValue] (blue -> green -> yellow -> red).
 Buffer heatMap(const Buffer& scalar, float maxValue);

@@ -1,0 +1,19 @@
+// The limits a render's settings must keep, checked alike wherever they come from (the CLI's
+// options, Python's arguments): each failure an InputError naming the caller's field.
+#pragma once
+#include <string>
+
+namespace tandem {
+
+// Width and height in [1, 16384] (one eye), and buffers the machine can hold: a frame needs at
+// least ~175 bytes a pixel (G-buffer, history, outputs), refused before anything is allocated.
+void checkFrameSize(const std::string& source, const std::string& widthField,
+                    const std::string& heightField, double width, double height, bool stereo);
+// Seconds the shutter stays open: finite, in [0, 1000].
+void checkShutter(const std::string& source, const std::string& field, double seconds);
+// A reference's samples per pixel: in [1, 2^20].
+void checkSpp(const std::string& source, const std::string& field, double spp);
+// A scene time in seconds: finite.
+void checkTime(const std::string& source, const std::string& field, double seconds);
+
+}  // namespace tandem
