@@ -13,6 +13,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/json_fields.h"
 #include "eval/experiments/experiment_runner.h"
 #include "eval/metrics/flip.h"
@@ -80,6 +81,14 @@ Buffer fromArray(const py::array_t<float, py::array::c_style | py::array::forcec
   Buffer b(w, h, c);
   std::memcpy(b.data.data(), a.data(), b.data.size() * sizeof(float));
   return b;
+}
+
+// Ctrl-C during a long call: the poll the frame loop and the reference's batches call
+// (core/interrupt.h) takes the GIL back, lets Python run its SIGINT handler and raises
+// KeyboardInterrupt (through error_already_set) when it did.
+void raiseOnCtrlC() {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
 }
 
 class PyRenderer {
@@ -175,14 +184,8 @@ class PyRenderer {
     if (frames < 1) throw InputError("render", "frames", "must be at least 1");
     {
       py::gil_scoped_release release;
-      for (int i = 0; i < frames; ++i) {
-        last_ = renderer_->renderFrame(frame_++, camera_);
-        // Ctrl-C between frames: KeyboardInterrupt (the frame in flight finishes).
-        if (i + 1 < frames) {
-          py::gil_scoped_acquire gil;
-          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        }
-      }
+      const InterruptPoll ctrlC(raiseOnCtrlC);  // polled before each frame
+      for (int i = 0; i < frames; ++i) last_ = renderer_->renderFrame(frame_++, camera_);
     }
     // Records (typed values passes hand each other) have no pixels to return.
     std::map<std::string, const Buffer*> buffers;
@@ -306,6 +309,7 @@ py::dict reference(const std::string& scene, const std::string& sceneJson,
   ReferenceImage img;
   {
     py::gil_scoped_release release;
+    const InterruptPoll ctrlC(raiseOnCtrlC);  // polled between sample batches
     img = referenceImage(job, cache);
   }
   py::dict d;
@@ -374,6 +378,7 @@ std::string runExperimentPy(const std::string& name, const std::string& out,
   int status = 0;
   {
     py::gil_scoped_release release;
+    const InterruptPoll ctrlC(raiseOnCtrlC);  // polled before each frame and reference batch
     status = runExperiment(r);
   }
   if (status != 0)

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/image_io.h"
+#include "core/interrupt.h"
 #include "pipeline/frame_context.h"
 
 namespace tandem {
@@ -307,6 +308,7 @@ void runIsolated(const Pass& p, FrameContext& ctx, Run&& run) {
 }  // namespace
 
 FrameTimings Pipeline::execute(FrameContext& ctx) {
+  pollInterrupt();  // before a frame: a stop never leaves one half drawn
   FrameTimings ft;
   auto frameStart = Clock::now();
   ++ctx.serial;

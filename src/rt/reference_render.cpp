@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/interrupt.h"
 #include "core/parallel.h"
 #include "core/profiler.h"
 #include "shading/surface_resolve.h"
@@ -136,6 +137,7 @@ ReferenceResult renderReference(const RayTracer& rt, const Scene& scene, const C
   const auto start = Clock::now();
   ReferenceResult result;
   while (sums.samples < settings.spp) {
+    pollInterrupt();  // between batches: the sums hold whole samples
     // Batches double (1, 1, 2, 4, ... 64) so the first image and estimate come quickly; with a
     // time limit the batch shrinks to what the measured rate says still fits.
     int batch = std::min({settings.spp - sums.samples, std::max(sums.samples, 1), 64});

@@ -320,17 +320,20 @@ def test_a_scene_that_names_itself_is_an_error():
         tandem.Renderer(os.path.join(d, "a.json"))
 
 
-def test_ctrl_c_stops_a_long_render():
+@pytest.mark.parametrize("call", [
+    "tandem.Renderer('cornell', pipeline='deferred', width=32, height=18).render(frames=10**9)",
+    "tandem.reference('cornell', spp=1000000, width=64, height=36, cache='')",
+    "tandem.experiment('taa', out=sys.argv[1], cache='')"])
+def test_ctrl_c_stops_a_long_call(call):
     code = ("import tandem, sys\n"
-            "r = tandem.Renderer('cornell', pipeline='deferred', width=32, height=18)\n"
             "print('ready', flush=True)\n"
-            "r.render(frames=10**9)\n")
-    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
+            f"{call}\n")
+    p = subprocess.Popen([sys.executable, "-c", code, scratch("ctrl_c")], stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, text=True)
     assert p.stdout.readline().strip() == "ready"
     import signal
     import time
-    time.sleep(0.5)
+    time.sleep(1.5)  # well inside the call
     start = time.monotonic()
     p.send_signal(signal.SIGINT)
     try:
