@@ -2,11 +2,27 @@
 // experiment, export, view.
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/memory.h"
 #include "verbs.h"
+
+namespace {
+
+// Ctrl-C: the render, reference or experiment stops before its next frame or sample batch and
+// cleans up (an experiment's staging folder, a file being written); a second Ctrl-C ends the
+// process at once.
+volatile std::sig_atomic_t gInterrupted = 0;
+extern "C" void onInterrupt(int) {
+  gInterrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+}
+struct Interrupted {};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // A file-size limit (ulimit -f) should fail the write, which FileCommit reports and cleans
@@ -30,11 +46,25 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "tandem: error: command line: %s (see tandem --help)\n", e.what());
     return 2;
   }
+  // The viewer renders on a worker thread and quits on its own keys: Ctrl-C ends it as before.
+  if (!app.got_subcommand("view")) std::signal(SIGINT, onInterrupt);
+  const tandem::InterruptPoll ctrlC([] {
+    if (gInterrupted) throw Interrupted{};
+  });
   try {
     for (auto& [name, run] : verbs)
       if (app.got_subcommand(name)) return run();
+  } catch (const Interrupted&) {
+    std::fprintf(stderr, "tandem: interrupted\n");
+    return 130;
   } catch (const tandem::InputError& e) {
     std::fprintf(stderr, "tandem: error: %s\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Where an output cannot go (a read-only or missing place, a name too long): the
+    // environment's error, in Tandem's words.
+    std::fprintf(stderr, "tandem: error: %s: %s\n", e.path1().string().c_str(),
+                 e.code().message().c_str());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tandem: error: %s\n", e.what());

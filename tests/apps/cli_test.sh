@@ -251,5 +251,24 @@ expect_error "a heuristic flag for another runner" "--static-frames" "$T" experi
 expect_error "--path-frames for the DoF runner" "--path-frames" "$T" experiment hybrid-dof \
   --path-frames 3 --out "$D/err/exp"
 
+# Ctrl-C: a long reference or experiment stops before its next sample batch or frame (exit 130),
+# leaving no output file, no experiment folder and no staging folder behind.
+interrupt() {
+  local name="$1"; shift
+  "$@" >/dev/null 2>"$D/int.err" &
+  local pid=$!
+  sleep 2
+  local t0=$(date +%s%N)
+  kill -INT $pid
+  wait $pid; local rc=$?
+  local ms=$(( ($(date +%s%N) - t0) / 1000000 ))
+  check "$name: stops on SIGINT within 2 s (took $ms ms, exit $rc)" "[ $rc -eq 130 ] && [ $ms -lt 2000 ]"
+}
+mkdir -p "$D/int"
+interrupt "reference" "$T" reference --scene cornell --spp 1000000 --width 64 --height 36 --no-cache --quiet --out "$D/int/ref.png"
+check "reference: nothing written" "[ ! -e $D/int/ref.png ]"
+interrupt "experiment" "$T" experiment taa --no-cache --out "$D/int/exp"
+check "experiment: no folder, no staging folder" "[ ! -e $D/int/exp ] && [ ! -e $D/int/exp.partial ]"
+
 if [ $fail -ne 0 ]; then echo "cli tests failed"; exit 1; fi
 echo "cli tests passed"

@@ -328,7 +328,8 @@ def test_ctrl_c_stops_a_long_call(call):
     code = ("import tandem, sys\n"
             "print('ready', flush=True)\n"
             f"{call}\n")
-    p = subprocess.Popen([sys.executable, "-c", code, scratch("ctrl_c")], stdout=subprocess.PIPE,
+    out = os.path.join(scratch("ctrl_c"), "exp")
+    p = subprocess.Popen([sys.executable, "-c", code, out], stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, text=True)
     assert p.stdout.readline().strip() == "ready"
     import signal
@@ -342,6 +343,8 @@ def test_ctrl_c_stops_a_long_call(call):
         p.kill()
     assert time.monotonic() - start < 2.0
     assert p.returncode != 0 and "KeyboardInterrupt" in err
+    # An experiment stopped early leaves neither its folder nor its staging folder.
+    assert not os.path.exists(out) and not os.path.exists(out + ".partial")
 
 
 BAD_ARGUMENTS = [

@@ -316,8 +316,6 @@ int runGallery(const GalleryOptions& o) {
       table);
   report.write("width " + std::to_string(o.width) + ", height " + std::to_string(o.height) +
                ", frames " + std::to_string(o.frames));
-  std::printf("demo: wrote %s and %s\n", (fs::path(o.out) / "contact_sheet.png").c_str(),
-              (fs::path(o.out) / "index.html").c_str());
   return 0;
 }
 

@@ -605,7 +605,6 @@ int runInterleavedExperiment(const InterleavedExperimentOptions& o) {
                          fmt(o.shutter, 3) + " s, reference " + std::to_string(o.referenceSpp) +
                          " spp (whitted), seeds " + std::to_string(o.seeds);
   report.write(settings);
-  std::printf("experiment interleaved: wrote %s\n", (fs::path(o.out) / "index.html").c_str());
   return 0;
 }
 

@@ -185,8 +185,6 @@ void ExperimentReport::write(const std::string& settings) {
   }
   html << "</body></html>\n";
   writeTextFile((dir_ / "index.html").string(), html.str());
-  std::printf("wrote %s and %s\n", (dir_ / "results.md").string().c_str(),
-              (dir_ / "index.html").string().c_str());
 }
 
 }  // namespace tandem

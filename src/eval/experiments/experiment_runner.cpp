@@ -202,10 +202,57 @@ void checkOverrides(const ExperimentRequest& r) {
   range("budget_ms", r.budgetMs, -1, 1e-3, 1e9);
 }
 
+// Moves what `from` holds into `to` (created), file by file, replacing files of the same name and
+// leaving the rest of `to` as it was.
+void publish(const fs::path& from, const fs::path& to) {
+  fs::create_directories(to);
+  for (const fs::directory_entry& e : fs::directory_iterator(from)) {
+    const fs::path target = to / e.path().filename();
+    if (e.is_directory() && !e.is_symlink()) {
+      publish(e.path(), target);
+    } else {
+      fs::rename(e.path(), target);
+    }
+  }
+}
+
+int runStaged(const ExperimentRequest& r);
+
 }  // namespace
 
+// Everything is written into a staging folder beside the output folder and moved into it only
+// when the run succeeded: a run that fails, runs out of disk or is stopped leaves nothing behind,
+// and what the output folder held before is replaced file by file, never removed.
 int runExperiment(const ExperimentRequest& r) {
   checkOverrides(r);
+  fs::path out = fs::path(experimentOutDir(r)).lexically_normal();
+  if (out.filename().empty()) out = out.parent_path();
+  fs::path staging = out;
+  staging += ".partial";
+  std::error_code ec;
+  fs::remove_all(staging, ec);  // a crashed run's
+  ExperimentRequest staged = r;
+  staged.o.out = staging.string();
+  int status = 0;
+  try {
+    status = runStaged(staged);
+    if (status == 0) publish(staging, out);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(staging, ec);
+    throw InputError(out.string(), "",
+                     std::string("cannot write the results: ") + e.code().message());
+  } catch (...) {
+    fs::remove_all(staging, ec);
+    throw;
+  }
+  fs::remove_all(staging, ec);
+  if (status == 0) std::printf("wrote %s (index.html, results.md)\n", out.string().c_str());
+  return status;
+}
+
+namespace {
+
+int runStaged(const ExperimentRequest& r) {
   const fs::path file = resolveExperiment(r.name);
   std::ifstream in(file);
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
@@ -231,5 +278,7 @@ int runExperiment(const ExperimentRequest& r) {
                          "gallery");
   return runSweepExperiment(j, file.string(), r.o);
 }
+
+}  // namespace
 
 }  // namespace tandem
