@@ -25,8 +25,18 @@ std::vector<float> lightKey(const Scene& s) {
 
 }  // namespace
 
-void ShadowMaps::update(const FrameScene& fs, int resolution) {
+int budgetedShadowMapSize(const Scene& scene, int requested) {
+  double faces = 0;
+  for (const Light& l : scene.lights)
+    if (l.castsShadows) faces += l.type == LightType::Point ? 6 : 1;
+  if (faces == 0) return requested;
+  const int fit = int(std::sqrt(kMaxShadowTexels / faces)) / 32 * 32;
+  return std::min(requested, std::max(fit, 32));
+}
+
+void ShadowMaps::update(const FrameScene& fs, int requested) {
   const Scene& scene = *fs.scene;
+  const int resolution = budgetedShadowMapSize(scene, requested);
   std::vector<float> key = lightKey(scene);
   const bool staticStale = fs.staticVersion != staticVersion_ || key != lightKey_ ||
                            resolution != resolution_ || fs.scene != scene_;

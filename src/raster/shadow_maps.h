@@ -23,10 +23,18 @@ namespace tandem {
 // tell (traced).
 enum class ShadowClass : uint8_t { Culled = 0, Lit = 1, Shadowed = 2, Traced = 3 };
 
+// Every map face's texels together stay within this many (about 0.75 GiB of maps and their
+// companions): a scene with many lights gets coarser maps instead of running out of memory.
+constexpr double kMaxShadowTexels = 128.0 * 1024 * 1024;
+// The map size (texels a side) `requested` becomes for the scene's shadow-casting lights: as
+// asked, or smaller (a multiple of 32, at least 32) when the faces would exceed kMaxShadowTexels.
+int budgetedShadowMapSize(const Scene& scene, int requested);
+
 class ShadowMaps {
  public:
   // Redraws what changed: everything for new lights, resolution or static geometry; the
-  // animated casters over the static depth when only they moved.
+  // animated casters over the static depth when only they moved. `resolution` as
+  // budgetedShadowMapSize gives it.
   void update(const FrameScene& fs, int resolution);
   // Fraction (0..1, 2x2 percentage-closer filtered) of light `i` reaching point p with unit
   // normal n; 1 for lights that cast no shadows or where p lies outside every map.

@@ -2,7 +2,10 @@
 // rest, and the image equals the ray-traced one; culling leaves the all-rays baseline as it was.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
 #include <random>
+#include <string>
 
 #include "core/error.h"
 #include "eval/metrics/metrics.h"
@@ -326,4 +329,49 @@ TEST(ClassifiedShadows, HeuristicTracesEveryShadowWhenAskedTo) {
   auto more = render(s, "hybrid-heuristic", {"heuristic.shadows=all"}, 96, 54);
   EXPECT_GT(more->context().counters.at("heuristic/selected"), 0.0);
   EXPECT_EQ(r->context().counters.at("heuristic/selected"), 0.0);
+}
+
+namespace {
+
+// Peak resident memory of this process so far (VmHWM), in bytes; 0 where /proc is not there.
+double peakResidentBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) * 1024.0;
+  return 0;
+}
+
+}  // namespace
+
+// Shadow maps for many lights share a budget of texels: the size drops (a multiple of 32, at
+// least 32) only when the faces would exceed it, so the usual scenes keep their maps.
+TEST(ShadowMapBudget, ManyLightsGetSmallerMapsNotMoreMemory) {
+  Scene s = builtin("cornell");
+  EXPECT_EQ(budgetedShadowMapSize(s, 1024), 1024);
+  Light point;
+  point.type = LightType::Point;
+  s.lights.assign(1000, point);  // 6000 cube faces
+  const int size = budgetedShadowMapSize(s, 1024);
+  EXPECT_EQ(size % 32, 0);
+  EXPECT_LE(6000.0 * size * size, kMaxShadowTexels);
+  EXPECT_GT(6000.0 * (size + 32) * (size + 32), kMaxShadowTexels);
+  for (Light& l : s.lights) l.castsShadows = false;  // no maps at all
+  EXPECT_EQ(budgetedShadowMapSize(s, 1024), 1024);
+  // A thousand point lights render through the hybrid (maps for classified shadows and the
+  // fallback) within 2 GiB, every pixel finite.
+  Scene many = builtin("cornell");
+  many.lights.clear();
+  for (int i = 0; i < 1000; ++i) {
+    Light l = point;
+    l.position = {float(i % 32) / 32.0f - 0.5f, 1.5f, float(i / 32) / 32.0f - 0.5f};
+    l.intensity = 0.1f;
+    many.lights.push_back(l);
+  }
+  const auto r = render(many, "hybrid-heuristic", {}, 64, 36);
+  for (float v : r->output().data) ASSERT_TRUE(std::isfinite(v));
+  const double peak = peakResidentBytes();
+  if (peak > 0) {
+    EXPECT_LT(peak, 2.0 * 1024 * 1024 * 1024) << peak / 1048576 << " MiB";
+  }
 }
