@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace tandem {
@@ -86,6 +87,9 @@ void readArray(JsonFields& f, const Json& v, const std::string& key, float* out)
     if (!v[i].is_number()) f.fail(key, "expected an array of " + std::to_string(N) + " numbers");
     double d = v[i].get<double>();
     if (!std::isfinite(d)) f.fail(key, "must be finite");
+    // Beyond a float's range the value would become infinite where it is used.
+    if (std::abs(d) > double(std::numeric_limits<float>::max()))
+      f.fail(key, "out of range: numbers must lie within +-3.4e38");
     out[i] = float(d);
   }
 }

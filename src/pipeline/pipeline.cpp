@@ -1,5 +1,6 @@
 #include "pipeline/pipeline.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -46,6 +47,16 @@ Pipeline Pipeline::load(const std::string& nameOrFile) {
   return fromJson(readJsonFile(nameOrFile), nameOrFile);
 }
 
+namespace {
+// Text a reader would take for a number: what strtod reads whole ("1e400", "nan", "-inf").
+bool looksNumeric(const std::string& text) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
+}
+}  // namespace
+
 void setPassParam(Pass& pass, const std::string& name, const Json& value) {
   const std::vector<ParamDesc> all = pass.params();
   auto d = std::find_if(all.begin(), all.end(), [&](const ParamDesc& x) { return x.name == name; });
@@ -60,8 +71,14 @@ void setPassParam(Pass& pass, const std::string& name, const Json& value) {
     v = value.get<bool>() ? 1 : 0;
   } else if (value.is_number()) {
     v = value.get<double>();
+  } else if (value.is_string() && looksNumeric(value.get<std::string>())) {
+    // "1e400", "nan", "inf": JSON holds no such number.
+    fail("'" + value.get<std::string>() + "' is not a finite number");
   } else {
-    fail("wrong type");
+    const char* expected = d->type == ParamType::Bool   ? "true or false"
+                           : d->type == ParamType::Enum ? "one of its choices"
+                                                        : "a number";
+    fail(std::string("wrong type: expected ") + expected);
   }
   try {
     pass.setParam(name, v);

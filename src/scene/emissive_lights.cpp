@@ -1,9 +1,19 @@
 // Emissive meshes -> punctual lights, for pipelines without area lights.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "scene/loaders.h"
 
 namespace tandem {
+
+namespace {
+// A very bright, large emitter's intensity is clamped to the largest float instead of becoming
+// infinite (docs/scene-format.md).
+float finiteIntensity(double intensity) {
+  return float(std::min(intensity, double(std::numeric_limits<float>::max())));
+}
+}  // namespace
 
 namespace {
 
@@ -63,7 +73,7 @@ int addLightsForEmissiveMeshes(Scene& s) {
       l.type = LightType::Spot;
       l.direction = normalize(normalSum);
       l.position = centroid + l.direction * 1e-3f;  // just off the surface it stands for
-      l.intensity = lum * float(area);
+      l.intensity = finiteIntensity(double(lum) * area);
       l.innerConeDeg = 90.0f;
       l.outerConeDeg = 90.0f;
       l.cosinePower = 1.0f;
@@ -71,7 +81,7 @@ int addLightsForEmissiveMeshes(Scene& s) {
       // Same total power Phi = pi * Le * A spread evenly: I = Phi / (4 pi) = Le * A / 4.
       l.type = LightType::Point;
       l.position = centroid;
-      l.intensity = lum * float(area) * 0.25f;
+      l.intensity = finiteIntensity(double(lum) * area * 0.25);
     }
     l.castsShadows = true;
     s.lights.push_back(l);

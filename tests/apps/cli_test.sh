@@ -251,6 +251,13 @@ expect_error "a heuristic flag for another runner" "--static-frames" "$T" experi
 expect_error "--path-frames for the DoF runner" "--path-frames" "$T" experiment hybrid-dof \
   --path-frames 3 --out "$D/err/exp"
 
+expect_error "--set beyond a double" "'1e400' is not a finite number" "$T" render cornell \
+  --pipeline hybrid-heuristic --width 16 --height 9 --set heuristic.budget=1e400 --out "$D/err/x.png"
+echo '{"base": "cornell", "materials": {"m": {"emission": [1e39, 0, 0]}}}' > "$D/inf.json"
+expect_error "a number beyond a float" "within +-3.4e38" "$T" render "$D/inf.json" --out "$D/err/x.png"
+echo '{"base": "self.json"}' > "$D/self.json"
+expect_error "a scene that names itself" "refers to itself" "$T" info "$D/self.json"
+
 # Ctrl-C: a long reference or experiment stops before its next sample batch or frame (exit 130),
 # leaving no output file, no experiment folder and no staging folder behind.
 interrupt() {

@@ -1,6 +1,8 @@
 // Every bad input gets an InputError naming the file, the field and the problem.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/error.h"
 #include "scene/loaders.h"
 #include "test_util.h"
@@ -91,6 +93,23 @@ TEST(BadInput, WrongJsonType) {
                   {"slices", "integer"});
   expectLoadError("e.json", R"({"materials": {"m": {"ior": -1}}, "objects": [{"shape": "cube"}]})",
                   {"materials.m.ior", "out of range"});
+  // Finite as a double, infinite as the float it is stored in.
+  expectLoadError(
+      "f.json",
+      R"({"materials": {"m": {"emission": [1e39, 0, 0]}}, "objects": [{"shape": "cube"}]})",
+      {"materials.m.emission", "within +-3.4e38"});
+}
+
+// The brightest emission a float holds, on a large mesh, makes a light of finite intensity.
+TEST(BadInput, EmissiveLightIntensityStaysFinite) {
+  auto dir = scratchDir("bright_emitter");
+  writeText(dir / "s.json",
+            R"({"materials": {"m": {"emission": [3e38, 3e38, 3e38]}},
+                "objects": [{"shape": "sphere", "material": "m", "scale": [10, 10, 10]}]})");
+  Scene s = loadScene((dir / "s.json").string());
+  ASSERT_EQ(s.lights.size(), 1u);  // auto: the scene has no punctual lights
+  EXPECT_TRUE(std::isfinite(s.lights[0].intensity));
+  EXPECT_GT(s.lights[0].intensity, 1e38f);
 }
 
 TEST(BadInput, UnknownMaterialAndShape) {
