@@ -55,7 +55,7 @@ void AccumulationPass::execute(FrameContext& ctx) {
   RayTracer* rt = s.shading == AccumulationSettings::Shading::Whitted ? &ctx.rayTracer() : nullptr;
   const uint64_t raysBefore = rt ? rt->raysTraced() : 0;
   const std::vector<TimeLensPair> pairs = stratifiedTimeLensPairs(n, ctx.seed);
-  Buffer& hdr = ctx.output(*this, "hdr");
+  Buffer& hdr = ctx.output(*this, Slots::hdr);
   hdr.fill(0.0f);
   const float weight = 1.0f / float(n);
   double rasterMs = 0, shadeMs = 0;

@@ -34,12 +34,16 @@ struct AccumulationCounters {
 
 class AccumulationPass : public SettingsPass<AccumulationSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+  };
   std::string type() const override { return "accumulation"; }
   std::string description() const override {
     return "Averages N rasterized images at stratified (time, lens) pairs (DoF / motion-blur "
            "baseline)";
   }
-  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{Slots::hdr, 3}}; }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 

@@ -79,8 +79,8 @@ void PTReferencePass::execute(FrameContext& ctx) {
     sums_.clear();
   }
   sums_.resize(ctx.views.size());
-  Buffer& hdr = ctx.output(*this, "hdr");
-  Buffer& variance = ctx.output(*this, "variance");
+  Buffer& hdr = ctx.output(*this, Slots::hdr);
+  Buffer& variance = ctx.output(*this, Slots::variance);
   int spp = 0;
   double seconds = 0;
   for (size_t i = 0; i < ctx.views.size(); ++i) {

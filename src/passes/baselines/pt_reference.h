@@ -31,12 +31,17 @@ struct PTReferenceCounters {
 
 class PTReferencePass : public SettingsPass<PTReferenceSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* variance = "variance";
+  };
   std::string type() const override { return "pt_reference"; }
   std::string description() const override {
     return "Progressive reference path tracing (NEE + MIS, thin lens, motion blur, Sobol)";
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"hdr", 3}, {"variance", 1, BufferKind::Variance}};
+    return {{Slots::hdr, 3}, {Slots::variance, 1, BufferKind::Variance}};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;

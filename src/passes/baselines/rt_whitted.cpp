@@ -17,8 +17,8 @@ const ParamTable<RTWhittedSettings>& RTWhittedPass::tableFor() const {
 void RTWhittedPass::execute(FrameContext& ctx) {
   WhittedFrame wf(ctx, *this, settings().whitted);
   const Scene& scene = *ctx.scene;
-  Buffer& hdr = ctx.output(*this, "hdr");
-  Buffer& ids = ctx.output(*this, "object_id");
+  Buffer& hdr = ctx.output(*this, Slots::hdr);
+  Buffer& ids = ctx.output(*this, Slots::objectId);
   for (const View& v : ctx.views) {
     const float spread = ctx.pixelSpread(v);  // the pixel's cone picks texture LOD
     tracePrimaryBlocks(

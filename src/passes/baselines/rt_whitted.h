@@ -12,12 +12,17 @@ struct RTWhittedSettings {
 
 class RTWhittedPass : public SettingsPass<RTWhittedSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* objectId = "object_id";
+  };
   std::string type() const override { return "rt_whitted"; }
   std::string description() const override {
     return "Whitted ray tracing of the whole frame (RAYT ONLY)";
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"hdr", 3}, {"object_id", 1, BufferKind::Id}};
+    return {{Slots::hdr, 3}, {Slots::objectId, 1, BufferKind::Id}};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override { return whittedCounters(*this); }

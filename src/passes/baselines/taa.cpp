@@ -19,9 +19,9 @@ inline Vec3 fromYCoCg(Vec3 y) {
 }  // namespace
 
 std::vector<BufferSlot> TAAPass::inputs() const {
-  BufferSlot history{"taa", 3};
+  BufferSlot history{Slots::taa, 3};
   history.history = true;
-  return {{"hdr", 3}, {"motion", 2, BufferKind::Motion}, history};
+  return {{Slots::hdr, 3}, {Slots::motion, 2, BufferKind::Motion}, history};
 }
 
 const ParamTable<TAASettings>& TAAPass::tableFor() const {
@@ -60,10 +60,10 @@ void TAAPass::request(FrameRequest& r) const {
 }
 
 void TAAPass::execute(FrameContext& ctx) {
-  const Buffer& cur = ctx.input(*this, "hdr");
-  const Buffer& motion = ctx.input(*this, "motion");
-  const Buffer* prev = ctx.previous(*this, "taa");
-  Buffer& out = ctx.output(*this, "taa");
+  const Buffer& cur = ctx.input(*this, Slots::hdr);
+  const Buffer& motion = ctx.input(*this, Slots::motion);
+  const Buffer* prev = ctx.previous(*this, Slots::taa);
+  Buffer& out = ctx.output(*this, Slots::taa);
   if (!prev || !prev->sameShape(out)) {
     out.data = cur.data;
     framesAveraged_ = 1;

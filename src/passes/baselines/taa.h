@@ -27,12 +27,18 @@ struct TAASettings {
 
 class TAAPass : public SettingsPass<TAASettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* motion = "motion";
+    static constexpr const char* taa = "taa";
+  };
   std::string type() const override { return "taa"; }
   std::string description() const override {
     return "Temporal anti-aliasing: jitter, reprojection, YCoCg neighbourhood clamp (Karis 2014)";
   }
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override { return {{"taa", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{Slots::taa, 3}}; }
   void request(FrameRequest& r) const override;
   void execute(FrameContext& ctx) override;
   void resetHistory() override { framesAveraged_ = 0; }

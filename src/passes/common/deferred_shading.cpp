@@ -14,7 +14,7 @@ std::vector<BufferSlot> DeferredShadingPass::inputs() const {
 
 void DeferredShadingPass::execute(FrameContext& ctx) {
   const GBufferReader g = gbufferSource(ctx, *this);
-  Buffer& hdr = ctx.output(*this, "hdr");
+  Buffer& hdr = ctx.output(*this, Slots::hdr);
   const Scene& scene = *ctx.scene;
   const ShadingContext shading = ShadingContext::from(scene);
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {

@@ -9,12 +9,16 @@ namespace tandem {
 
 class DeferredShadingPass : public Pass {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+  };
   std::string type() const override { return "deferred_shading"; }
   std::string description() const override {
     return "Blinn-Phong lighting of the G-buffer (Listing 5)";
   }
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{Slots::hdr, 3}}; }
   void execute(FrameContext& ctx) override;
 };
 

@@ -13,9 +13,9 @@ const ParamTable<DownsampleSettings>& DownsamplePass::tableFor() const {
 }
 
 void DownsamplePass::execute(FrameContext& ctx) {
-  const Buffer& hdr = ctx.input(*this, "hdr");
-  Buffer& half = ctx.output(*this, "half");
-  Buffer& quarter = ctx.output(*this, "quarter");
+  const Buffer& hdr = ctx.input(*this, Slots::hdr);
+  Buffer& half = ctx.output(*this, Slots::half);
+  Buffer& quarter = ctx.output(*this, Slots::quarter);
   const bool box = settings().filter == DownsampleSettings::Filter::Box;
   half.data = (box ? downsampleBox(hdr) : resizeBilinear(hdr, half.width, half.height)).data;
   quarter.data =

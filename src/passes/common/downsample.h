@@ -13,14 +13,20 @@ struct DownsampleSettings {
 
 class DownsamplePass : public SettingsPass<DownsampleSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* half = "half";
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* quarter = "quarter";
+  };
   std::string type() const override { return "downsample"; }
   std::string description() const override {
     return "Colour at 1/2 and 1/4 resolution (box or bilinear)";
   }
-  std::vector<BufferSlot> inputs() const override { return {{"hdr", 3}}; }
+  std::vector<BufferSlot> inputs() const override { return {{Slots::hdr, 3}}; }
   std::vector<BufferSlot> outputs() const override {
-    return {{"half", 3, BufferKind::Color, Extent::half()},
-            {"quarter", 3, BufferKind::Color, Extent::quarter()}};
+    return {{Slots::half, 3, BufferKind::Color, Extent::half()},
+            {Slots::quarter, 3, BufferKind::Color, Extent::quarter()}};
   }
   void execute(FrameContext& ctx) override;
 

@@ -18,8 +18,8 @@ const ParamTable<TonemapSettings>& TonemapPass::tableFor() const {
 }
 
 void TonemapPass::execute(FrameContext& ctx) {
-  const Buffer& hdr = ctx.input(*this, "hdr");
-  Buffer& out = ctx.output(*this, "output");
+  const Buffer& hdr = ctx.input(*this, Slots::hdr);
+  Buffer& out = ctx.output(*this, Slots::output);
   const float ev = settings().exposure;
   const auto op = settings().op;
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {

@@ -15,10 +15,17 @@ struct TonemapSettings {
 
 class TonemapPass : public SettingsPass<TonemapSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* output = "output";
+  };
   std::string type() const override { return "tonemap"; }
   std::string description() const override { return "Exposure, tone curve and sRGB encoding"; }
-  std::vector<BufferSlot> inputs() const override { return {{"hdr", 3}}; }
-  std::vector<BufferSlot> outputs() const override { return {{"output", 3, BufferKind::Display}}; }
+  std::vector<BufferSlot> inputs() const override { return {{Slots::hdr, 3}}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {{Slots::output, 3, BufferKind::Display}};
+  }
   void execute(FrameContext& ctx) override;
 
  protected:

@@ -9,7 +9,7 @@
 namespace tandem {
 
 std::vector<BufferSlot> VBufferShadingPass::outputs() const {
-  std::vector<BufferSlot> out = {{"hdr", 3}};
+  std::vector<BufferSlot> out = {{Slots::hdr, 3}};
   for (const BufferSlot& s : gbufferSlots()) out.push_back(s);
   return out;
 }
@@ -17,7 +17,7 @@ std::vector<BufferSlot> VBufferShadingPass::outputs() const {
 void VBufferShadingPass::execute(FrameContext& ctx) {
   surfaces_.rasterize(ctx, *this);
   const auto t1 = Clock::now();
-  Buffer& hdr = ctx.output(*this, "hdr");
+  Buffer& hdr = ctx.output(*this, Slots::hdr);
   // The G-buffer only when something reads a field of it beyond depth and ids (a pass, an AOV,
   // the viewer's shown buffer); a frame that needs only the image skips its stores.
   bool gbuffer = false;

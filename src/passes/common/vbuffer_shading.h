@@ -15,6 +15,10 @@ namespace tandem {
 
 class VBufferShadingPass : public Pass {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+  };
   std::string type() const override { return "vbuffer_shading"; }
   std::string description() const override {
     return "Blinn-Phong lighting straight from the visibility buffer (G-buffer written only when "

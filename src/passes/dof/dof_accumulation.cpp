@@ -10,13 +10,13 @@
 namespace tandem {
 
 std::vector<BufferSlot> DofAccumulationPass::inputs() const {
-  std::vector<BufferSlot> in = {dof::layerSlot("rt_near"),
-                                dof::layerSlot("rt_far"),
+  std::vector<BufferSlot> in = {dof::layerSlot(Slots::rtNear),
+                                dof::layerSlot(Slots::rtFar),
                                 dof::hitSlot(),
                                 dof::farPositionSlot(),
-                                {"motion", 2, BufferKind::Motion}};
-  for (BufferSlot s : {dof::AccChannels::slot("acc_near"), dof::AccChannels::slot("acc_far"),
-                       dof::MomentChannels::slot()}) {
+                                {Slots::motion, 2, BufferKind::Motion}};
+  for (BufferSlot s : {dof::AccChannels::slot(Slots::accNear),
+                       dof::AccChannels::slot(Slots::accFar), dof::MomentChannels::slot()}) {
     s.history = true;
     in.push_back(s);
   }
@@ -24,11 +24,11 @@ std::vector<BufferSlot> DofAccumulationPass::inputs() const {
 }
 
 std::vector<BufferSlot> DofAccumulationPass::outputs() const {
-  return {dof::AccChannels::slot("acc_near"),
-          dof::AccChannels::slot("acc_far"),
+  return {dof::AccChannels::slot(Slots::accNear),
+          dof::AccChannels::slot(Slots::accFar),
           dof::MomentChannels::slot(),
-          dof::RtChannels::slot("rt_color"),
-          {"dof_variance", 1, BufferKind::Variance, Extent::any()}};
+          dof::RtChannels::slot(Slots::rtColor),
+          {Slots::dofVariance, 1, BufferKind::Variance, Extent::any()}};
 }
 
 const ParamTable<DofAccumulationSettings>& DofAccumulationPass::tableFor() const {
@@ -113,22 +113,22 @@ std::vector<CounterDesc> DofAccumulationPass::counters() const {
 }
 
 void DofAccumulationPass::execute(FrameContext& ctx) {
-  const Buffer& nearIn = ctx.input(*this, "rt_near");
-  const Buffer& farIn = ctx.input(*this, "rt_far");
-  const Buffer& hitIn = ctx.input(*this, "rt_hit");
-  const Buffer& farPosIn = ctx.input(*this, "rt_far_position");
-  const Buffer& motion = ctx.input(*this, "motion");
+  const Buffer& nearIn = ctx.input(*this, Slots::rtNear);
+  const Buffer& farIn = ctx.input(*this, Slots::rtFar);
+  const Buffer& hitIn = ctx.input(*this, Slots::rtHit);
+  const Buffer& farPosIn = ctx.input(*this, Slots::rtFarPosition);
+  const Buffer& motion = ctx.input(*this, Slots::motion);
   const int w = nearIn.width, h = nearIn.height;
-  const Buffer* prevNear = ctx.previous(*this, "acc_near");
-  const Buffer* prevFar = ctx.previous(*this, "acc_far");
-  const Buffer* prevMoments = ctx.previous(*this, "acc_moments");
+  const Buffer* prevNear = ctx.previous(*this, Slots::accNear);
+  const Buffer* prevFar = ctx.previous(*this, Slots::accFar);
+  const Buffer* prevMoments = ctx.previous(*this, Slots::accMoments);
   auto fits = [&](const Buffer* b) { return b && b->width == w && b->height == h; };
   if (!fits(prevNear) || !fits(prevFar) || !fits(prevMoments))
     prevNear = prevFar = prevMoments = nullptr;
-  Buffer& accNear = ctx.output(*this, "acc_near", w, h);
-  Buffer& accFar = ctx.output(*this, "acc_far", w, h);
-  Buffer& accMoments = ctx.output(*this, "acc_moments", w, h);
-  Buffer& color = ctx.output(*this, "rt_color", w, h);
+  Buffer& accNear = ctx.output(*this, Slots::accNear, w, h);
+  Buffer& accFar = ctx.output(*this, Slots::accFar, w, h);
+  Buffer& accMoments = ctx.output(*this, Slots::accMoments, w, h);
+  Buffer& color = ctx.output(*this, Slots::rtColor, w, h);
   Buffer variance(w, h, 1, 0.0f, BufferKind::Variance);
   const float scale = float(ctx.width) / float(w);
   const float minAlpha = 1.0f - settings().historyWeight;
@@ -231,7 +231,7 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
   ctx.report(*this, DofAccumulationCounters::meanVariance, mean / n);
   // Share of pixels whose variance alone adds a ray at m = 10 with the paper's weight 1e5.
   ctx.report(*this, DofAccumulationCounters::varianceAbove1e6, above / n);
-  Buffer& varOut = ctx.output(*this, "dof_variance", w, h);
+  Buffer& varOut = ctx.output(*this, Slots::dofVariance, w, h);
   varOut.data = gaussianBlur(variance, settings().varianceBlur).data;
 }
 

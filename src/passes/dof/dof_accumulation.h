@@ -37,6 +37,19 @@ struct DofAccumulationCounters {
 
 class DofAccumulationPass : public SettingsPass<DofAccumulationSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* accFar = "acc_far";
+    static constexpr const char* accMoments = "acc_moments";
+    static constexpr const char* accNear = "acc_near";
+    static constexpr const char* dofVariance = "dof_variance";
+    static constexpr const char* motion = "motion";
+    static constexpr const char* rtColor = "rt_color";
+    static constexpr const char* rtFar = "rt_far";
+    static constexpr const char* rtFarPosition = "rt_far_position";
+    static constexpr const char* rtHit = "rt_hit";
+    static constexpr const char* rtNear = "rt_near";
+  };
   std::string type() const override { return "dof_accumulation"; }
   std::string description() const override {
     return "Temporal accumulation of near/far ray-traced DoF, reprojected, variance (Tan et al. "

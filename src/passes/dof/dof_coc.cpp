@@ -9,9 +9,9 @@
 namespace tandem {
 
 void DofCocPass::execute(FrameContext& ctx) {
-  const Buffer& position = ctx.input(*this, "position");
-  const Buffer& depth = ctx.input(*this, "depth");
-  Buffer& coc = ctx.output(*this, "coc");
+  const Buffer& position = ctx.input(*this, Slots::position);
+  const Buffer& depth = ctx.input(*this, Slots::depth);
+  Buffer& coc = ctx.output(*this, Slots::coc);
   parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
     const ThinLens lens = ThinLens::of(v.camera);
     const Vec3 eye = v.camera.desc.position, fwd = v.camera.forward;

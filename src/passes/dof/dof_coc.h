@@ -10,14 +10,20 @@ namespace tandem {
 
 class DofCocPass : public Pass {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* coc = "coc";
+    static constexpr const char* depth = "depth";
+    static constexpr const char* position = "position";
+  };
   std::string type() const override { return "dof_coc"; }
   std::string description() const override {
     return "Circle of confusion from the thin lens (Tan et al. 2022 eq. 6), near < 0 < far";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"position", 3, BufferKind::Position}, {"depth", 1, BufferKind::Depth}};
+    return {{Slots::position, 3, BufferKind::Position}, {Slots::depth, 1, BufferKind::Depth}};
   }
-  std::vector<BufferSlot> outputs() const override { return {{"coc", 1, BufferKind::Signed}}; }
+  std::vector<BufferSlot> outputs() const override { return {{Slots::coc, 1, BufferKind::Signed}}; }
   void execute(FrameContext& ctx) override;
 };
 

@@ -91,13 +91,13 @@ Vec3 fineGather(const Buffer& sharp, const Buffer& coc, int x, int y, float radi
 }  // namespace
 
 void DofCompositePass::execute(FrameContext& ctx) {
-  const Buffer& sharp = ctx.input(*this, "hdr");
-  const Buffer& coc = ctx.input(*this, "coc");
-  const Buffer* postfxIn = ctx.optionalInput(*this, "postfx");
-  const Buffer* bokehIn = ctx.optionalInput(*this, "bokeh");
+  const Buffer& sharp = ctx.input(*this, Slots::hdr);
+  const Buffer& coc = ctx.input(*this, Slots::coc);
+  const Buffer* postfxIn = ctx.optionalInput(*this, Slots::postfx);
+  const Buffer* bokehIn = ctx.optionalInput(*this, Slots::bokeh);
   const Buffer& postfx = postfxIn ? *postfxIn : sharp;
-  const Buffer* rt = ctx.optionalInput(*this, "rt_recon");
-  Buffer& out = ctx.output(*this, "dof");
+  const Buffer* rt = ctx.optionalInput(*this, Slots::rtRecon);
+  Buffer& out = ctx.output(*this, Slots::dof);
   const DofCompositeSettings& s = settings();
   const bool rtMode = s.mode == DofCompositeSettings::Mode::Rt, useBokeh = s.bokeh;
   const float farBlend = s.farBlend;

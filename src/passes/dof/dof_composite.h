@@ -40,18 +40,27 @@ struct DofCompositeSettings {
 
 class DofCompositePass : public SettingsPass<DofCompositeSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* bokeh = "bokeh";
+    static constexpr const char* coc = "coc";
+    static constexpr const char* dof = "dof";
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* postfx = "postfx";
+    static constexpr const char* rtRecon = "rt_recon";
+  };
   std::string type() const override { return "dof_composite"; }
   std::string description() const override {
     return "Composite: sharp raster in the zone of focus, ray-traced near field, post-process "
            "bokeh, far field by hit ratio (Tan et al. 2022 §3.3, eq. 7)";
   }
   std::vector<BufferSlot> inputs() const override {
-    BufferSlot rt = dof::RtChannels::slot("rt_recon");
-    BufferSlot postfx{"postfx", 3}, bokeh = dof::BokehChannels::slot();
+    BufferSlot rt = dof::RtChannels::slot(Slots::rtRecon);
+    BufferSlot postfx{Slots::postfx, 3}, bokeh = dof::BokehChannels::slot();
     rt.optional = postfx.optional = bokeh.optional = true;
-    return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, postfx, bokeh, rt};
+    return {{Slots::hdr, 3}, {Slots::coc, 1, BufferKind::Signed}, postfx, bokeh, rt};
   }
-  std::vector<BufferSlot> outputs() const override { return {{"dof", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{Slots::dof, 3}}; }
   void execute(FrameContext& ctx) override;
 
  protected:

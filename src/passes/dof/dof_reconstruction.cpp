@@ -25,10 +25,10 @@ const ParamTable<DofReconstructionSettings>& DofReconstructionPass::tableFor() c
 }
 
 void DofReconstructionPass::execute(FrameContext& ctx) {
-  const Buffer& in = ctx.input(*this, "rt_color");
-  const Buffer& variance = ctx.input(*this, "dof_variance");
+  const Buffer& in = ctx.input(*this, Slots::rtColor);
+  const Buffer& variance = ctx.input(*this, Slots::dofVariance);
   const int w = in.width, h = in.height;
-  Buffer& out = ctx.output(*this, "rt_recon", w, h);
+  Buffer& out = ctx.output(*this, Slots::rtRecon, w, h);
   const Buffer filtered = settings().median ? median3x3(in) : in;
   // Mip levels 0..3 of colour, CoC and hit ratio premultiplied by coverage, so uncovered
   // pixels do not darken the coarser levels.

@@ -20,16 +20,24 @@ struct DofReconstructionSettings {
 
 class DofReconstructionPass : public SettingsPass<DofReconstructionSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* dofVariance = "dof_variance";
+    static constexpr const char* rtColor = "rt_color";
+    static constexpr const char* rtRecon = "rt_recon";
+  };
   std::string type() const override { return "dof_reconstruction"; }
   std::string description() const override {
     return "Median + spatial reconstruction of ray-traced DoF, eq. 5 and 8 (Tan et al. 2022 "
            "§3.2.4)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {dof::RtChannels::slot("rt_color"),
-            {"dof_variance", 1, BufferKind::Variance, Extent::any()}};
+    return {dof::RtChannels::slot(Slots::rtColor),
+            {Slots::dofVariance, 1, BufferKind::Variance, Extent::any()}};
   }
-  std::vector<BufferSlot> outputs() const override { return {dof::RtChannels::slot("rt_recon")}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {dof::RtChannels::slot(Slots::rtRecon)};
+  }
   void execute(FrameContext& ctx) override;
 
  protected:

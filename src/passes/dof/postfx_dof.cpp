@@ -270,11 +270,11 @@ void gather(const HalfGrid& grid, const ThinLens& lens, const GatherSettings& gs
 }  // namespace
 
 void PostfxDofPass::execute(FrameContext& ctx) {
-  const Buffer& hdr = ctx.input(*this, "hdr");
-  const Buffer& cocIn = ctx.input(*this, "coc");
-  const Buffer& specIn = ctx.input(*this, "specular");
-  Buffer& out = ctx.output(*this, "postfx");
-  Buffer& bokehOut = ctx.output(*this, "bokeh");
+  const Buffer& hdr = ctx.input(*this, Slots::hdr);
+  const Buffer& cocIn = ctx.input(*this, Slots::coc);
+  const Buffer& specIn = ctx.input(*this, Slots::specular);
+  Buffer& out = ctx.output(*this, Slots::postfx);
+  Buffer& bokehOut = ctx.output(*this, Slots::bokeh);
   const ThinLens lens = ThinLens::of(ctx.camera());
   if (!lens.active()) {  // a pinhole: nothing to blur
     out.data = hdr.data;

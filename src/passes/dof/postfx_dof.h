@@ -35,16 +35,24 @@ struct PostfxDofSettings {
 
 class PostfxDofPass : public SettingsPass<PostfxDofSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* bokeh = "bokeh";
+    static constexpr const char* coc = "coc";
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* postfx = "postfx";
+    static constexpr const char* specular = "specular";
+  };
   std::string type() const override { return "postfx_dof"; }
   std::string description() const override {
     return "Post-process gather DoF: half res, tile max CoC, 9-tap prefilter, 81-tap gather "
            "(eq. 1), bokeh intensity, 3x3 median (Tan et al. 2022 §3.1)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"hdr", 3}, {"coc", 1, BufferKind::Signed}, gbufferSlot("specular")};
+    return {{Slots::hdr, 3}, {Slots::coc, 1, BufferKind::Signed}, gbufferSlot(Slots::specular)};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"postfx", 3}, dof::BokehChannels::slot()};
+    return {{Slots::postfx, 3}, dof::BokehChannels::slot()};
   }
   void execute(FrameContext& ctx) override;
 

@@ -12,14 +12,14 @@
 namespace tandem {
 
 std::vector<BufferSlot> RayMaskPass::inputs() const {
-  BufferSlot variance{"dof_variance", 1, BufferKind::Variance, Extent::any()};
+  BufferSlot variance{Slots::dofVariance, 1, BufferKind::Variance, Extent::any()};
   variance.history = true;
   BufferSlot bokeh = dof::BokehChannels::slot();
   bokeh.optional = true;
-  return {{"position", 3, BufferKind::Position},
-          {"normal", 3, BufferKind::Normal},
-          {"depth", 1, BufferKind::Depth},
-          {"coc", 1, BufferKind::Signed},
+  return {{Slots::position, 3, BufferKind::Position},
+          {Slots::normal, 3, BufferKind::Normal},
+          {Slots::depth, 1, BufferKind::Depth},
+          {Slots::coc, 1, BufferKind::Signed},
           variance,
           bokeh};
 }
@@ -139,14 +139,14 @@ std::vector<CounterDesc> RayMaskPass::counters() const {
 }
 
 void RayMaskPass::execute(FrameContext& ctx) {
-  const Buffer& position = ctx.input(*this, "position");
-  const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer& depth = ctx.input(*this, "depth");
-  const Buffer& coc = ctx.input(*this, "coc");
+  const Buffer& position = ctx.input(*this, Slots::position);
+  const Buffer& normal = ctx.input(*this, Slots::normal);
+  const Buffer& depth = ctx.input(*this, Slots::depth);
+  const Buffer& coc = ctx.input(*this, Slots::coc);
   const RayMaskSettings& cfg = settings();
   const int scale = cfg.resolution == RayMaskSettings::Resolution::Half ? 2 : 1;
   const int W = ctx.width, H = ctx.height, w = (W + scale - 1) / scale, h = (H + scale - 1) / scale;
-  Buffer& mask = ctx.output(*this, "ray_mask", w, h);
+  Buffer& mask = ctx.output(*this, Slots::rayMask, w, h);
   const float m = float(cfg.m);
   if (cfg.mode == RayMaskSettings::Mode::All) {
     mask.fill(m);
@@ -159,7 +159,7 @@ void RayMaskPass::execute(FrameContext& ctx) {
   // the pixels whose every frame pixel the composite takes wholly from its full-resolution gather
   // of the sharp image (|CoC| below half of fine_coc, no foreground share in the post-process
   // gather): rays there would not be seen (beyond the paper).
-  const Buffer* bokeh = ctx.optionalInput(*this, "bokeh");
+  const Buffer* bokeh = ctx.optionalInput(*this, Slots::bokeh);
   const float fineCoc = bokeh ? 0.5f * cfg.fineCoc : 0.0f;
   Buffer nearRadius(w, h, 1);
   std::vector<unsigned char> gathered(size_t(w) * size_t(h), 0);
@@ -183,7 +183,7 @@ void RayMaskPass::execute(FrameContext& ctx) {
   std::optional<NearDilation> dilation;
   if (dilate) dilation.emplace(nearRadius);
 
-  const Buffer* variance = ctx.previous(*this, "dof_variance");
+  const Buffer* variance = ctx.previous(*this, Slots::dofVariance);
   if (variance && (variance->width != w || variance->height != h)) variance = nullptr;
   const float s = cfg.s, vw = cfg.varianceWeight;
   parallelRows(h, [&](int y) {

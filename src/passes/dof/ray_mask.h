@@ -41,6 +41,16 @@ struct RayMaskCounters {
 
 class RayMaskPass : public SettingsPass<RayMaskSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* bokeh = "bokeh";
+    static constexpr const char* coc = "coc";
+    static constexpr const char* depth = "depth";
+    static constexpr const char* dofVariance = "dof_variance";
+    static constexpr const char* normal = "normal";
+    static constexpr const char* position = "position";
+    static constexpr const char* rayMask = "ray_mask";
+  };
   std::string type() const override { return "ray_mask"; }
   std::string description() const override {
     return "Adaptive ray mask: Gaussian + 5x5 Sobel on depth and normals, eq. 2-4, variance "
@@ -48,7 +58,7 @@ class RayMaskPass : public SettingsPass<RayMaskSettings> {
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override {
-    return {{"ray_mask", 1, BufferKind::Count, Extent::any()}};
+    return {{Slots::rayMask, 1, BufferKind::Count, Extent::any()}};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;

@@ -194,12 +194,12 @@ std::vector<CounterDesc> RTDofPass::counters() const {
 }
 
 void RTDofPass::execute(FrameContext& ctx) {
-  const Buffer& mask = ctx.input(*this, "ray_mask");
+  const Buffer& mask = ctx.input(*this, Slots::rayMask);
   const int w = mask.width, h = mask.height;
-  Buffer& nearOut = ctx.output(*this, "rt_near", w, h);
-  Buffer& farOut = ctx.output(*this, "rt_far", w, h);
-  Buffer& hitOut = ctx.output(*this, "rt_hit", w, h);
-  Buffer& farPosOut = ctx.output(*this, "rt_far_position", w, h);
+  Buffer& nearOut = ctx.output(*this, Slots::rtNear, w, h);
+  Buffer& farOut = ctx.output(*this, Slots::rtFar, w, h);
+  Buffer& hitOut = ctx.output(*this, Slots::rtHit, w, h);
+  Buffer& farPosOut = ctx.output(*this, Slots::rtFarPosition, w, h);
   // Without the TAA jitter: the rays jitter over the pixel themselves, and the accumulation
   // reprojects by motion vectors that carry no jitter, so a jittered view would blur it. One
   // camera per view (stereo: both eyes in one dispatch).
@@ -209,8 +209,8 @@ void RTDofPass::execute(FrameContext& ctx) {
   WhittedFrame wf(ctx, *this, settings().whitted);
   const ThinLens lens = ThinLens::of(cams.front());  // the same lens in every view
   const float nearT = cams.front().desc.nearPlane;
-  const Buffer* sharp = ctx.optionalInput(*this, "hdr");
-  const Buffer* depth = ctx.optionalInput(*this, "depth");
+  const Buffer* sharp = ctx.optionalInput(*this, Slots::hdr);
+  const Buffer* depth = ctx.optionalInput(*this, Slots::depth);
   const bool reuse = settings().reuseRaster && sharp && depth;
   // New lens samples every executed frame (a static shot repeats its frame index).
   const LensRays job{

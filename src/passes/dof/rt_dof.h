@@ -29,6 +29,16 @@ struct RTDofCounters {
 
 class RTDofPass : public SettingsPass<RTDofSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* depth = "depth";
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* rayMask = "ray_mask";
+    static constexpr const char* rtFar = "rt_far";
+    static constexpr const char* rtFarPosition = "rt_far_position";
+    static constexpr const char* rtHit = "rt_hit";
+    static constexpr const char* rtNear = "rt_near";
+  };
   std::string type() const override { return "rt_dof"; }
   std::string description() const override {
     return "Ray-traced DoF: lens rays in the ray mask, split into near and far fields (Tan et al. "
@@ -36,12 +46,12 @@ class RTDofPass : public SettingsPass<RTDofSettings> {
            "§3.2.2)";
   }
   std::vector<BufferSlot> inputs() const override {
-    BufferSlot sharp{"hdr", 3}, depth{"depth", 1, BufferKind::Depth};
+    BufferSlot sharp{Slots::hdr, 3}, depth{Slots::depth, 1, BufferKind::Depth};
     sharp.optional = depth.optional = true;  // reuse_raster only
-    return {{"ray_mask", 1, BufferKind::Count, Extent::any()}, sharp, depth};
+    return {{Slots::rayMask, 1, BufferKind::Count, Extent::any()}, sharp, depth};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {dof::layerSlot("rt_near"), dof::layerSlot("rt_far"), dof::hitSlot(),
+    return {dof::layerSlot(Slots::rtNear), dof::layerSlot(Slots::rtFar), dof::hitSlot(),
             dof::farPositionSlot()};
   }
   void execute(FrameContext& ctx) override;

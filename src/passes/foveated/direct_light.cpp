@@ -29,7 +29,7 @@ const ParamTable<DirectLightSettings>& DirectLightPass::tableFor() const {
 
 void DirectLightPass::execute(FrameContext& ctx) {
   const PrimarySurfaces g = PrimarySurfaces::of(ctx, *this);
-  Buffer& out = ctx.output(*this, "pt_direct");
+  Buffer& out = ctx.output(*this, Slots::ptDirect);
   const RayTracer& rt = ctx.rayTracer();
   const ShadingContext shading = ShadingContext::from(*ctx.scene);
   const DiffuseGI gi(rt, *ctx.scene, shading);

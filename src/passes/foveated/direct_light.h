@@ -19,12 +19,18 @@ struct DirectLightSettings {
 
 class DirectLightPass : public SettingsPass<DirectLightSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* ptDirect = "pt_direct";
+  };
   std::string type() const override { return "direct_light"; }
   std::string description() const override {
     return "Noise-free direct light of the brightest lights at every pixel (beyond Peres 2022)";
   }
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override { return {{"pt_direct", 3, BufferKind::Color}}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {{Slots::ptDirect, 3, BufferKind::Color}};
+  }
   void execute(FrameContext& ctx) override;
 
  protected:

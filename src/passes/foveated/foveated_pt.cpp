@@ -42,9 +42,9 @@ std::vector<CounterDesc> FoveatedPTPass::counters() const {
 
 void FoveatedPTPass::execute(FrameContext& ctx) {
   const PrimarySurfaces g = PrimarySurfaces::of(ctx, *this);
-  const Buffer& coords = ctx.input(*this, "fov_coords");
-  Buffer& out = ctx.output(*this, "pt_noisy");
-  Buffer& variance = ctx.output(*this, "pt_variance");
+  const Buffer& coords = ctx.input(*this, Slots::fovCoords);
+  Buffer& out = ctx.output(*this, Slots::ptNoisy);
+  Buffer& variance = ctx.output(*this, Slots::ptVariance);
   out.fill(0.0f);
   variance.fill(0.0f);
   const RayTracer& rt = ctx.rayTracer();

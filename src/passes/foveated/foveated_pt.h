@@ -32,13 +32,19 @@ struct FoveatedPTCounters {
 
 class FoveatedPTPass : public SettingsPass<FoveatedPTSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* fovCoords = "fov_coords";
+    static constexpr const char* ptNoisy = "pt_noisy";
+    static constexpr const char* ptVariance = "pt_variance";
+  };
   std::string type() const override { return "foveated_pt"; }
   std::string description() const override {
     return "Path tracing over the coordinate buffer: NEE + one diffuse bounce (Peres 2022 §4.3)";
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override {
-    return {{"pt_noisy", 3, BufferKind::Color}, {"pt_variance", 1, BufferKind::Variance}};
+    return {{Slots::ptNoisy, 3, BufferKind::Color}, {Slots::ptVariance, 1, BufferKind::Variance}};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;

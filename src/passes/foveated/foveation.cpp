@@ -106,9 +106,9 @@ void FoveationPass::execute(FrameContext& ctx) {
   ctx.report(*this, FoveationCounters::listed, double(map_.coords.size() * ctx.views.size()));
   ctx.report(*this, FoveationCounters::samples,
              double(map_.totalSamples() * int64_t(ctx.views.size())));
-  Buffer& coords = ctx.output(*this, "fov_coords", int(map_.coords.size()), 1);
-  Buffer& mask = ctx.output(*this, "fov_mask");
-  Buffer& layer = ctx.output(*this, "fov_layer");
+  Buffer& coords = ctx.output(*this, Slots::fovCoords, int(map_.coords.size()), 1);
+  Buffer& mask = ctx.output(*this, Slots::fovMask);
+  Buffer& layer = ctx.output(*this, Slots::fovLayer);
   if (!rebuild && written_ == mask.data.data() && !ctx.historyReset) return;
   for (size_t i = 0; i < map_.coords.size(); ++i) {
     const uint32_t px = map_.coords[i];

@@ -44,14 +44,21 @@ struct FoveationCounters {
 
 class FoveationPass : public SettingsPass<FoveationSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* fovCoords = "fov_coords";
+    static constexpr const char* fovLayer = "fov_layer";
+    static constexpr const char* fovMask = "fov_mask";
+  };
   std::string type() const override { return "foveation"; }
   std::string description() const override {
     return "Foveated sample distribution: 3 layers, coordinate buffer + binary mask (Peres 2022 "
            "§4.2)";
   }
   std::vector<BufferSlot> outputs() const override {
-    return {
-        CoordChannels::slot(), {"fov_mask", 1, BufferKind::Mask}, {"fov_layer", 1, BufferKind::Id}};
+    return {CoordChannels::slot(),
+            {Slots::fovMask, 1, BufferKind::Mask},
+            {Slots::fovLayer, 1, BufferKind::Id}};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;

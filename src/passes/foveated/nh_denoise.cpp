@@ -216,18 +216,18 @@ static float wholeMeanLuminance(const AtrousImage& img, const Buffer& direct,
 }
 
 std::vector<BufferSlot> NHDenoisePass::inputs() const {
-  BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
+  BufferSlot variance{Slots::ptVariance, 1, BufferKind::Variance};
   variance.optional = true;
-  BufferSlot direct{"pt_direct", 3, BufferKind::Color};
+  BufferSlot direct{Slots::ptDirect, 3, BufferKind::Color};
   direct.optional = true;
-  return {{"pt_noisy", 3, BufferKind::Color},
-          {"normal", 3, BufferKind::Normal},
-          {"position", 3, BufferKind::Position},
-          {"depth", 1, BufferKind::Depth},
-          gbufferSlot("diffuse"),
-          {"emission", 3, BufferKind::Color},
-          {"fov_mask", 1, BufferKind::Mask},
-          {"fov_layer", 1, BufferKind::Id},
+  return {{Slots::ptNoisy, 3, BufferKind::Color},
+          {Slots::normal, 3, BufferKind::Normal},
+          {Slots::position, 3, BufferKind::Position},
+          {Slots::depth, 1, BufferKind::Depth},
+          gbufferSlot(Slots::diffuse),
+          {Slots::emission, 3, BufferKind::Color},
+          {Slots::fovMask, 1, BufferKind::Mask},
+          {Slots::fovLayer, 1, BufferKind::Id},
           variance,
           direct};
 }
@@ -307,21 +307,22 @@ std::vector<CounterDesc> NHDenoisePass::counters() const {
 }
 
 void NHDenoisePass::execute(FrameContext& ctx) {
-  const Buffer& noisy = ctx.input(*this, "pt_noisy");
-  const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer& position = ctx.input(*this, "position");
-  const Buffer& depth = ctx.input(*this, "depth");
-  const Buffer& diffuse = ctx.input(*this, "diffuse");
-  const Buffer& emission = ctx.input(*this, "emission");
-  const Buffer& mask = ctx.input(*this, "fov_mask");
-  const Buffer& layer = ctx.input(*this, "fov_layer");
-  Buffer& out = ctx.output(*this, "denoised");
+  const Buffer& noisy = ctx.input(*this, Slots::ptNoisy);
+  const Buffer& normal = ctx.input(*this, Slots::normal);
+  const Buffer& position = ctx.input(*this, Slots::position);
+  const Buffer& depth = ctx.input(*this, Slots::depth);
+  const Buffer& diffuse = ctx.input(*this, Slots::diffuse);
+  const Buffer& emission = ctx.input(*this, Slots::emission);
+  const Buffer& mask = ctx.input(*this, Slots::fovMask);
+  const Buffer& layer = ctx.input(*this, Slots::fovLayer);
+  Buffer& out = ctx.output(*this, Slots::denoised);
   const int W = ctx.width, H = ctx.height;
   const NHDenoiseSettings& s = settings();
   const bool demodulate = s.demodulate;
-  const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
-  const Buffer* direct =
-      s.split == NHDenoiseSettings::Split::Direct ? ctx.optionalInput(*this, "pt_direct") : nullptr;
+  const Buffer* variance = ctx.optionalInput(*this, Slots::ptVariance);
+  const Buffer* direct = s.split == NHDenoiseSettings::Split::Direct
+                             ? ctx.optionalInput(*this, Slots::ptDirect)
+                             : nullptr;
   const AtrousWeights weights{
       s.sigmaColor, s.sigmaNormal, s.sigmaPosition,
       s.colorWeight == NHDenoiseSettings::ColorWeight::Variance && variance != nullptr,

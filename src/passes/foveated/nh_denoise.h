@@ -51,12 +51,28 @@ struct NHDenoiseCounters {
 
 class NHDenoisePass : public SettingsPass<NHDenoiseSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* denoised = "denoised";
+    static constexpr const char* depth = "depth";
+    static constexpr const char* diffuse = "diffuse";
+    static constexpr const char* emission = "emission";
+    static constexpr const char* fovLayer = "fov_layer";
+    static constexpr const char* fovMask = "fov_mask";
+    static constexpr const char* normal = "normal";
+    static constexpr const char* position = "position";
+    static constexpr const char* ptDirect = "pt_direct";
+    static constexpr const char* ptNoisy = "pt_noisy";
+    static constexpr const char* ptVariance = "pt_variance";
+  };
   std::string type() const override { return "nh_denoise"; }
   std::string description() const override {
     return "Non-homogeneous edge-avoiding À-Trous denoising per foveation layer (Peres 2022 §4.4)";
   }
   std::vector<BufferSlot> inputs() const override;
-  std::vector<BufferSlot> outputs() const override { return {{"denoised", 3, BufferKind::Color}}; }
+  std::vector<BufferSlot> outputs() const override {
+    return {{Slots::denoised, 3, BufferKind::Color}};
+  }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   // The (region, step width) of every level the last frame ran, in order (Algorithm 1).

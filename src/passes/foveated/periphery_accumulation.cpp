@@ -24,17 +24,17 @@ void setVec3At(float* px, int c, Vec3 v) {
 std::vector<BufferSlot> PeripheryAccumulationPass::inputs() const {
   BufferSlot history = HistoryChannels::slot();
   history.history = true;
-  BufferSlot variance{"pt_variance", 1, BufferKind::Variance};
+  BufferSlot variance{Slots::ptVariance, 1, BufferKind::Variance};
   variance.optional = true;
-  return {{"pt_noisy", 3, BufferKind::Color},
-          {"fov_mask", 1, BufferKind::Mask},
-          {"fov_layer", 1, BufferKind::Id},
-          {"motion", 2, BufferKind::Motion},
-          {"position", 3, BufferKind::Position},
-          {"normal", 3, BufferKind::Normal},
-          {"depth", 1, BufferKind::Depth},
-          gbufferSlot("diffuse"),
-          {"emission", 3, BufferKind::Color},
+  return {{Slots::ptNoisy, 3, BufferKind::Color},
+          {Slots::fovMask, 1, BufferKind::Mask},
+          {Slots::fovLayer, 1, BufferKind::Id},
+          {Slots::motion, 2, BufferKind::Motion},
+          {Slots::position, 3, BufferKind::Position},
+          {Slots::normal, 3, BufferKind::Normal},
+          {Slots::depth, 1, BufferKind::Depth},
+          gbufferSlot(Slots::diffuse),
+          {Slots::emission, 3, BufferKind::Color},
           variance,
           history};
 }
@@ -79,26 +79,26 @@ std::vector<CounterDesc> PeripheryAccumulationPass::counters() const {
 }
 
 void PeripheryAccumulationPass::execute(FrameContext& ctx) {
-  const Buffer& noisy = ctx.input(*this, "pt_noisy");
-  const Buffer& mask = ctx.input(*this, "fov_mask");
-  const Buffer& layer = ctx.input(*this, "fov_layer");
-  const Buffer& motion = ctx.input(*this, "motion");
-  const Buffer& position = ctx.input(*this, "position");
-  const Buffer& depth = ctx.input(*this, "depth");
-  const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer* prev = ctx.previous(*this, "pt_history");
-  Buffer& accum = ctx.output(*this, "pt_accum");
-  Buffer& accumVariance = ctx.output(*this, "pt_accum_variance");
-  const Buffer* variance = ctx.optionalInput(*this, "pt_variance");
-  Buffer& history = ctx.output(*this, "pt_history");
+  const Buffer& noisy = ctx.input(*this, Slots::ptNoisy);
+  const Buffer& mask = ctx.input(*this, Slots::fovMask);
+  const Buffer& layer = ctx.input(*this, Slots::fovLayer);
+  const Buffer& motion = ctx.input(*this, Slots::motion);
+  const Buffer& position = ctx.input(*this, Slots::position);
+  const Buffer& depth = ctx.input(*this, Slots::depth);
+  const Buffer& normal = ctx.input(*this, Slots::normal);
+  const Buffer* prev = ctx.previous(*this, Slots::ptHistory);
+  Buffer& accum = ctx.output(*this, Slots::ptAccum);
+  Buffer& accumVariance = ctx.output(*this, Slots::ptAccumVariance);
+  const Buffer* variance = ctx.optionalInput(*this, Slots::ptVariance);
+  Buffer& history = ctx.output(*this, Slots::ptHistory);
   const PeripheryAccumulationSettings& s = settings();
   const int fromLayer = s.fromLayer;
   const float alphaMin = s.alphaMin;
   const float cap = 1.0f / alphaMin, tol = s.positionTolerance;
   const float minCos = std::cos(s.normalTolerance * kPi / 180.0f);
-  Buffer& accumMask = ctx.output(*this, "pt_accum_mask");
+  Buffer& accumMask = ctx.output(*this, Slots::ptAccumMask);
   const bool fill = s.fillUnlisted;
-  const Demodulation dm{ctx.input(*this, "diffuse"), ctx.input(*this, "emission"), depth,
+  const Demodulation dm{ctx.input(*this, Slots::diffuse), ctx.input(*this, Slots::emission), depth,
                         s.demodulate};
   // The mean history length (frames) over the accumulated layers' pixels with an estimate.
   std::atomic<double> historyFrames = 0, historyPixels = 0;

@@ -46,15 +46,32 @@ struct PeripheryAccumulationCounters {
 
 class PeripheryAccumulationPass : public SettingsPass<PeripheryAccumulationSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* depth = "depth";
+    static constexpr const char* diffuse = "diffuse";
+    static constexpr const char* emission = "emission";
+    static constexpr const char* fovLayer = "fov_layer";
+    static constexpr const char* fovMask = "fov_mask";
+    static constexpr const char* motion = "motion";
+    static constexpr const char* normal = "normal";
+    static constexpr const char* position = "position";
+    static constexpr const char* ptAccum = "pt_accum";
+    static constexpr const char* ptAccumMask = "pt_accum_mask";
+    static constexpr const char* ptAccumVariance = "pt_accum_variance";
+    static constexpr const char* ptHistory = "pt_history";
+    static constexpr const char* ptNoisy = "pt_noisy";
+    static constexpr const char* ptVariance = "pt_variance";
+  };
   std::string type() const override { return "periphery_accumulation"; }
   std::string description() const override {
     return "Temporal accumulation with reprojection outside the fovea (beyond Peres 2022)";
   }
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override {
-    return {{"pt_accum", 3, BufferKind::Color},
-            {"pt_accum_variance", 1, BufferKind::Variance},
-            {"pt_accum_mask", 1, BufferKind::Mask},
+    return {{Slots::ptAccum, 3, BufferKind::Color},
+            {Slots::ptAccumVariance, 1, BufferKind::Variance},
+            {Slots::ptAccumMask, 1, BufferKind::Mask},
             HistoryChannels::slot()};
   }
   void execute(FrameContext& ctx) override;

@@ -14,15 +14,17 @@ namespace tandem {
 struct PrimarySurfaces {
   const Buffer &position, &normal, &geoNormal, &diffuse, &emission, &depth;
 
-  // The G-buffer slots read (position, normal, geo_normal, diffuse, emission, depth).
+  // The G-buffer targets read, in the members' order.
+  static constexpr const char* kSlots[6] = {"position", "normal",   "geo_normal",
+                                            "diffuse",  "emission", "depth"};
   static std::vector<BufferSlot> slots() {
-    return {{"position", 3, BufferKind::Position}, {"normal", 3, BufferKind::Normal},
-            {"geo_normal", 3, BufferKind::Normal}, gbufferSlot("diffuse"),
-            {"emission", 3, BufferKind::Color},    {"depth", 1, BufferKind::Depth}};
+    std::vector<BufferSlot> s;
+    for (const char* n : kSlots) s.push_back(gbufferSlot(n));
+    return s;
   }
   static PrimarySurfaces of(const FrameContext& ctx, const Pass& pass) {
-    return {ctx.input(pass, "position"), ctx.input(pass, "normal"),   ctx.input(pass, "geo_normal"),
-            ctx.input(pass, "diffuse"),  ctx.input(pass, "emission"), ctx.input(pass, "depth")};
+    return {ctx.input(pass, kSlots[0]), ctx.input(pass, kSlots[1]), ctx.input(pass, kSlots[2]),
+            ctx.input(pass, kSlots[3]), ctx.input(pass, kSlots[4]), ctx.input(pass, kSlots[5])};
   }
   bool sky(int x, int y) const { return depth.at(x, y)[0] <= 0.0f; }
   SurfaceSample at(int x, int y) const {

@@ -7,14 +7,14 @@
 namespace tandem {
 
 void BlendPass::execute(FrameContext& ctx) {
-  const Buffer& L = ctx.input(*this, "hdr");
-  const Buffer& S = ctx.input(*this, "shadow");
-  const Buffer& M = ctx.input(*this, "reflection");
-  const Buffer& R = ctx.input(*this, "refraction");
-  const Buffer& optical = ctx.input(*this, "optical");
-  const Buffer& mask = ctx.input(*this, "heuristic_mask");
-  Buffer& out = ctx.output(*this, "composite");
-  const Buffer* fallback = ctx.optionalInput(*this, "fallback");
+  const Buffer& L = ctx.input(*this, Slots::hdr);
+  const Buffer& S = ctx.input(*this, Slots::shadow);
+  const Buffer& M = ctx.input(*this, Slots::reflection);
+  const Buffer& R = ctx.input(*this, Slots::refraction);
+  const Buffer& optical = ctx.input(*this, Slots::optical);
+  const Buffer& mask = ctx.input(*this, Slots::heuristicMask);
+  Buffer& out = ctx.output(*this, Slots::composite);
+  const Buffer* fallback = ctx.optionalInput(*this, Slots::fallback);
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {

@@ -13,17 +13,31 @@ namespace tandem {
 
 class BlendPass : public Pass {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* composite = "composite";
+    static constexpr const char* fallback = "fallback";
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* heuristicMask = "heuristic_mask";
+    static constexpr const char* optical = "optical";
+    static constexpr const char* reflection = "reflection";
+    static constexpr const char* refraction = "refraction";
+    static constexpr const char* shadow = "shadow";
+  };
   std::string type() const override { return "blend"; }
   std::string description() const override {
     return "Combine lighting with ray-traced effects (eq. 4-6)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {
-        {"hdr", 3},        {"shadow", 3},          {"reflection", 3},
-        {"refraction", 3}, gbufferSlot("optical"), effectSlot("heuristic_mask", BufferKind::Mask),
-        optionalFallback()};
+    return {{Slots::hdr, 3},
+            {Slots::shadow, 3},
+            {Slots::reflection, 3},
+            {Slots::refraction, 3},
+            gbufferSlot(Slots::optical),
+            effectSlot(Slots::heuristicMask, BufferKind::Mask),
+            optionalFallback()};
   }
-  std::vector<BufferSlot> outputs() const override { return {{"composite", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{Slots::composite, 3}}; }
   void execute(FrameContext& ctx) override;
 
  private:

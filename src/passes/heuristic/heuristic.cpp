@@ -414,7 +414,7 @@ void HeuristicPass::execute(FrameContext& ctx) {
   const size_t n = scene.objects.size();
   refreshBounds(ctx);
   // Last frame's RT pass: its time for the cost we selected calibrates the ms budget.
-  const RtStats* prevStats = ctx.previousRecord<RtStats>(*this, "rt_stats");
+  const RtStats* prevStats = ctx.previousRecord<RtStats>(*this, Slots::rtStats);
   const RtStats rtStats = prevStats ? *prevStats : RtStats{};
   // With a ms budget, costs are predicted CPU ms and T is in CPU ms (the calibration's rate is
   // CPU ms per wall ms of the RT pass; its prior, the worker count).
@@ -425,13 +425,13 @@ void HeuristicPass::execute(FrameContext& ctx) {
   updateMeasurements(rtStats);
   measuredRays_.resize(n);
 
-  const Buffer& ids = ctx.input(*this, "object_id");
+  const Buffer& ids = ctx.input(*this, Slots::objectId);
   std::vector<uint32_t> pixels = countObjectPixels(ids, n);
   selectedLast_.resize(n, 0);
   evaluated_ = evaluateObjects(scene, bounds_, ctx.camera(), pixels, selectedLast_, s.importance,
                                s.countRecursion ? &measuredRays_ : nullptr);
   // This frame's RT pass times each object and effect.
-  RtRequest& request = ctx.outputRecord<RtRequest>(*this, "rt_request");
+  RtRequest& request = ctx.outputRecord<RtRequest>(*this, Slots::rtRequest);
   request.timeEffects = msBudget;
   request.deadlineMs = deadline ? s.budgetMs : 0.0;
   if (!calibrationPrior_) {
@@ -453,8 +453,8 @@ void HeuristicPass::execute(FrameContext& ctx) {
   ctx.report(*this, HeuristicCounters::budget, budget_);
   ctx.report(*this, HeuristicCounters::selectedCost, selectedCost_);
   ctx.report(*this, HeuristicCounters::partialFraction, partial_.id >= 0 ? partial_.fraction : 0.0);
-  writeOrder(nodes, s.perEffect, ctx.output(*this, "heuristic_order", int(n), 1));
-  writeMask(ctx, ids, selected, partialR2, ctx.output(*this, "heuristic_mask"));
+  writeOrder(nodes, s.perEffect, ctx.output(*this, Slots::heuristicOrder, int(n), 1));
+  writeMask(ctx, ids, selected, partialR2, ctx.output(*this, Slots::heuristicMask));
 }
 
 }  // namespace tandem

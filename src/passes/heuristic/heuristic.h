@@ -147,16 +147,24 @@ struct HeuristicCounters {
 
 class HeuristicPass : public SettingsPass<HeuristicSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* heuristicMask = "heuristic_mask";
+    static constexpr const char* heuristicOrder = "heuristic_order";
+    static constexpr const char* objectId = "object_id";
+    static constexpr const char* rtRequest = "rt_request";
+    static constexpr const char* rtStats = "rt_stats";
+  };
   std::string type() const override { return "heuristic"; }
   std::string description() const override {
     return "Per-object relevancy/cost selection under budget T (Walewski et al. 2019 §3.2)";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"object_id", 1, BufferKind::Id}, rtStatsSlot(true)};
+    return {{Slots::objectId, 1, BufferKind::Id}, rtStatsSlot(true)};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {effectSlot("heuristic_mask", BufferKind::Mask), rtRequestSlot(false),
-            effectSlot("heuristic_order", BufferKind::List, Extent::any())};
+    return {effectSlot(Slots::heuristicMask, BufferKind::Mask), rtRequestSlot(false),
+            effectSlot(Slots::heuristicOrder, BufferKind::List, Extent::any())};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;

@@ -38,9 +38,9 @@ const ParamTable<RTSecondarySettings>& RTSecondaryPass::tableFor() const {
 
 std::vector<BufferSlot> RTSecondaryPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
-  in.push_back(effectSlot("heuristic_mask", BufferKind::Mask));
+  in.push_back(effectSlot(Slots::heuristicMask, BufferKind::Mask));
   in.push_back(rtRequestSlot(true));
-  BufferSlot order = effectSlot("heuristic_order", BufferKind::List, Extent::any());
+  BufferSlot order = effectSlot(Slots::heuristicOrder, BufferKind::List, Extent::any());
   order.optional = true;
   in.push_back(order);
   return in;
@@ -48,11 +48,11 @@ std::vector<BufferSlot> RTSecondaryPass::inputs() const {
 
 std::vector<BufferSlot> RTSecondaryPass::outputs() const {
   // shadow_class: each pixel's shares of its light-surface pairs, shown as red, green, blue.
-  return {{"shadow", 3},
-          {"reflection", 3},
-          {"refraction", 3},
-          effectSlot("traced_mask", BufferKind::Mask),
-          BufferSlot{"shadow_class"}.named({"traced", "lit", "shadowed"}),
+  return {{Slots::shadow, 3},
+          {Slots::reflection, 3},
+          {Slots::refraction, 3},
+          effectSlot(Slots::tracedMask, BufferKind::Mask),
+          BufferSlot{Slots::shadowClass}.named({Slots::traced, "lit", "shadowed"}),
           rtStatsSlot(false)};
 }
 
@@ -284,17 +284,17 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   whitted.countShadows(&shadowTally);
   // Classified shadows per pixel (viewer / AOV): R traced, G lit, B shadowed, as shares of the
   // lights that reach the pixel (or the one light asked for); 0 where no shadow was asked.
-  Buffer* classOut = ctx.outputIfConsumed(*this, "shadow_class");
+  Buffer* classOut = ctx.outputIfConsumed(*this, Slots::shadowClass);
   if (classOut) std::fill(classOut->data.begin(), classOut->data.end(), 0.0f);
   const int classLight = settings().shadowClassLight;
   const GBufferReader g = gbufferSource(ctx, *this);
-  const Buffer& mask = ctx.input(*this, "heuristic_mask");
-  const RtRequest* request = ctx.inputRecord<RtRequest>(*this, "rt_request");
+  const Buffer& mask = ctx.input(*this, Slots::heuristicMask);
+  const RtRequest* request = ctx.inputRecord<RtRequest>(*this, Slots::rtRequest);
   const bool timed = request && request->timeEffects;
   const double deadlineMs = request ? request->deadlineMs : 0.0;
   tbb::combinable<EffectTallies> tallies([&] { return EffectTallies(objects); });
-  const Buffer& ids = ctx.input(*this, "object_id");
-  const Buffer* order = ctx.optionalInput(*this, "heuristic_order");
+  const Buffer& ids = ctx.input(*this, Slots::objectId);
+  const Buffer* order = ctx.optionalInput(*this, Slots::heuristicOrder);
   const SecondaryTrace job{scene,
                            shading,
                            rt,
@@ -303,16 +303,16 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
                            mask,
                            ids,
                            order,
-                           ctx.output(*this, "shadow"),
-                           ctx.output(*this, "reflection"),
-                           ctx.output(*this, "refraction"),
-                           ctx.output(*this, "traced_mask"),
+                           ctx.output(*this, Slots::shadow),
+                           ctx.output(*this, Slots::reflection),
+                           ctx.output(*this, Slots::refraction),
+                           ctx.output(*this, Slots::tracedMask),
                            classOut,
                            classLight,
                            settings().outsideMaskShadow,
                            timed,
                            tiled};
-  const ShadowTile tileJob{g,     mask,       ids,      ctx.input(*this, "geo_normal"),
+  const ShadowTile tileJob{g,     mask,       ids,      ctx.input(*this, Slots::geoNormal),
                            scene, shading,    &rt,      shadowMaps,
                            ws,    job.shadow, classOut, classLight,
                            timed, order};
@@ -353,7 +353,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
         std::max(0.0, std::chrono::duration<double, std::milli>(Clock::now() - deadline).count());
     tailMs_ = std::min(0.5 * tailMs_ + 0.5 * tail, 0.5 * deadlineMs);
   }
-  ctx.outputRecord<RtStats>(*this, "rt_stats") = std::move(stats);
+  ctx.outputRecord<RtStats>(*this, Slots::rtStats) = std::move(stats);
   reportShadows(ctx, *this, sum(shadowTally), double(ctx.width) * double(ctx.height));
   ctx.passRays += double(rt.raysTraced() - raysBefore);
 }

@@ -28,6 +28,21 @@ struct RTSecondaryCounters {
 
 class RTSecondaryPass : public SettingsPass<RTSecondarySettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* geoNormal = "geo_normal";
+    static constexpr const char* heuristicMask = "heuristic_mask";
+    static constexpr const char* heuristicOrder = "heuristic_order";
+    static constexpr const char* objectId = "object_id";
+    static constexpr const char* reflection = "reflection";
+    static constexpr const char* refraction = "refraction";
+    static constexpr const char* rtRequest = "rt_request";
+    static constexpr const char* rtStats = "rt_stats";
+    static constexpr const char* shadow = "shadow";
+    static constexpr const char* shadowClass = "shadow_class";
+    static constexpr const char* traced = "traced";
+    static constexpr const char* tracedMask = "traced_mask";
+  };
   std::string type() const override { return "rt_secondary"; }
   std::string description() const override {
     return "Ray-traced shadows, reflections, refractions for masked pixels (Walewski et al. 2019 "

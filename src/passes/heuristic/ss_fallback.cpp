@@ -69,8 +69,8 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
 
 std::vector<BufferSlot> ScreenSpaceFallbackPass::inputs() const {
   std::vector<BufferSlot> in = gbufferSampleSlots();
-  in.push_back({"hdr", 3});
-  in.push_back(effectSlot("heuristic_mask", BufferKind::Mask));
+  in.push_back({Slots::hdr, 3});
+  in.push_back(effectSlot(Slots::heuristicMask, BufferKind::Mask));
   return in;
 }
 
@@ -124,9 +124,9 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
   // A probe for every reflective or transparent object that shows an untraced effect.
   const auto t0 = Clock::now();
   const Scene& scene = *ctx.scene;
-  const Buffer& optical = ctx.input(*this, "optical");
-  const Buffer& objectId = ctx.input(*this, "object_id");
-  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  const Buffer& optical = ctx.input(*this, Slots::optical);
+  const Buffer& objectId = ctx.input(*this, Slots::objectId);
+  const Buffer& mask = ctx.input(*this, Slots::heuristicMask);
   // At most max_probes of them, the largest on screen (the others show the sky): each probe
   // costs six draws of the scene and its memory.
   tbb::enumerable_thread_specific<std::vector<uint32_t>> areas(
@@ -239,10 +239,10 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const FallbackMode mode = s.mode;
   const bool shadows = s.shadows == FallbackSettings::Shadows::ShadowMap;
   const GBufferReader g = gbufferSource(ctx, *this);
-  const Buffer& position = ctx.input(*this, "position");  // (hdr, position: the march)
-  const Buffer& normal = ctx.input(*this, "normal");
-  const Buffer& geoNormal = ctx.input(*this, "geo_normal");
-  Buffer& out = ctx.output(*this, "fallback");
+  const Buffer& position = ctx.input(*this, Slots::position);  // (hdr, position: the march)
+  const Buffer& normal = ctx.input(*this, Slots::normal);
+  const Buffer& geoNormal = ctx.input(*this, Slots::geoNormal);
+  Buffer& out = ctx.output(*this, Slots::fallback);
   // 11 floats a pixel (40 MB at 720p): cleared in parallel, as one thread cannot write it fast.
   parallelRange(
       out.data.size(),
@@ -263,9 +263,9 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const ShadingContext shading = ShadingContext::from(scene);
   if (mode == FallbackMode::Probe) updateProbes(ctx, shading);
   const Bounds3 b = scene.bounds(ctx.frame.time);
-  const Frame f{ctx.input(*this, "hdr"),     position, ctx.input(*this, "object_id"),
-                ctx.input(*this, "optical"), scene,    std::max(length(b.hi - b.lo), 0.1f)};
-  const Buffer& mask = ctx.input(*this, "heuristic_mask");
+  const Frame f{ctx.input(*this, Slots::hdr),     position, ctx.input(*this, Slots::objectId),
+                ctx.input(*this, Slots::optical), scene,    std::max(length(b.hi - b.lo), 0.1f)};
+  const Buffer& mask = ctx.input(*this, Slots::heuristicMask);
   const EffectsJob job{f, normal, mask, mode, probes_, b, s.steps, s.thickness};
   // Unselected shadows as rt_secondary's classified shadows with the maps deciding every pair
   // (the same culling of negligible lights, lookups 16 lanes at a time, S shaded only for the
@@ -276,7 +276,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   ShadowCounts counts;  // not reported: ss_fallback traces nothing
   const ShadowTile shadowJob{.g = g,
                              .mask = mask,
-                             .ids = ctx.input(*this, "object_id"),
+                             .ids = ctx.input(*this, Slots::objectId),
                              .geoNormal = geoNormal,
                              .scene = scene,
                              .shading = shading,

@@ -44,6 +44,17 @@ struct FallbackCounters {
 
 class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* fallback = "fallback";
+    static constexpr const char* geoNormal = "geo_normal";
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* heuristicMask = "heuristic_mask";
+    static constexpr const char* normal = "normal";
+    static constexpr const char* objectId = "object_id";
+    static constexpr const char* optical = "optical";
+    static constexpr const char* position = "position";
+  };
   std::string type() const override { return "ss_fallback"; }
   std::string description() const override {
     return "Screen-space reflection/refraction (or sky) where no ray was traced";

@@ -196,7 +196,7 @@ void InterleavedPass::renderView(FrameContext& ctx, const Frame& f, const View& 
   }
 
   // 0. Which samples are needed: those of pixels within the filter's reach of the mask.
-  const Buffer* mask = ctx.optionalInput(*this, "sample_mask");
+  const Buffer* mask = ctx.optionalInput(*this, Slots::sampleMask);
   // Pixels whose samples the filter reaches: a sample lies inside its pixel, so a radius r
   // reaches ceil(r - 1/2) pixels out (the pixel box: the pixel's own samples).
   const int reach = int(std::ceil(s.filterRadius - 0.5f));
@@ -217,14 +217,14 @@ void InterleavedPass::renderView(FrameContext& ctx, const Frame& f, const View& 
 
   // 3. Resolve, and the buffers the post-process motion blur and the viewer read.
   auto t2 = Clock::now();
-  resolve(f, v, ctx.output(*this, "hdr"), reach, mask ? &wanted : nullptr);
-  writeMotion(ctx, f, v, cams, active, ctx.output(*this, "velocity"),
-              ctx.output(*this, "view_depth"), ctx.outputIfConsumed(*this, "motion"));
-  Buffer* samplesOut =
-      ctx.isConsumed(*this, "sample_time_lens")
-          ? &ctx.output(*this, "sample_time_lens", ctx.width * f.shape.sx, ctx.height * f.shape.sy)
-          : nullptr;
-  writeViewerBuffers(f, v, samplesOut, ctx.outputIfConsumed(*this, "tile_layout"));
+  resolve(f, v, ctx.output(*this, Slots::hdr), reach, mask ? &wanted : nullptr);
+  writeMotion(ctx, f, v, cams, active, ctx.output(*this, Slots::velocity),
+              ctx.output(*this, Slots::viewDepth), ctx.outputIfConsumed(*this, Slots::motion));
+  Buffer* samplesOut = ctx.isConsumed(*this, Slots::sampleTimeLens)
+                           ? &ctx.output(*this, Slots::sampleTimeLens, ctx.width * f.shape.sx,
+                                         ctx.height * f.shape.sy)
+                           : nullptr;
+  writeViewerBuffers(f, v, samplesOut, ctx.outputIfConsumed(*this, Slots::tileLayout));
   resolveMs_ += msSince(t2);
 }
 

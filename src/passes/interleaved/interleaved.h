@@ -88,18 +88,28 @@ struct InterleavedCounters {
 
 class InterleavedPass : public SettingsPass<InterleavedSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* motion = "motion";
+    static constexpr const char* sampleMask = "sample_mask";
+    static constexpr const char* sampleTimeLens = "sample_time_lens";
+    static constexpr const char* tileLayout = "tile_layout";
+    static constexpr const char* velocity = "velocity";
+    static constexpr const char* viewDepth = "view_depth";
+  };
   std::vector<BufferSlot> inputs() const override {
-    BufferSlot mask{"sample_mask", 1, BufferKind::Mask};
+    BufferSlot mask{Slots::sampleMask, 1, BufferKind::Mask};
     mask.optional = true;
     return {mask};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"hdr", 3},
+    return {{Slots::hdr, 3},
             SampleChannels::slot(),
-            {"tile_layout", 1, BufferKind::Id},
-            {"velocity", 2, BufferKind::Motion},
-            {"view_depth", 1, BufferKind::Color},
-            {"motion", 2, BufferKind::Motion}};
+            {Slots::tileLayout, 1, BufferKind::Id},
+            {Slots::velocity, 2, BufferKind::Motion},
+            {Slots::viewDepth, 1, BufferKind::Color},
+            {Slots::motion, 2, BufferKind::Motion}};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;

@@ -8,10 +8,10 @@
 namespace tandem {
 
 void MotionBlurCompositePass::execute(FrameContext& ctx) {
-  const Buffer& post = ctx.input(*this, "mb_postfx");
-  const Buffer& il = ctx.input(*this, "mb_interleaved");
-  const Buffer& mask = ctx.input(*this, "mb_mask");
-  Buffer& out = ctx.output(*this, "hdr");
+  const Buffer& post = ctx.input(*this, Slots::mbPostfx);
+  const Buffer& il = ctx.input(*this, Slots::mbInterleaved);
+  const Buffer& mask = ctx.input(*this, Slots::mbMask);
+  Buffer& out = ctx.output(*this, Slots::hdr);
   parallelTiles(ctx.width, ctx.height, [&](int x0, int y0, int x1, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {

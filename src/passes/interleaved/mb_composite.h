@@ -11,15 +11,22 @@ namespace tandem {
 
 class MotionBlurCompositePass : public Pass {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* mbInterleaved = "mb_interleaved";
+    static constexpr const char* mbMask = "mb_mask";
+    static constexpr const char* mbPostfx = "mb_postfx";
+  };
   std::string type() const override { return "mb_composite"; }
   std::string description() const override {
     return "Hybrid motion blur composite: interleaved samples inside the mask, post-process "
            "outside";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"mb_postfx", 3}, {"mb_interleaved", 3}, {"mb_mask", 1, BufferKind::Mask}};
+    return {{Slots::mbPostfx, 3}, {Slots::mbInterleaved, 3}, {Slots::mbMask, 1, BufferKind::Mask}};
   }
-  std::vector<BufferSlot> outputs() const override { return {{"hdr", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{Slots::hdr, 3}}; }
   void execute(FrameContext& ctx) override;
 };
 

@@ -182,11 +182,11 @@ std::vector<CounterDesc> PostfxMotionBlurPass::counters() const {
 }
 
 void PostfxMotionBlurPass::execute(FrameContext& ctx) {
-  const Buffer& C = ctx.input(*this, "hdr");
-  const Buffer& V = ctx.input(*this, "velocity");
-  const Buffer& Z = ctx.input(*this, "view_depth");
-  Buffer& out = ctx.output(*this, "mb_postfx");
-  Buffer& maskOut = ctx.output(*this, "mb_mask");
+  const Buffer& C = ctx.input(*this, Slots::hdr);
+  const Buffer& V = ctx.input(*this, Slots::velocity);
+  const Buffer& Z = ctx.input(*this, Slots::viewDepth);
+  Buffer& out = ctx.output(*this, Slots::mbPostfx);
+  Buffer& maskOut = ctx.output(*this, Slots::mbMask);
   const PostfxMotionBlurSettings& s = settings();
   const int K = s.tileSize, S = s.samples | 1;
   const float softZ = s.softZ, threshold = s.maskThreshold;

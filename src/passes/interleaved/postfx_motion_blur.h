@@ -34,16 +34,24 @@ struct PostfxMotionBlurCounters {
 
 class PostfxMotionBlurPass : public SettingsPass<PostfxMotionBlurSettings> {
  public:
+  // Slots, named once: inputs() and outputs() declare them, execute() binds them.
+  struct Slots {
+    static constexpr const char* hdr = "hdr";
+    static constexpr const char* mbMask = "mb_mask";
+    static constexpr const char* mbPostfx = "mb_postfx";
+    static constexpr const char* velocity = "velocity";
+    static constexpr const char* viewDepth = "view_depth";
+  };
   std::string type() const override { return "postfx_motion_blur"; }
   std::string description() const override {
     return "Post-process motion blur: tile max velocity + gather (McGuire et al. 2012); mask of "
            "mixed motion for the hybrid";
   }
   std::vector<BufferSlot> inputs() const override {
-    return {{"hdr", 3}, {"velocity", 2, BufferKind::Motion}, {"view_depth", 1}};
+    return {{Slots::hdr, 3}, {Slots::velocity, 2, BufferKind::Motion}, {Slots::viewDepth, 1}};
   }
   std::vector<BufferSlot> outputs() const override {
-    return {{"mb_postfx", 3}, {"mb_mask", 1, BufferKind::Mask}};
+    return {{Slots::mbPostfx, 3}, {Slots::mbMask, 1, BufferKind::Mask}};
   }
   void execute(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
