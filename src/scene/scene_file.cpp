@@ -387,8 +387,8 @@ class LoadingFile {
       throw InputError(path, "", "the scene refers to itself (" + chain() + ")");
     if (tLoading.size() >= kMaxSceneNesting)
       throw InputError(path, "",
-                       "scene files nest deeper than " + std::to_string(kMaxSceneNesting) +
-                           " (" + chain() + ")");
+                       "scene files nest deeper than " + std::to_string(kMaxSceneNesting) + " (" +
+                           chain() + ")");
     tLoading.push_back(k);
   }
   ~LoadingFile() { tLoading.pop_back(); }

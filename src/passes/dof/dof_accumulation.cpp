@@ -89,6 +89,15 @@ void reprojectFar(const Buffer& farPosIn, int x, int y, const View& view, float 
   }
 }
 
+// A layer's sample (rt_near, rt_far: rgb then CoC) premultiplied by its share of the rays, in
+// acc_near / acc_far's channels.
+void premultiplied(const float* layer, float share, float* out) {
+  using A = dof::AccChannels;
+  for (int k = 0; k < 3; ++k) out[A::kRgb + k] = share * layer[k];
+  out[A::kShare] = share;
+  out[A::kCoc] = share * layer[dof::kLayerCoc];
+}
+
 // Temporal gradient: the change of luminance beyond two standard deviations of the samples'
 // noise, relative to the brighter of the two, raises the current weight.
 float adaptiveAlpha(float alpha, float lum, const float* hn, const float* hf, const float* hm) {
@@ -169,13 +178,9 @@ void DofAccumulationPass::execute(FrameContext& ctx) {
       } else if (adaptive && rays > 0) {
         alpha = adaptiveAlpha(alpha, lum, hn, hf, hm);
       }
-      // This frame's layers premultiplied by their shares (rt_near, rt_far: rgb then CoC).
       float curNear[A::kCount], curFar[A::kCount];
-      const float hf1 = 1.0f - hc;
-      for (int k = 0; k < 3; ++k)
-        curNear[A::kRgb + k] = hc * cn[k], curFar[A::kRgb + k] = hf1 * cf[k];
-      curNear[A::kShare] = hc, curFar[A::kShare] = hf1;
-      curNear[A::kCoc] = hc * cn[dof::kLayerCoc], curFar[A::kCoc] = hf1 * cf[dof::kLayerCoc];
+      premultiplied(cn, hc, curNear);
+      premultiplied(cf, 1.0f - hc, curFar);
       float* an = accNear.at(x, y);
       float* af = accFar.at(x, y);
       for (int c = 0; c < A::kCount; ++c) {
