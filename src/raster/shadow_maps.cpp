@@ -18,8 +18,9 @@ Vec3 anyUp(Vec3 dir) {
 std::vector<float> lightKey(const Scene& s) {
   std::vector<float> k;
   for (const Light& l : s.lights)
-    k.insert(k.end(), {float(l.type), l.position.x, l.position.y, l.position.z, l.direction.x,
-                       l.direction.y, l.direction.z, l.outerConeDeg, l.castsShadows ? 1.0f : 0.0f});
+    k.insert(k.end(),
+             {float(l.type), l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y,
+              l.direction.z, l.outerConeDeg, l.range, l.castsShadows ? 1.0f : 0.0f});
   return k;
 }
 
@@ -142,11 +143,27 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
   // Maps keep their memory from one redraw to the next.
   faces_.resize(scene.lights.size());
   std::vector<Face*> all;
+  std::vector<const std::vector<uint8_t>*> drawn;  // per face in `all`: the casters drawn
+  std::vector<std::vector<uint8_t>> inRange(scene.lights.size());
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     if (!l.castsShadows) {
       faces_[i].clear();
       continue;
+    }
+    // A light with a range lights nothing beyond it, and a caster can only block it between
+    // the light and a point it lights, inside the range's sphere: casters outside stay undrawn.
+    const std::vector<uint8_t>* casters = &still;
+    if (l.type != LightType::Directional && l.range > 0 && std::isfinite(l.range)) {
+      std::vector<uint8_t>& mask = inRange[i];
+      mask = still;
+      const float reach = l.range * 1.01f;  // a margin for the texels' spread of directions
+      for (size_t o = 0; o < mask.size(); ++o) {
+        const Bounds3& ob = fs.objects[o].bounds;
+        const Vec3 nearest = vmin(vmax(l.position, ob.lo), ob.hi);
+        if (length(nearest - l.position) > reach) mask[o] = 0;
+      }
+      casters = &mask;
     }
     std::vector<CameraDesc> views;
     if (l.type == LightType::Directional) {
@@ -184,7 +201,7 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
                                   ? 2.0f * face.camera.tanHalfFov / float(size)
                                   : face.camera.desc.orthoHeight / float(size);
       raster_.render(fs, face.camera, face.map,
-                     Rasterizer::Subset{&still, /*keep=*/false, /*bothFaces=*/true});
+                     Rasterizer::Subset{casters, /*keep=*/false, /*bothFaces=*/true});
       const Camera& c = face.camera;
       ShadowFace& lf = face.lookup;  // its depth pointer is taken at lookup time
       lf.width = face.map.width;
@@ -205,11 +222,12 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
         face.staticObject.clear();
       }
       all.push_back(&face);
+      drawn.push_back(casters);
     }
   }
   tbb::parallel_for(size_t(0), all.size(), [&](size_t k) {
     Face& face = *all[k];
-    drawConservativeDepth(fs, face.camera, &still, /*keep=*/false, sweep_, face.near);
+    drawConservativeDepth(fs, face.camera, drawn[k], /*keep=*/false, sweep_, face.near);
     if (keepCopy) face.staticNear = face.near;
     face.moving = {};  // the maps hold no moving caster now
     markOpaque(face, {0, 0, face.map.width, face.map.height});

@@ -6,6 +6,7 @@
 
 #include "rt/whitted.h"
 #include "scene/scene.h"
+#include "shading/shade_batch.h"
 #include "shading/surface_resolve.h"
 
 namespace tandem {
@@ -174,7 +175,16 @@ Vec3 PathTracer::directLight(const SurfaceSample& s, Vec3 wo, Vec3 kd, Vec3 ks, 
   Vec3 sum(0.0f);
   const Vec3 n = s.normal;
   const float e = s.specularExponent;
-  for (size_t i = 0; i < scene_.lights.size(); ++i) {
+  // With many range-limited lights, only those that reach the point (the rest add exactly 0).
+  thread_local std::vector<uint32_t> reaching;
+  if (shading_.cull) {
+    Bounds3 at;
+    at.extend(s.position);
+    lightsReaching(shading_, at, reaching);
+  }
+  const size_t count = shading_.cull ? reaching.size() : scene_.lights.size();
+  for (size_t j = 0; j < count; ++j) {
+    const size_t i = shading_.cull ? reaching[j] : j;
     if (scene_.lights[i].fromEmissiveMesh) continue;  // its mesh's emission is hit instead
     LightSample ls = sampleLight(shading_.lights[i], s.position);
     float cosI = dot(n, ls.wi);

@@ -127,34 +127,48 @@ ShadowCounts sum(ShadowTally& t) {
 }
 
 void Whitted::lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays, const Vec3* wo,
-                               uint8_t* classes) const {
+                               uint8_t* classes, std::vector<uint32_t>* reached) const {
   constexpr int W = 8;
   for (int k = 0; k < W; ++k)
     if (rays) rays[k] = 0;
-  const size_t lights = scene_.lights.size();
+  // The lights that may reach a lane: the others are culled without a look (and written as
+  // such when the caller reads every light's row).
+  thread_local std::vector<uint32_t> own;
+  std::vector<uint32_t>& list = reached ? *reached : own;
+  Bounds3 box;
+  for (int k = 0; k < n; ++k) box.extend(s[k].position);
+  lightsReaching(shading_, box, list);
+  const size_t lights = list.size();
+  if (classes) std::fill(classes, classes + W * scene_.lights.size(), uint8_t(ShadowClass::Culled));
+  if (!reached)
+    for (size_t i = 0; i < 3 * W * scene_.lights.size(); ++i) vis[i] = 1.0f;
   const ShadowMode mode = maps_ ? settings_.shadows : ShadowMode::Rays;
   // Culling by share: each light's unshadowed luminance (one SIMD shading of the lanes) against
   // the surface's unshadowed total. A light adding nothing (facing away, out of its cone or
   // range) needs no query at all. Without wo, or with every shadow traced and no threshold, the
   // per-light test of shadowRay alone decides.
   const bool shares = wo && n > 0 && (settings_.shadowCull > 0 || mode != ShadowMode::Rays);
-  LightVisibility8 share(shares ? lights : 0);
+  LightVisibility8 share(shares ? scene_.lights.size() : 0);
   float floor[W] = {};
   if (shares) {
     ShadeBatch b;
     b.count = n;
     for (int k = 0; k < n; ++k) b.set(k, s[k], wo[k]);
+    b.lights = list.data();
+    b.lightCount = list.size();
     lightContributions(b, shading_, share.data(), W);
     for (int k = 0; k < n; ++k) floor[k] = settings_.shadowCull * luminance(b.result(k));
   }
   ShadowCounts counts;
   counts.surfaces = uint64_t(n);
+  counts.culled += uint64_t(n) * (scene_.lights.size() - lights);
   Vec3 pos[W], geo[W];
   int self[W];
   if (mode == ShadowMode::Classified)
     for (int k = 0; k < n; ++k)
       pos[k] = s[k].position, geo[k] = s[k].geoNormal, self[k] = s[k].object;
-  for (size_t i = 0; i < lights; ++i) {
+  for (size_t li = 0; li < lights; ++li) {
+    const size_t i = list[li];
     Ray r[W];
     bool active[W] = {};
     Vec3 t[W];
@@ -209,10 +223,13 @@ void Whitted::shadePrimary8(const SurfaceSample* s, const Vec3* d, int n, Vec3* 
   LightVisibility8 vis(scene_.lights.size());
   Vec3 wo[8];
   for (int k = 0; k < n; ++k) wo[k] = -d[k];
-  lightVisibility8(s, n, vis.data(), nullptr, wo);
+  thread_local std::vector<uint32_t> reached;
+  lightVisibility8(s, n, vis.data(), nullptr, wo, nullptr, &reached);
   ShadeBatch b;
   b.count = n;
   for (int k = 0; k < n; ++k) b.set(k, s[k], -d[k]);
+  b.lights = reached.data();
+  b.lightCount = reached.size();
   shadeBatch(b, shading_, vis.data(), 8);
   for (int k = 0; k < n; ++k)
     out[k] = combineEffects(s[k].reflectivity, 1.0f - s[k].opacity, primaryReflection(s[k], d[k]),

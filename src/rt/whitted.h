@@ -10,6 +10,7 @@
 #pragma once
 #include <tbb/combinable.h>
 
+#include <memory>
 #include <vector>
 
 #include "raster/shadow_maps.h"
@@ -71,16 +72,17 @@ bool refractDir(Vec3 d, Vec3 n, float eta, Vec3& out);
 
 // Per-light RGB visibility of up to 8 lanes, laid out as shadeBatch reads it:
 // [(3 * light + channel) * 8 + lane]. On the stack for the usual light counts.
+// Not initialised: the rows of the lights decided are written before they are read.
 class LightVisibility8 {
  public:
   explicit LightVisibility8(size_t lights) {
-    if (lights > 32) heap_.resize(3 * 8 * lights);
+    if (lights > 32) heap_ = std::make_unique_for_overwrite<float[]>(3 * 8 * lights);
   }
-  float* data() { return heap_.empty() ? stack_ : heap_.data(); }
+  float* data() { return heap_ ? heap_.get() : stack_; }
 
  private:
   float stack_[3 * 8 * 32];
-  std::vector<float> heap_;
+  std::unique_ptr<float[]> heap_;
 };
 
 class Whitted {
@@ -108,9 +110,13 @@ class Whitted {
   // LightVisibility8 (lanes >= n are 1), decided as the settings' shadow mode says. wo (unit,
   // surface -> viewer; optional): lets the culling weigh each light's share of the surface's
   // light. rays (optional, 8 entries): shadow rays per lane. classes (optional): each light's
-  // ShadowClass per lane at [8 * light + lane].
+  // ShadowClass per lane at [8 * light + lane]. reached (optional): only the lights that may
+  // reach some lane (lightsReaching) are decided, listed there ascending, and only their rows of
+  // vis written (every other light adds exactly 0: shade with b.lights = reached); without it
+  // every light's row is written.
   void lightVisibility8(const SurfaceSample* s, int n, float* vis, int* rays = nullptr,
-                        const Vec3* wo = nullptr, uint8_t* classes = nullptr) const;
+                        const Vec3* wo = nullptr, uint8_t* classes = nullptr,
+                        std::vector<uint32_t>* reached = nullptr) const;
   // The reflection and refraction colours seen from a primary surface hit by direction d
   // (zero where the surface is not reflective / not transparent).
   Vec3 primaryReflection(const SurfaceSample& s, Vec3 d) const;

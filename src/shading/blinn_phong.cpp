@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "scene/scene.h"
+#include "shading/light_cull_grid.h"
 #include "shading/shade_batch.h"
 
 namespace tandem {
@@ -40,6 +41,7 @@ ShadingContext ShadingContext::from(const Scene& scene) {
   c.ambient = scene.ambient;
   c.lights.reserve(scene.lights.size());
   for (const Light& l : scene.lights) c.lights.push_back(PreparedLight::from(l));
+  c.cull = LightCullGrid::build(c.lights);
   return c;
 }
 
@@ -78,6 +80,9 @@ Vec3 shadeBlinnPhong(const SurfaceSample& s, Vec3 wo, const ShadingContext& ctx,
   ShadeBatch b;
   b.count = 1;
   b.set(0, s, wo);
+  // With many lights, only those that reach the point (the rest add exactly 0).
+  thread_local std::vector<uint32_t> reaching;
+  if (ctx.cull) cullLights(b, ctx, reaching);
   shadeBatch(b, ctx, lightVisibility ? &lightVisibility[0].x : nullptr, 1);
   return b.result(0);
 }

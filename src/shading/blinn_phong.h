@@ -6,6 +6,7 @@
 // Blinn-Phong (n + 8) / (8 pi), so light intensities are physical and later path-traced
 // references agree with raster shading of directly lit surfaces.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "scene/light.h"
@@ -14,6 +15,7 @@
 namespace tandem {
 
 struct Scene;
+class LightCullGrid;
 
 struct LightSample {
   Vec3 wi;         // unit direction from the surface towards the light
@@ -38,6 +40,9 @@ struct PreparedLight {
 struct ShadingContext {
   Vec3 ambient{0, 0, 0};
   std::vector<PreparedLight> lights;  // same order as Scene::lights
+  // Which lights reach where, for scenes of many range-limited lights (null otherwise): shading
+  // then visits the lights that reach a point, not all of them (lightsReaching, shade_batch.h).
+  std::shared_ptr<const LightCullGrid> cull;
   static ShadingContext from(const Scene& scene);
 };
 

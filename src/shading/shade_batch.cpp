@@ -168,6 +168,8 @@ HWY_AFTER_NAMESPACE();
 #include <algorithm>
 #include <cmath>
 
+#include "shading/light_cull_grid.h"
+
 namespace tandem {
 
 HWY_EXPORT(ShadeBatchImpl);
@@ -187,18 +189,15 @@ void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisi
   HWY_DYNAMIC_DISPATCH(ShadeBatchImpl)(b, ctx, lightVisibility, visStride);
 }
 
-void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out,
-                const Bounds3* lanes) {
+void lightsReaching(const ShadingContext& ctx, const Bounds3& box, std::vector<uint32_t>& out) {
+  thread_local std::vector<uint32_t> near;
+  if (ctx.cull) ctx.cull->candidates(box, near);
+  const size_t count = ctx.cull ? near.size() : ctx.lights.size();
   out.clear();
-  Bounds3 box;
-  using F = ShadeBatch;
-  if (lanes)
-    box = *lanes;
-  else
-    for (int k = 0; k < b.count; ++k) box.extend(Vec3(b.f[F::PX][k], b.f[F::PY][k], b.f[F::PZ][k]));
   const Vec3 centre = (box.lo + box.hi) * 0.5f;
   const float radius = 0.5f * length(box.hi - box.lo);
-  for (size_t i = 0; i < ctx.lights.size(); ++i) {
+  for (size_t n = 0; n < count; ++n) {
+    const size_t i = ctx.cull ? near[n] : n;
     const PreparedLight& l = ctx.lights[i];
     bool reaches = true;
     // (Only a range or a spot cone can leave a light out.)
@@ -206,7 +205,7 @@ void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>&
       const Vec3 v = centre - l.position;
       const float dist = length(v);
       if (l.range > 0 && dist > l.range + radius) reaches = false;
-      // Spot: the lanes' bounding sphere must overlap the outer cone (smoothstep is 0 outside).
+      // Spot: the box's bounding sphere must overlap the outer cone (smoothstep is 0 outside).
       if (reaches && l.type == LightType::Spot && !l.hemisphere && dist > radius) {
         const float angle = std::acos(std::clamp(dot(v, l.direction) / dist, -1.0f, 1.0f));
         reaches = angle <= l.outerAngle + std::asin(std::min(radius / dist, 1.0f)) + 1e-4f;
@@ -214,6 +213,17 @@ void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>&
     }
     if (reaches) out.push_back(uint32_t(i));
   }
+}
+
+void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out,
+                const Bounds3* lanes) {
+  Bounds3 box;
+  using F = ShadeBatch;
+  if (lanes)
+    box = *lanes;
+  else
+    for (int k = 0; k < b.count; ++k) box.extend(Vec3(b.f[F::PX][k], b.f[F::PY][k], b.f[F::PZ][k]));
+  lightsReaching(ctx, box, out);
   b.lights = out.data();
   b.lightCount = out.size();
 }

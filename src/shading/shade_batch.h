@@ -75,10 +75,14 @@ inline Vec3 shadowFromBlocked(const ShadeBatch& b, int j, Vec3 ambient) {
   return Vec3(1.0f) - (b.result(j) - b.unlit(j, ambient));
 }
 
-// Lists in `out` the lights of `ctx` that may light a point within `radius` of `centre`
-// (range and spot cone; directional and hemisphere lights always) and points b.lights at it.
-// Exact: a light left out contributes exactly 0 to every lane.
-// `lanes`: the box around the lanes' positions when the caller has it.
+// Lists in `out`, ascending, the lights of `ctx` that may light a point of `box` (range and spot
+// cone, tested on the box's bounding sphere; directional and hemisphere lights always). Exact: a
+// light left out contributes exactly 0 there. Through ctx.cull when there is one, so the cost
+// follows the lights near the box, not the scene's.
+void lightsReaching(const ShadingContext& ctx, const Bounds3& box, std::vector<uint32_t>& out);
+
+// lightsReaching for the box around b's lanes (`lanes` when the caller has it), with b.lights
+// pointed at `out`.
 void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>& out,
                 const Bounds3* lanes = nullptr);
 

@@ -142,16 +142,20 @@ void shadowBlock(const SecondaryTrace& job, Block& b, LightVisibility8& vis,
   int rays[8];
   Vec3 wo[8];
   for (int j = 0; j < m; ++j) wo[j] = -b.d[lane[j]];
+  thread_local std::vector<uint32_t> reached;
   job.whitted.lightVisibility8(shadowed, m, vis.data(), rays, wo,
-                               job.classOut ? classes.data() : nullptr);
+                               job.classOut ? classes.data() : nullptr, &reached);
   if (job.classOut)
     for (int j = 0; j < m; ++j)
       job.classOut->setRgb(b.px[lane[j]], b.py[lane[j]],
                            classShares(classes.data(), lights, 8, j, job.classLight));
-  for (size_t i = 0; i < 3 * 8 * lights; ++i) vis.data()[i] = 1.0f - vis.data()[i];
+  for (uint32_t i : reached)
+    for (size_t k = 0; k < 3 * 8; ++k) vis.data()[3 * 8 * i + k] = 1.0f - vis.data()[3 * 8 * i + k];
   ShadeBatch batch;
   batch.count = m;
   for (int j = 0; j < m; ++j) batch.set(j, shadowed[j], -b.d[lane[j]]);
+  batch.lights = reached.data();
+  batch.lightCount = reached.size();
   shadeBatch(batch, job.shading, vis.data(), 8);
   const uint64_t ticks = job.timed ? cycleNow() - c0 : 0;
   for (int j = 0; j < m; ++j) {

@@ -52,8 +52,11 @@ class ShadowBatch {
     const int n = b_.count;
     if (n == 0) return;
     const uint64_t c0 = t_.timed ? cycleNow() : 0;
-    b_.lights = nullptr;
+    // Only the lights that may reach a lane are weighed; the others are culled unseen.
+    cullLights(b_, t_.shading, reached_);
     lightContributions(b_, t_.shading, share_.data(), W);
+    counts_.culled += uint64_t(n) * (lights_ - reached_.size());
+    if (t_.classes) std::fill(classes_.begin(), classes_.end(), uint8_t(ShadowClass::Culled));
     float floor[W];
     Vec3 pos[W], geo[W];
     int self[W], rays[W] = {};
@@ -64,8 +67,8 @@ class ShadowBatch {
       self[k] = int(t_.ids.at(xs_[k], ys_[k])[0]);
     }
     blockedLights_.clear();
-    for (size_t i = 0; i < lights_; ++i)
-      if (light(i, n, floor, pos, geo, self, rays)) blockedLights_.push_back(uint32_t(i));
+    for (const uint32_t i : reached_)
+      if (light(i, n, floor, pos, geo, self, rays)) blockedLights_.push_back(i);
     if (!blockedLights_.empty()) {
       b_.lights = blockedLights_.data();
       b_.lightCount = blockedLights_.size();
@@ -175,7 +178,7 @@ class ShadowBatch {
   int xs_[W], ys_[W];
   std::vector<float> share_, blocked_;
   std::vector<uint8_t> classes_;
-  std::vector<uint32_t> blockedLights_;
+  std::vector<uint32_t> reached_, blockedLights_;
 };
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "rt/whitted.h"
 #include "scene/builtin_scenes.h"
 #include "scene/loaders.h"
+#include "shading/surface_resolve.h"
 #include "test_util.h"
 
 using namespace tandem;
@@ -113,6 +114,55 @@ TEST(ClassifiedShadows, EqualRayTracedShadowsOnEveryBuiltinScene) {
     EXPECT_LT(traced, decided) << name;
     EXPECT_EQ(rays->context().counters.at("rt_secondary/shadow_lit"), 0.0) << name;
   }
+}
+
+// Lights with a range draw into their maps only the casters that reach inside it: wherever such
+// a light reaches, its maps classify and filter exactly as maps holding every caster do (the
+// same lights without their range). Cornell's block and spheres under 60 small lights, at the
+// surfaces camera rays find.
+TEST(ClassifiedShadows, RangedLightsKeepTheirCasters) {
+  Scene ranged = builtin("cornell");
+  ranged.lights.clear();
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < 60; ++i) {
+    Light l;
+    l.position = {u(rng) * 1.6f - 0.8f, 0.2f + u(rng) * 1.6f, u(rng) * 1.6f - 0.8f};
+    l.range = 0.3f + 0.9f * u(rng);
+    ranged.lights.push_back(l);
+  }
+  Scene whole = ranged;
+  for (Light& l : whole.lights) l.range = 0.0f;
+  FrameScene fr, fw;
+  fr.update(ranged, 0, 0);
+  fw.update(whole, 0, 0);
+  ShadowMaps mr, mw;
+  mr.update(fr, 256);
+  mw.update(fw, 256);
+  RayTracer rt;
+  rt.update(fr);
+  int compared = 0, shadowed = 0;
+  for (int k = 0; k < 4000; ++k) {
+    Ray r;
+    r.origin = {0, 1, 3.5f};
+    r.dir = normalize(Vec3(u(rng) - 0.5f, u(rng) - 0.6f, -1.0f));
+    const Hit h = rt.intersect(r);
+    if (!h.valid()) continue;
+    const float tuv[3] = {h.t, h.u, h.v};
+    const SurfaceSample s =
+        resolveSurface(*rt.frame(), h.object, h.prim, r.origin, r.dir, 0.0f, tuv);
+    for (size_t i = 0; i < ranged.lights.size(); ++i) {
+      if (length(ranged.lights[i].position - s.position) > ranged.lights[i].range) continue;
+      const ShadowClass a = mr.classify(i, s.position, s.geoNormal, s.object);
+      ASSERT_EQ(a, mw.classify(i, s.position, s.geoNormal, s.object)) << k << " light " << i;
+      const float v = mr.visibility(i, s.position, s.geoNormal);
+      ASSERT_EQ(v, mw.visibility(i, s.position, s.geoNormal)) << k << " light " << i;
+      ++compared;
+      shadowed += a == ShadowClass::Shadowed;
+    }
+  }
+  EXPECT_GT(compared, 2000);
+  EXPECT_GT(shadowed, 20);  // some casters inside a range do shadow
 }
 
 // A rod a tenth of a cube-map texel wide between a point light and the floor: the ordinary map
