@@ -335,6 +335,7 @@ py::dict compare(const py::array_t<float, py::array::c_style | py::array::forcec
   double f = 0;
   {
     py::gil_scoped_release release;
+    const InterruptPoll ctrlC(raiseOnCtrlC);  // polled every 64 rows and between filters
     m = compareImages(ba, bb, maps ? &ssimMap : nullptr);
     // FLIP compares what a viewer sees: HDR images tonemapped as `render` writes them.
     f = hdr ? flip(visualizeBuffer(ba), visualizeBuffer(bb), maps ? &flipMap : nullptr)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/interrupt.h"
 #include "core/math.h"
 #include "core/parallel.h"
 
@@ -23,6 +24,7 @@ struct Plane {
 // One direction of a separable convolution with replicated borders: (dx, dy) is (1, 0) for rows,
 // (0, 1) for columns.
 void convolve1d(const Plane& in, Plane& out, const std::vector<float>& kernel, int dx, int dy) {
+  pollInterrupt();  // between convolutions: a Python caller's Ctrl-C
   const int r = int(kernel.size() / 2);
   parallelRange(
       size_t(in.h),
@@ -158,6 +160,7 @@ double flip(const Buffer& reference, const Buffer& test, Buffer* map, double ppd
     std::vector<Plane> p(3, Plane(w, h));
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
+        if (x == 0 && y % 64 == 0) pollInterrupt();  // a Python caller's Ctrl-C
         const Vec3 s = img.rgb(x, y);
         const Vec3 lin{srgbToLinear(std::clamp(s.x, 0.0f, 1.0f)),
                        srgbToLinear(std::clamp(s.y, 0.0f, 1.0f)),
@@ -205,6 +208,7 @@ double flip(const Buffer& reference, const Buffer& test, Buffer* map, double ppd
   double sum = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
+      if (x == 0 && y % 64 == 0) pollInterrupt();
       const float dE = std::pow(hyab(huntLab(fr, x, y), huntLab(ft, x, y)), qc);
       const float c = dE < pc * cmax ? pt / (pc * cmax) * dE
                                      : pt + (dE - pc * cmax) / (cmax - pc * cmax) * (1.0f - pt);

@@ -1,5 +1,7 @@
 #include "eval/metrics/metrics.h"
 
+#include "core/interrupt.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -55,6 +57,7 @@ double ssim(const Buffer& a, const Buffer& b, Buffer* map) {
       std::vector<double>& out = pass == 0 ? tmp : mom;
       for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
+          if (x == 0 && y % 64 == 0) pollInterrupt();  // a Python caller's Ctrl-C
           double acc[5] = {0, 0, 0, 0, 0}, wsum = 0;
           for (int k = -R; k <= R; ++k) {
             int xx = pass == 0 ? x + k : x, yy = pass == 0 ? y : y + k;
