@@ -101,6 +101,7 @@ class PyRenderer {
       : scene_((checkFrameSize("Renderer", "width", "height", width, height, stereo),
                 checkShutter("Renderer", "shutter", shutter), loadSceneSpec(scene, sceneJson))),
         camera_(defaultCamera(scene_)) {
+    checkSceneFits("Renderer", "scene", scene_, width, height, stereo);
     settings_.width = int(width);
     settings_.height = int(height);
     settings_.seed = seed;
@@ -286,6 +287,7 @@ py::dict reference(const std::string& scene, const std::string& sceneJson,
   checkTime("reference", "time", time);
   checkShutter("reference", "shutter", shutter);
   const Scene s = loadSceneSpec(scene, sceneJson);
+  checkSceneFits("reference", "scene", s, width, height, stereo);
   ReferenceJob job;
   job.scene = &s;
   CameraDesc cam = defaultCamera(s);

@@ -245,4 +245,10 @@ CameraDesc cameraFor(const Scene& s, const RenderOptions& o) {
   return c;
 }
 
+Scene loadSceneToRender(const RenderOptions& o) {
+  Scene s = loadSceneFor(o);
+  checkSceneFits(o.scene, "memory", s, o.width, o.height, o.stereo || o.ipd > 0);
+  return s;
+}
+
 }  // namespace tandem

@@ -51,6 +51,9 @@ void validateRenderOptions(const RenderOptions& o);
 // Loads the scene, adds command-line lights, and the default lighting rig (announced on
 // stderr) when nothing lights it and --default-lights is auto.
 Scene loadSceneFor(const RenderOptions& o);
+// loadSceneFor, then an InputError naming the scene file when rendering it at the requested
+// size would need more memory than the machine has (checkSceneFits).
+Scene loadSceneToRender(const RenderOptions& o);
 // The scene's stereo settings with --stereo, --ipd and --convergence applied.
 StereoDesc stereoFor(const Scene& s, const RenderOptions& o);
 // Width, height, seed and stereo as render settings.

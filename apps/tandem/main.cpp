@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <new>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -65,6 +66,13 @@ int main(int argc, char** argv) {
     // environment's error, in Tandem's words.
     std::fprintf(stderr, "tandem: error: %s: %s\n", e.path1().string().c_str(),
                  e.code().message().c_str());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    // What the size check could not foresee (checkSceneFits is an estimate): the environment's
+    // limit, in Tandem's words.
+    std::fprintf(stderr,
+                 "tandem: error: out of memory: this machine cannot hold what the scene and frame "
+                 "need (a smaller --width / --height or scene renders)\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tandem: error: %s\n", e.what());

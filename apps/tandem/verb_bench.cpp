@@ -30,7 +30,7 @@ struct BenchVerb {
       throw InputError("command line", "--warmup", "must be in [0, 10000]");
     auto threads = limitThreads(opts);
     Pipeline pipeline = loadPipelineFor(opts);
-    Scene scene = loadSceneFor(opts);
+    Scene scene = loadSceneToRender(opts);
     CameraDesc base = cameraFor(scene, opts);
     RenderSettings settings = renderSettingsFor(scene, opts);
     Renderer renderer(scene, std::move(pipeline), settings);

@@ -51,7 +51,7 @@ struct ReferenceVerb {
     const bool root = !cluster || cluster->rank() == 0;
     std::string out = opts.out.empty() ? "out" : opts.out;
     const bool isFile = hasExtension(out, ".png") || hasExtension(out, ".exr");
-    Scene scene = loadSceneFor(opts);
+    Scene scene = loadSceneToRender(opts);
     ReferenceJob job;
     job.scene = &scene;
     CameraDesc cam = cameraFor(scene, opts);  // with --aperture, --focus, --blades

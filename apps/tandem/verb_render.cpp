@@ -64,7 +64,7 @@ struct RenderVerb {
     std::string out = opts.out.empty() ? "out" : opts.out;
     bool isFile = hasExtension(out, ".png") || hasExtension(out, ".exr");
     fs::path dir = isFile ? fs::path(out).parent_path() : fs::path(out);
-    Scene scene = loadSceneFor(opts);
+    Scene scene = loadSceneToRender(opts);
     CameraDesc camera = cameraFor(scene, opts);
     // Only once every input has been validated does the output folder appear.
     if (!dir.empty() && !fs::exists(dir)) fs::create_directories(dir);

@@ -281,7 +281,7 @@ int runViewer(const ViewerOptions& o) {
   // Scene and pipeline first: bad input fails before any window appears.
   ViewerState s;
   s.opts = o;
-  Scene scene = loadSceneFor(o.render);
+  Scene scene = loadSceneToRender(o.render);
   s.scene = &scene;
   s.baseCamera = s.startCamera = cameraFor(scene, o.render);
   s.fly = FlyCamera::fromDesc(s.startCamera);

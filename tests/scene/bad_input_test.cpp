@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "pipeline/render_limits.h"
+#include "scene/builtin_scenes.h"
 #include "scene/loaders.h"
 #include "test_util.h"
 
@@ -299,4 +301,31 @@ TEST(BadInput, GltfPrimitivesAsAnObjectNamesTheField) {
       "prim.gltf",
       kTriangleGltfHead + R"("meshes": [{"primitives": {"attributes": {"POSITION": 0}}}]})",
       {"meshes[0].primitives", "must be an array", "object"});
+}
+
+// A scene too large to render on the machine is an input error naming the scene and what it
+// needs, part by part; a thousand shadow-casting lights count the shadow maps' budget once.
+TEST(BadInput, SceneThatCannotFitNamesWhatItNeeds) {
+  Scene s = makeBuiltinScene("cornell");
+  Light l;
+  s.lights.assign(1000, l);
+  const MemoryNeed n = memoryNeed(s, 1280, 720, false);
+  EXPECT_NEAR(n.buffers, 1280.0 * 720.0 * 175.0, 1.0);
+  EXPECT_GT(n.geometry, double(s.memoryBytes()));
+  EXPECT_GT(n.shadowMaps, 0.0);
+  EXPECT_LT(n.shadowMaps, 1.5 * 1073741824.0);  // the texel budget, not 1000 lights' maps
+  EXPECT_NO_THROW(checkSceneFits("s.json", "memory", s, 1280, 720, false, 16.0 * 1073741824.0));
+  try {
+    checkSceneFits("s.json", "memory", s, 1280, 720, false, 0.5 * 1073741824.0);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("s.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("memory"), std::string::npos) << m;
+    EXPECT_NE(m.find("needs about"), std::string::npos) << m;
+    EXPECT_NE(m.find("shadow maps"), std::string::npos) << m;
+    EXPECT_NE(m.find("this machine has 0.5 GiB"), std::string::npos) << m;
+  }
+  for (Light& x : s.lights) x.castsShadows = false;
+  EXPECT_EQ(memoryNeed(s, 64, 64, false).shadowMaps, 0.0);
 }
