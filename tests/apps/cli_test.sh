@@ -242,6 +242,16 @@ JSON
 "$T" experiment "$D/tinyil.json" --out "$D/tinyil" --no-cache >/dev/null 2>&1
 check "interleaved experiment writes its tables" \
   "grep -q 'Figure check' $D/tinyil/results.md && [ -s $D/tinyil/tile_quality.csv ] && [ -s $D/tinyil/hybrid_motion_blur.csv ] && [ -s $D/tinyil/mb_motion_reference.png ]"
+# The same experiment on a full disk (a 64 KiB tmpfs in a private mount namespace, where the
+# machine allows mounting): exit 2 naming the file it could not write, and nothing left there.
+mkdir -p "$D/tfs"
+if unshare -m true 2>/dev/null; then
+  out=$(unshare -m bash -c "mount -t tmpfs -o size=64k tmpfs '$D/tfs' && { '$T' experiment '$D/tinyil.json' --out '$D/tfs/exp' --no-cache >/dev/null; rc=\$?; echo \"left:\$(ls -A '$D/tfs')\"; exit \$rc; }" 2>&1); rc=$?
+  check "experiment on a full tmpfs: exit 2 naming the file, nothing left (exit $rc)" \
+    "[ $rc -eq 2 ] && grep -q 'No space left' <<<\"\$out\" && grep -q 'exp.partial/' <<<\"\$out\" && grep -qx 'left:' <<<\"\$out\""
+else
+  echo "skipped: experiment on a full tmpfs (this machine does not allow a private mount)"
+fi
 echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "pairCounts": [6], "sweepSpp": 4}' > "$D/badil.json"
 expect_error "interleaved experiment bad N" "pairCounts / sweepSpp" "$T" experiment "$D/badil.json" --out "$D/err/exp"
 echo '{"runner": "interleaved", "scenes": [["m", "cornell"]], "sequenceFrames": 1}' > "$D/badseq.json"
