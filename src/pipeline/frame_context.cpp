@@ -20,10 +20,10 @@ RayTracer& FrameContext::rayTracer() {
   return *rt_;
 }
 
-ShadowMaps& FrameContext::shadowMaps(int resolution) {
+ShadowMaps& FrameContext::shadowMaps(int resolution, const std::vector<uint8_t>* wanted) {
   std::unique_ptr<ShadowMaps>& m = shadowMaps_[resolution];
   if (!m) m = std::make_unique<ShadowMaps>();
-  m->update(frame, resolution);
+  m->update(frame, resolution, wanted);
   return *m;
 }
 

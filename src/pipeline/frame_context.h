@@ -67,8 +67,8 @@ struct FrameContext {
   RayTracer& rayTracer();
   // The frame's shadow maps at `resolution` (texels a side), drawn on first use and redrawn
   // only for what changed (shadow_maps.h). Every pass of a pipeline that asks for the same
-  // resolution shares one set.
-  ShadowMaps& shadowMaps(int resolution);
+  // resolution shares one set. `wanted`: the lights that need maps (ShadowMaps::update).
+  ShadowMaps& shadowMaps(int resolution, const std::vector<uint8_t>* wanted = nullptr);
 
   // The buffer bound to `pass`'s output slot, created or reshaped to the slot's extent, kind and
   // channels (contents kept when the shape matches). Extent Any: `width` x `height` given here.

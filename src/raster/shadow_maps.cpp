@@ -35,19 +35,35 @@ int budgetedShadowMapSize(const Scene& scene, int requested) {
   return std::min(requested, std::max(fit, 32));
 }
 
-void ShadowMaps::update(const FrameScene& fs, int requested) {
+void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<uint8_t>* wanted) {
   const Scene& scene = *fs.scene;
   const int resolution = budgetedShadowMapSize(scene, requested);
   std::vector<float> key = lightKey(scene);
   const bool staticStale = fs.staticVersion != staticVersion_ || key != lightKey_ ||
                            resolution != resolution_ || fs.scene != scene_;
-  if (!staticStale && fs.geometryVersion == geometryVersion_ && fs.motionBlur() == sweep_) return;
+  const bool geometryMoved = fs.geometryVersion != geometryVersion_ || fs.motionBlur() != sweep_;
+  // The lights to draw now: every wanted one after a full redraw, else those wanted for the
+  // first time (lights come into view). Maps of lights no longer wanted stay until the next full
+  // redraw: the texel budget already counts them.
+  const size_t n = scene.lights.size();
+  auto isWanted = [&](size_t i) {
+    return scene.lights[i].castsShadows && (!wanted || (i < wanted->size() && (*wanted)[i]));
+  };
+  faces_.resize(n);
+  std::vector<size_t> fresh;
+  for (size_t i = 0; i < n; ++i) {
+    if (isWanted(i) && (staticStale || faces_[i].empty())) fresh.push_back(i);
+    if (staticStale && !isWanted(i)) faces_[i].clear();
+  }
+  if (!staticStale && fresh.empty() && !geometryMoved) return;
   sweep_ = fs.motionBlur();
   geometryVersion_ = fs.geometryVersion;
   staticVersion_ = fs.staticVersion;
   scene_ = fs.scene;
   lightKey_ = std::move(key);
   resolution_ = resolution;
+  casts_.assign(n, 0);
+  for (size_t i = 0; i < n; ++i) casts_[i] = scene.lights[i].castsShadows ? 1 : 0;
   // Casters that are not animated are drawn once; animated ones each time they moved, over a
   // copy of the static depth.
   std::vector<uint8_t> moving(scene.objects.size()), still(scene.objects.size());
@@ -63,17 +79,26 @@ void ShadowMaps::update(const FrameScene& fs, int requested) {
     opaqueCaster_[o] = m.castsShadows && m.opacity >= 1.0f && m.alphaMode == AlphaMode::Opaque &&
                        (!sweep_ || fs.objects[o].stepPositions.empty());
   }
-  if (staticStale) drawStatic(fs, still, anyMoving);
+  if (staticStale) ++redraws_;
+  if (!fresh.empty()) drawStatic(fs, still, anyMoving, fresh);
+  mapped_ = 0;
+  for (const std::vector<Face>& faces : faces_) mapped_ += faces.empty() ? 0 : 1;
   if (!anyMoving) return;
   ++movingRedraws_;
   // Only where the moving casters are now or were last time: the rest of each map is the
-  // static casters' as drawn once. A face neither sees is left alone.
+  // static casters' as drawn once. A face neither sees is left alone. Without new geometry
+  // only the lights drawn just now need their moving casters.
   std::vector<Bounds3> boxes;
   for (size_t o = 0; o < scene.objects.size(); ++o)
     if (moving[o]) boxes.push_back(fs.objects[o].bounds);
+  std::vector<size_t> lights = fresh;
+  if (staticStale || geometryMoved) {
+    lights.clear();
+    for (size_t i = 0; i < n; ++i) lights.push_back(i);
+  }
   std::vector<Face*> all;
-  for (std::vector<Face>& faces : faces_)
-    for (Face& face : faces) {
+  for (const size_t i : lights)
+    for (Face& face : faces_[i]) {
       const TexelRect now = footprint(face, boxes);
       const TexelRect dirty = now.unite(face.moving);
       if (dirty.empty()) continue;
@@ -131,26 +156,20 @@ void ShadowMaps::restoreStatic(Face& f, const TexelRect& r) {
   }
 }
 
-void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still,
-                            bool keepCopy) {
+void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still, bool keepCopy,
+                            const std::vector<size_t>& lights) {
   const Scene& scene = *fs.scene;
-  ++redraws_;
   // The directional maps cover the scene's bounds as they are now (a moving caster that
   // leaves them later casts no fallback shadow outside).
   const Bounds3 b = scene.bounds(fs.time);
   const Vec3 centre = (b.lo + b.hi) * 0.5f;
   const float radius = std::max(0.5f * length(b.hi - b.lo), 0.01f);
   // Maps keep their memory from one redraw to the next.
-  faces_.resize(scene.lights.size());
   std::vector<Face*> all;
   std::vector<const std::vector<uint8_t>*> drawn;  // per face in `all`: the casters drawn
   std::vector<std::vector<uint8_t>> inRange(scene.lights.size());
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
+  for (const size_t i : lights) {
     const Light& l = scene.lights[i];
-    if (!l.castsShadows) {
-      faces_[i].clear();
-      continue;
-    }
     // A light with a range lights nothing beyond it, and a caster can only block it between
     // the light and a point it lights, inside the range's sphere: casters outside stay undrawn.
     const std::vector<uint8_t>* casters = &still;
@@ -281,7 +300,8 @@ void ShadowMaps::classify(size_t i, int count, const Vec3* p, const Vec3* nrm, c
     out[k] = ShadowClass::Traced;
     const Face* f = faceFor(i, p[k]);
     if (!f) {
-      out[k] = ShadowClass::Lit;  // the light casts no shadows
+      // The light casts no shadows; or it does and was not wanted this frame: a ray decides.
+      if (i >= casts_.size() || !casts_[i]) out[k] = ShadowClass::Lit;
       continue;
     }
     const Camera& c = f->camera;

@@ -34,10 +34,15 @@ class ShadowMaps {
  public:
   // Redraws what changed: everything for new lights, resolution or static geometry; the
   // animated casters over the static depth when only they moved. `resolution` as
-  // budgetedShadowMapSize gives it.
-  void update(const FrameScene& fs, int resolution);
+  // budgetedShadowMapSize gives it. `wanted` (optional, per light): only these lights need maps
+  // this frame (the lights that reach a surface in view, lightsInView); a light wanted for the
+  // first time is drawn then, alone. Null: every light that casts shadows.
+  void update(const FrameScene& fs, int resolution, const std::vector<uint8_t>* wanted = nullptr);
+  // Lights that have maps now.
+  int mappedLights() const { return mapped_; }
   // Fraction (0..1, 2x2 percentage-closer filtered) of light `i` reaching point p with unit
-  // normal n; 1 for lights that cast no shadows or where p lies outside every map.
+  // normal n; 1 for lights that cast no shadows or have no maps (not wanted), or where p lies
+  // outside every map.
   float visibility(size_t i, Vec3 p, Vec3 n) const;
   // The same for up to 16 points (structure of arrays, 16 entries each) in one SIMD kernel:
   // out[k] = visibility(i, p[k], n[k]) for the lanes k < count with use[k] != 0 (equal up to
@@ -50,7 +55,7 @@ class ShadowMaps {
   // conservative map of the ray's texel holds nothing nearer than p beyond the receiver's own
   // slope); shadowed when the 3x3 texels around p all hold opaque, static casters well in front
   // of it; traced otherwise (an edge, a transparent or moving caster, a grazing light, p outside
-  // the maps). Never returns Culled.
+  // the maps, a light that casts shadows but has no maps yet). Never returns Culled.
   ShadowClass classify(size_t i, Vec3 p, Vec3 n, int self) const;
   // The same for up to 8 points at once (their map lookups overlap): out[k] for the lanes k <
   // count with want[k].
@@ -80,7 +85,9 @@ class ShadowMaps {
     ShadowFace lookup{};      // what the batch kernel reads (depth: map's, at lookup)
     float texelPerDistance = 0;  // a texel's world width per unit distance (ortho: the width)
   };
-  void drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still, bool keepCopy);
+  // Draws the static casters into the maps of `lights` (their faces made anew).
+  void drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still, bool keepCopy,
+                  const std::vector<size_t>& lights);
   // The face of light i that sees p: the cube face of p's major axis, else the one map.
   const Face* faceFor(size_t i, Vec3 p) const;
   void markOpaque(Face& face, const TexelRect& r) const;
@@ -96,8 +103,9 @@ class ShadowMaps {
   // Per object: its shadow is opaque and where the maps drew it (no transmission, no alpha
   // mask, casts shadows, still while the shutter is open). Only these make a pixel "shadowed".
   std::vector<uint8_t> opaqueCaster_;
-  bool sweep_ = false;  // the shutter was open when the conservative maps were drawn
-  int resolution_ = 0, redraws_ = 0, movingRedraws_ = 0;
+  bool sweep_ = false;          // the shutter was open when the conservative maps were drawn
+  std::vector<uint8_t> casts_;  // per light: it casts shadows
+  int resolution_ = 0, redraws_ = 0, movingRedraws_ = 0, mapped_ = 0;
   Rasterizer raster_;
 };
 

@@ -20,6 +20,13 @@ class GBufferReader {
   explicit GBufferReader(const std::function<const Buffer&(const BufferSlot&)>& source);
   // False for background pixels.
   bool read(int x, int y, SurfaceSample& s) const;
+  // The position alone; false for background.
+  bool position(int x, int y, Vec3& p) const {
+    const size_t i = size_t(y) * size_t(width_) + size_t(x);
+    if (g_.objectId[i] < 0) return false;
+    p = {g_.position[3 * i], g_.position[3 * i + 1], g_.position[3 * i + 2]};
+    return true;
+  }
   // The same pixel straight into lane `lane` of a shading batch (what shading reads; the eye
   // direction is the caller's); false for background.
   bool read(int x, int y, ShadeBatch& b, int lane) const;

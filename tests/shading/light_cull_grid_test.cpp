@@ -91,7 +91,9 @@ TEST(LightCullGrid, ListsEveryLightThatReaches) {
       const Vec3 nearest = vmin(vmax(l.position, box.lo), box.hi);
       ASSERT_GT(length(nearest - l.position), l.range) << "query " << q << " light " << i;
     }
-    if (size <= 0.3f) ASSERT_EQ(fast, exact) << "query " << q;  // one or a few cells
+    if (size <= 0.3f) {
+      ASSERT_EQ(fast, exact) << "query " << q;  // one or a few cells
+    }
     if (size == 0.0f) visited += near.size(), ++queries;
   }
   // A point sees the lights without a range and the few that reach it, not all 600.

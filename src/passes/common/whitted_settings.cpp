@@ -76,6 +76,8 @@ std::vector<CounterDesc> whittedCounters(const Pass& pass) {
   const ShadowQueryCounters q(pass);
   return {{ShadowMapCounters::staticRedraws, "shadow maps redrawn for static geometry so far"},
           {ShadowMapCounters::movingRedraws, "shadow maps redrawn for moving geometry so far"},
+          {ShadowMapCounters::mappedLights,
+           "lights with shadow maps (the hybrid's: those reaching a surface in view so far)"},
           {q.raysPerPixel(), "shadow rays traced per shaded pixel"},
           {q.traced(), "share of light-surface pairs decided by a shadow ray"},
           {q.culled(), "share of pairs culled (negligible light)"},
@@ -83,13 +85,15 @@ std::vector<CounterDesc> whittedCounters(const Pass& pass) {
           {q.shadowed(), "share of pairs the shadow maps classified as shadowed"}};
 }
 
-const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w) {
+const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w,
+                                const std::vector<uint8_t>* wanted) {
   if (w.shadows == ShadowMode::Rays) return nullptr;
   const auto t0 = Clock::now();
-  const ShadowMaps* maps = &ctx.shadowMaps(w.shadowMapSize);
+  const ShadowMaps* maps = &ctx.shadowMaps(w.shadowMapSize, wanted);
   ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   ctx.report(pass, ShadowMapCounters::staticRedraws, maps->redraws());
   ctx.report(pass, ShadowMapCounters::movingRedraws, maps->movingRedraws());
+  ctx.report(pass, ShadowMapCounters::mappedLights, maps->mappedLights());
   return maps;
 }
 

@@ -29,6 +29,7 @@ const ParamTable<WhittedParams>& whittedTable();
 struct ShadowMapCounters {
   static constexpr const char* staticRedraws = "shadow_maps/static_redraws";
   static constexpr const char* movingRedraws = "shadow_maps/moving_redraws";
+  static constexpr const char* mappedLights = "shadow_maps/mapped_lights";
 };
 
 // What a pass that shades with Whitted rays reports (its Pass::counters() includes these): the
@@ -36,8 +37,10 @@ struct ShadowMapCounters {
 std::vector<CounterDesc> whittedCounters(const Pass& pass);
 
 // The frame's shadow maps when `w` uses them (drawn or brought up to date here; a pass part
-// "shadow_maps" times that, `pass` reports their counters), else null.
-const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w);
+// "shadow_maps" times that, `pass` reports their counters), else null. `wanted`: the lights
+// that need maps (lightsInView; null: all).
+const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w,
+                                const std::vector<uint8_t>* wanted = nullptr);
 
 // One frame of a pass that shades with Whitted rays: the shading context, the tracer with the
 // pass's settings and the frame's shadow maps, and the tally of its shadow queries. finish()

@@ -8,6 +8,7 @@
 #include <atomic>
 
 #include "core/cycle_clock.h"
+#include "passes/common/lights_in_view.h"
 #include "passes/heuristic/ranked_tiles.h"
 #include "passes/heuristic/rt_feedback.h"
 #include "passes/heuristic/shadow_tile.h"
@@ -283,7 +284,11 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   // every shadow traced without culling keeps the per-block path, exactly as it always drew.
   const bool tiled = ws.shadows != ShadowMode::Rays || ws.shadowCull > 0;
   ShadowTally shadowTally;
-  const ShadowMaps* shadowMaps = shadowMapsFor(ctx, *this, settings().whitted);
+  const GBufferReader g = gbufferSource(ctx, *this);
+  // Maps only for the lights that reach a surface in view: no other is ever asked about here.
+  const std::vector<uint8_t> inView =
+      ws.shadows != ShadowMode::Rays ? lightsInView(ctx.views, g, shading) : std::vector<uint8_t>{};
+  const ShadowMaps* shadowMaps = shadowMapsFor(ctx, *this, settings().whitted, &inView);
   whitted.useShadowMaps(shadowMaps);
   whitted.countShadows(&shadowTally);
   // Classified shadows per pixel (viewer / AOV): R traced, G lit, B shadowed, as shares of the
@@ -291,7 +296,6 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   Buffer* classOut = ctx.outputIfConsumed(*this, Slots::shadowClass);
   if (classOut) std::fill(classOut->data.begin(), classOut->data.end(), 0.0f);
   const int classLight = settings().shadowClassLight;
-  const GBufferReader g = gbufferSource(ctx, *this);
   const Buffer& mask = ctx.input(*this, Slots::heuristicMask);
   const RtRequest* request = ctx.inputRecord<RtRequest>(*this, Slots::rtRequest);
   const bool timed = request && request->timeEffects;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "passes/common/lights_in_view.h"
 #include "passes/heuristic/rt_feedback.h"
 #include "passes/heuristic/shadow_tile.h"
 #include "pipeline/frame_context.h"
@@ -254,13 +255,15 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   const Scene& scene = *ctx.scene;
   // The frame's shared maps (classified shadows in rt_secondary drew them already when its
   // size is the same).
+  const ShadingContext shading = ShadingContext::from(scene);
   ShadowMaps* shadowMaps = nullptr;
   if (shadows) {
     const auto t0 = Clock::now();
-    shadowMaps = &ctx.shadowMaps(s.shadowMapSize);
+    // Maps only for the lights that reach a surface in view: no other is ever asked about here.
+    const std::vector<uint8_t> inView = lightsInView(ctx.views, g, shading);
+    shadowMaps = &ctx.shadowMaps(s.shadowMapSize, &inView);
     ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   }
-  const ShadingContext shading = ShadingContext::from(scene);
   if (mode == FallbackMode::Probe) updateProbes(ctx, shading);
   const Bounds3 b = scene.bounds(ctx.frame.time);
   const Frame f{ctx.input(*this, Slots::hdr),     position, ctx.input(*this, Slots::objectId),

@@ -165,6 +165,39 @@ TEST(ClassifiedShadows, RangedLightsKeepTheirCasters) {
   EXPECT_GT(shadowed, 20);  // some casters inside a range do shadow
 }
 
+// Maps only for the lights that reach a surface in view: lights far behind the camera get none,
+// and a light without maps that is asked about anyway is left to a ray, never called lit.
+TEST(ClassifiedShadows, MapsOnlyForLightsReachingTheView) {
+  Scene s = builtin("cornell");
+  s.lights.clear();
+  for (int i = 0; i < 40; ++i) {
+    Light l;
+    l.range = 0.6f;
+    l.intensity = 0.2f;
+    // Half inside the box, half 20 m behind the camera.
+    l.position = i % 2 == 0 ? Vec3(-0.9f + 0.09f * float(i / 2), 1.2f, 0.0f)
+                            : Vec3(float(i) * 0.1f, 1.0f, 25.0f);
+    s.lights.push_back(l);
+  }
+  auto r = render(s, "hybrid-heuristic", {"rt_secondary.shadows=classified"}, 96, 54);
+  const auto& c = r->context().counters;
+  EXPECT_EQ(c.at("shadow_maps/mapped_lights"), 20.0);
+  for (float v : r->output().data) ASSERT_TRUE(std::isfinite(v));
+  FrameScene fs;
+  fs.update(s, 0, 0);
+  ShadowMaps maps;
+  std::vector<uint8_t> wanted(s.lights.size(), 0);
+  wanted[0] = 1;
+  maps.update(fs, 128, &wanted);
+  EXPECT_EQ(maps.mappedLights(), 1);
+  const Vec3 floor{-0.7f, 0.0f, 0.0f}, up{0, 1, 0};
+  EXPECT_EQ(maps.classify(2, floor, up, -1), ShadowClass::Traced);  // no maps: a ray decides
+  wanted[2] = 1;  // comes into view: drawn alone, the first kept
+  maps.update(fs, 128, &wanted);
+  EXPECT_EQ(maps.mappedLights(), 2);
+  EXPECT_EQ(maps.redraws(), 1);
+}
+
 // A rod a tenth of a cube-map texel wide between a point light and the floor: the ordinary map
 // does not see it (no texel centre falls on it), the conservative map does, so the floor under
 // it is never classified lit and keeps its ray-traced shadow.
