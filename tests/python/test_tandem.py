@@ -324,7 +324,7 @@ def test_a_scene_that_names_itself_is_an_error():
     "tandem.Renderer('cornell', pipeline='deferred', width=32, height=18).render(frames=10**9)",
     "tandem.reference('cornell', spp=1000000, width=64, height=36, cache='')",
     "tandem.experiment('taa', out=sys.argv[1], cache='')",
-    "tandem.compare(*[__import__('numpy').full((2000, 2000, 3), 0.5, 'f4')] * 2)"])
+    "tandem.compare(*[__import__('numpy').full((3000, 3000, 3), 0.5, 'f4')] * 2)"])
 def test_ctrl_c_stops_a_long_call(call):
     code = ("import tandem, sys\n"
             "print('ready', flush=True)\n"
@@ -335,7 +335,7 @@ def test_ctrl_c_stops_a_long_call(call):
     assert p.stdout.readline().strip() == "ready"
     import signal
     import time
-    time.sleep(1.5)  # well inside the call
+    time.sleep(1.5)  # well inside the call (each takes 5 s or more on a fast 2-core machine)
     start = time.monotonic()
     p.send_signal(signal.SIGINT)
     try:

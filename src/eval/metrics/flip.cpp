@@ -24,12 +24,12 @@ struct Plane {
 // One direction of a separable convolution with replicated borders: (dx, dy) is (1, 0) for rows,
 // (0, 1) for columns.
 void convolve1d(const Plane& in, Plane& out, const std::vector<float>& kernel, int dx, int dy) {
-  pollInterrupt();  // between convolutions: a Python caller's Ctrl-C
   const int r = int(kernel.size() / 2);
   parallelRange(
       size_t(in.h),
       [&](size_t b, size_t e) {
-        for (int y = int(b); y < int(e); ++y)
+        for (int y = int(b); y < int(e); ++y) {
+          if (y % 16 == 0) pollInterrupt();  // a Python caller's Ctrl-C, within a wide kernel
           for (int x = 0; x < in.w; ++x) {
             float s = 0;
             for (int k = -r; k <= r; ++k)
@@ -37,6 +37,7 @@ void convolve1d(const Plane& in, Plane& out, const std::vector<float>& kernel, i
                    in.at(std::clamp(x + k * dx, 0, in.w - 1), std::clamp(y + k * dy, 0, in.h - 1));
             out.at(x, y) = s;
           }
+        }
       },
       16);
 }

@@ -39,47 +39,52 @@ double ssim(const Buffer& a, const Buffer& b, Buffer* map) {
   double g[2 * R + 1];
   for (int k = -R; k <= R; ++k) g[k + R] = std::exp(-(k * k) / (2.0 * 1.5 * 1.5));
   if (map) *map = Buffer(W, H, 1);
-  // Separable Gaussian moments: mu_a, mu_b, E[a^2], E[b^2], E[ab] per channel.
-  std::vector<double> src(size_t(W) * H * 5), tmp(size_t(W) * H * 5), mom(size_t(W) * H * 5);
+  // Separable Gaussian moments (mu_a, mu_b, E[a^2], E[b^2], E[ab]) per channel: rows filtered
+  // into a ring of the 2R+1 rows the column filter reads, so memory is O(W), not O(W*H).
+  constexpr int kRing = 2 * R + 1;
+  std::vector<double> ring(size_t(W) * kRing * 5);
+  auto filterRow = [&](int c, int y) {
+    double* out = &ring[size_t(y % kRing) * W * 5];
+    for (int x = 0; x < W; ++x) {
+      double acc[5] = {0, 0, 0, 0, 0}, wsum = 0;
+      for (int k = -R; k <= R; ++k) {
+        const int xx = x + k;
+        if (xx < 0 || xx >= W) continue;
+        const size_t i = size_t(y) * W + xx;
+        const double u = a.data[i * C + c], v = b.data[i * C + c];
+        const double s[5] = {u, v, u * u, v * v, u * v};
+        const double w = g[k + R];
+        for (int m = 0; m < 5; ++m) acc[m] += w * s[m];
+        wsum += w;
+      }
+      for (int m = 0; m < 5; ++m) out[x * 5 + m] = acc[m] / wsum;
+    }
+  };
   double total = 0;
   for (int c = 0; c < C; ++c) {
-    for (size_t i = 0; i < size_t(W) * H; ++i) {
-      double x = a.data[i * C + c], y = b.data[i * C + c];
-      double* s = &src[i * 5];
-      s[0] = x;
-      s[1] = y;
-      s[2] = x * x;
-      s[3] = y * y;
-      s[4] = x * y;
-    }
-    for (int pass = 0; pass < 2; ++pass) {
-      const std::vector<double>& in = pass == 0 ? src : tmp;
-      std::vector<double>& out = pass == 0 ? tmp : mom;
-      for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-          if (x == 0 && y % 64 == 0) pollInterrupt();  // a Python caller's Ctrl-C
-          double acc[5] = {0, 0, 0, 0, 0}, wsum = 0;
-          for (int k = -R; k <= R; ++k) {
-            int xx = pass == 0 ? x + k : x, yy = pass == 0 ? y : y + k;
-            if (xx < 0 || yy < 0 || xx >= W || yy >= H) continue;
-            const double* s = &in[(size_t(yy) * W + xx) * 5];
-            double w = g[k + R];
-            for (int m = 0; m < 5; ++m) acc[m] += w * s[m];
-            wsum += w;
-          }
-          double* o = &out[(size_t(y) * W + x) * 5];
-          for (int m = 0; m < 5; ++m) o[m] = acc[m] / wsum;
+    for (int y = 0; y < std::min(R, H); ++y) filterRow(c, y);
+    for (int y = 0; y < H; ++y) {
+      if (y % 64 == 0) pollInterrupt();  // a Python caller's Ctrl-C
+      if (y + R < H) filterRow(c, y + R);
+      for (int x = 0; x < W; ++x) {
+        double acc[5] = {0, 0, 0, 0, 0}, wsum = 0;
+        for (int k = -R; k <= R; ++k) {
+          const int yy = y + k;
+          if (yy < 0 || yy >= H) continue;
+          const double* s = &ring[(size_t(yy % kRing) * W + x) * 5];
+          const double w = g[k + R];
+          for (int m = 0; m < 5; ++m) acc[m] += w * s[m];
+          wsum += w;
         }
-    }
-    for (size_t i = 0; i < size_t(W) * H; ++i) {
-      const double* m = &mom[i * 5];
-      double mx = m[0], my = m[1];
-      double vx = std::max(m[2] - mx * mx, 0.0), vy = std::max(m[3] - my * my, 0.0);
-      double cov = m[4] - mx * my;
-      double s =
-          ((2 * mx * my + c1) * (2 * cov + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
-      total += s;
-      if (map) map->data[i] += float(s / C);
+        const double mx = acc[0] / wsum, my = acc[1] / wsum;
+        const double vx = std::max(acc[2] / wsum - mx * mx, 0.0),
+                     vy = std::max(acc[3] / wsum - my * my, 0.0);
+        const double cov = acc[4] / wsum - mx * my;
+        const double s =
+            ((2 * mx * my + c1) * (2 * cov + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+        total += s;
+        if (map) map->data[size_t(y) * W + x] += float(s / C);
+      }
     }
   }
   return total / (double(W) * H * C);
