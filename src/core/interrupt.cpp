@@ -3,19 +3,19 @@
 namespace tandem {
 
 namespace {
-thread_local std::function<void()> tPoll;
+thread_local InterruptPollFn tPoll = nullptr;
 }  // namespace
 
 void pollInterrupt() {
   if (tPoll) tPoll();
 }
 
-InterruptPoll::InterruptPoll(std::function<void()> poll) : previous_(std::move(tPoll)) {
-  tPoll = std::move(poll);
+InterruptPoll::InterruptPoll(InterruptPollFn poll) : previous_(tPoll) {
+  tPoll = poll;
 }
 
 InterruptPoll::~InterruptPoll() {
-  tPoll = std::move(previous_);
+  tPoll = previous_;
 }
 
 }  // namespace tandem

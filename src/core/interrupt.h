@@ -3,8 +3,6 @@
 // poll for the duration of a call (InterruptPoll) that raises KeyboardInterrupt on Ctrl-C; the CLI
 // installs none (SIGINT ends the process). Per thread: only the calling thread polls.
 #pragma once
-#include <functional>
-#include <utility>
 
 namespace tandem {
 
@@ -12,16 +10,20 @@ namespace tandem {
 // installed.
 void pollInterrupt();
 
+// A poll: a plain function, so the per-thread slot needs no destructor at thread exit (one would
+// run after a detached Python thread's join, unordered with the next thread reusing its stack).
+using InterruptPollFn = void (*)();
+
 // Installs `poll` on this thread while it lives (the previous one after).
 class InterruptPoll {
  public:
-  explicit InterruptPoll(std::function<void()> poll);
+  explicit InterruptPoll(InterruptPollFn poll);
   ~InterruptPoll();
   InterruptPoll(const InterruptPoll&) = delete;
   InterruptPoll& operator=(const InterruptPoll&) = delete;
 
  private:
-  std::function<void()> previous_;
+  InterruptPollFn previous_;
 };
 
 }  // namespace tandem
