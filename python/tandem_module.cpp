@@ -97,7 +97,7 @@ class PyRenderer {
   // that the CLI's checks (render_limits.h) decide their ranges, before the scene loads.
   PyRenderer(const std::string& scene, const std::string& sceneJson, const std::string& pipeline,
              const std::string& pipelineJson, double width, double height, bool stereo,
-             double shutter, uint64_t seed)
+             double shutter, uint64_t seed, const std::string& device)
       : scene_((checkFrameSize("Renderer", "width", "height", width, height, stereo),
                 checkShutter("Renderer", "shutter", shutter), loadSceneSpec(scene, sceneJson))),
         camera_(defaultCamera(scene_)) {
@@ -105,10 +105,17 @@ class PyRenderer {
     settings_.width = int(width);
     settings_.height = int(height);
     settings_.seed = seed;
+    settings_.gpu =
+        GpuDevice::forChoice(parseDeviceChoice(device, "Renderer", "device"), "Renderer");
     setShutter(shutter);
     setStereo(stereo);
     renderer_ =
         std::make_unique<Renderer>(scene_, loadPipelineSpec(pipeline, pipelineJson), settings_);
+  }
+
+  // The GPU's name, or "cpu".
+  std::string device() const {
+    return settings_.gpu ? settings_.gpu->info().name : std::string("cpu");
   }
 
   void set(const std::string& assignment) {
@@ -209,11 +216,15 @@ class PyRenderer {
 
   py::dict timings() const {
     const auto lock = exclusive();
-    py::dict passes;
-    for (const PassTiming& p : last_.passes) passes[p.name.c_str()] = p.ms;
+    py::dict passes, moved;
+    for (const PassTiming& p : last_.passes) {
+      passes[p.name.c_str()] = p.ms;
+      if (p.bytes > 0) moved[p.name.c_str()] = p.bytes;
+    }
     py::dict d;
     d["frame"] = last_.totalMs;
     d["passes"] = passes;
+    d["bytes"] = moved;
     return d;
   }
   std::map<std::string, double> counters() const {
@@ -393,14 +404,24 @@ std::string runExperimentPy(const std::string& name, const std::string& out,
 
 PYBIND11_MODULE(_tandem, m) {
   m.doc() = "Tandem's renderer, reference path tracer, metrics and experiments";
-  py::register_exception<InputError>(m, "Error", PyExc_ValueError);
+  static py::exception<InputError> error =
+      py::register_exception<InputError>(m, "Error", PyExc_ValueError);
+  // The device's limits (out of device memory) are the caller's to handle too: tandem.Error.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const GpuError& e) {
+      PyErr_SetString(error.ptr(), e.what());
+    }
+  });
 
   py::class_<PyRenderer>(m, "Renderer")
       .def(py::init<const std::string&, const std::string&, const std::string&, const std::string&,
-                    double, double, bool, double, uint64_t>(),
+                    double, double, bool, double, uint64_t, const std::string&>(),
            py::arg("scene"), py::arg("scene_json"), py::arg("pipeline"), py::arg("pipeline_json"),
            py::arg("width"), py::arg("height"), py::arg("stereo"), py::arg("shutter"),
-           py::arg("seed"))
+           py::arg("seed"), py::arg("device"))
+      .def_property_readonly("device", &PyRenderer::device)
       .def("set", &PyRenderer::set)
       .def("camera_json", &PyRenderer::cameraJson)
       .def("set_camera", &PyRenderer::setCamera)

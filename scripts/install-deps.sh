@@ -10,6 +10,7 @@ pkgs=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-openimageio
   libopenmpi-dev openmpi-bin gnuplot-nox
   libglfw3-dev libimgui-dev libgl-dev xvfb xauth libgl1-mesa-dri
+  libvulkan-dev libvulkan-volk-dev glslc spirv-tools vulkan-validationlayers mesa-vulkan-drivers
 )
 if [ "${TANDEM_FUZZ_DEPS:-0}" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
 missing=()

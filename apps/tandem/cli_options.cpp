@@ -136,6 +136,13 @@ RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o) {
   RenderSettings r{.width = o.width, .height = o.height, .seed = o.seed};
   r.shutter = o.shutter;
   r.stereo = stereoFor(s, o);
+  const DeviceChoice choice = parseDeviceChoice(o.device, "command line", "--device");
+  r.gpu = GpuDevice::forChoice(choice, "command line: --device");
+  if (r.gpu)
+    std::fprintf(stderr, "tandem: device: %s (%s, Vulkan %s)\n", r.gpu->info().name.c_str(),
+                 r.gpu->info().type.c_str(), r.gpu->info().apiText().c_str());
+  else if (choice == DeviceChoice::Auto)
+    std::fprintf(stderr, "tandem: device: cpu (no hardware GPU with Vulkan 1.3 compute found)\n");
   return r;
 }
 
@@ -156,6 +163,9 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
                   "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
   app->add_option("--frames", o.frames, "Frames to render (scene time advances 1/30 s per frame)");
   addLensOptions(app, o);
+  app->add_option("--device", o.device,
+                  "auto (a GPU when there is one, else the CPU), cpu, or gpu (also a CPU Vulkan "
+                  "such as lavapipe); passes without a GPU version run on the CPU");
   app->add_option("--set", o.set,
                   "Set a pass parameter: pass.param=value (e.g. heuristic.budget_ms=40); "
                   "repeatable");
@@ -191,6 +201,7 @@ void validateRenderOptions(const RenderOptions& o) {
     throw InputError("command line", "--convergence", "must be a positive distance in metres");
   if (o.emissiveLights != "auto" && o.emissiveLights != "on" && o.emissiveLights != "off")
     throw InputError("command line", "--emissive-lights", "expected auto, on or off");
+  parseDeviceChoice(o.device, "command line", "--device");
   if (o.defaultLights != "auto" && o.defaultLights != "off")
     throw InputError("command line", "--default-lights", "expected auto or off");
   // An output file is .png or .exr; anything else with an extension is not a folder name either.

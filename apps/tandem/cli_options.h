@@ -38,6 +38,7 @@ struct RenderOptions {
   float shutter = 0;  // seconds the shutter stays open (motion blur)
   std::optional<float> aperture, focus;
   std::optional<int> blades;
+  std::string device = "auto";  // auto | cpu | gpu (render, bench, view)
 };
 
 // Scene, size, output, seed, threads, camera overrides and lights (every rendering verb).
@@ -56,7 +57,8 @@ Scene loadSceneFor(const RenderOptions& o);
 Scene loadSceneToRender(const RenderOptions& o);
 // The scene's stereo settings with --stereo, --ipd and --convergence applied.
 StereoDesc stereoFor(const Scene& s, const RenderOptions& o);
-// Width, height, seed and stereo as render settings.
+// Width, height, seed, stereo and the device (--device; which one is said on stderr) as render
+// settings.
 struct RenderSettings;
 RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o);
 // Loads the pipeline and applies --set parameters.

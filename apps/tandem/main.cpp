@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/memory.h"
+#include "gpu/gpu_device.h"
 #include "verbs.h"
 
 namespace {
@@ -73,6 +74,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "tandem: error: out of memory: this machine cannot hold what the scene and frame "
                  "need (a smaller --width / --height or scene renders)\n");
+    return 2;
+  } catch (const tandem::GpuError& e) {
+    // The device's limits or failures (out of device memory, a lost device): the environment's.
+    std::fprintf(stderr, "tandem: error: %s\n", e.what());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tandem: error: %s\n", e.what());

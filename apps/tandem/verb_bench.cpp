@@ -39,7 +39,7 @@ struct BenchVerb {
       renderer.renderFrame(f, pathCamera(scene, base, 0, opts.frames));
     std::vector<std::string> order;
     std::map<std::string, std::vector<double>> ms;
-    std::map<std::string, double> rays, rayMs;
+    std::map<std::string, double> rays, rayMs, bytes;
     std::vector<double> total;
     for (int f = 0; f < opts.frames; ++f) {
       FrameTimings ft = renderer.renderFrame(warmup + f, pathCamera(scene, base, f, opts.frames));
@@ -48,14 +48,19 @@ struct BenchVerb {
         ms[p.name].push_back(p.ms);
         rays[p.name] += p.rays;
         rayMs[p.name] += p.ms;
+        bytes[p.name] = p.bytes;  // a move's bytes are the same every frame
       }
       total.push_back(ft.totalMs);
     }
     unsigned cores = std::thread::hardware_concurrency();
+    const std::string device =
+        settings.gpu ? settings.gpu->info().name + " (" + settings.gpu->info().type + ")"
+                     : std::string("cpu");
     std::printf(
-        "bench: scene %s, pipeline %s, %dx%d, %d frames after %d warm-up, %s threads (%u cores)\n",
+        "bench: scene %s, pipeline %s, %dx%d, %d frames after %d warm-up, %s threads (%u cores), "
+        "device %s\n",
         scene.name.c_str(), renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames,
-        warmup, opts.threads ? std::to_string(opts.threads).c_str() : "all", cores);
+        warmup, opts.threads ? std::to_string(opts.threads).c_str() : "all", cores, device.c_str());
     std::printf("  %-28s %9s %9s %9s %9s %12s\n", "pass", "median", "mean", "min", "max",
                 "Mrays/s");
     Json report;
@@ -67,16 +72,19 @@ struct BenchVerb {
     report["warmup"] = warmup;
     report["threads"] = opts.threads;
     report["cores"] = cores;
+    report["device"] = device;
     report["passes"] = Json::object();
     for (const std::string& name : order) {
       TimingStats s = summarize(ms[name]);
       double mrays = rays[name] > 0 ? rays[name] / (rayMs[name] * 1e3) : 0.0;
       std::printf("  %-28s %9.3f %9.3f %9.3f %9.3f", name.c_str(), s.median, s.mean, s.min, s.max);
       if (mrays > 0) std::printf(" %12.2f", mrays);
+      if (bytes[name] > 0) std::printf(" %9.2f MiB moved", bytes[name] / 1048576.0);
       std::printf("\n");
       Json pj = {
           {"median_ms", s.median}, {"mean_ms", s.mean}, {"min_ms", s.min}, {"max_ms", s.max}};
       if (mrays > 0) pj["mrays_per_s"] = mrays;
+      if (bytes[name] > 0) pj["bytes"] = bytes[name];
       pj["frame_ms"] = ms[name];  // every timed frame, in order (e.g. budget tracking)
       report["passes"][name] = pj;
     }

@@ -4,6 +4,8 @@
 #include <memory>
 
 #include "cli_options.h"
+#include "core/error.h"
+#include "gpu/gpu_device.h"
 #include "rt/diffuse_gi.h"
 #include "verbs.h"
 
@@ -13,6 +15,35 @@ namespace {
 const char* lightTypeName(LightType t) {
   return t == LightType::Directional ? "directional" : t == LightType::Point ? "point" : "spot";
 }
+int listDevices() {
+  std::string why;
+  const std::vector<GpuDeviceInfo> list = listGpuDevices(&why);
+  if (list.empty()) {
+    std::printf("no Vulkan device: %s\n--device auto renders on the CPU; --device gpu fails\n",
+                why.c_str());
+    return 0;
+  }
+  std::printf("Vulkan devices (%zu)\n", list.size());
+  for (size_t i = 0; i < list.size(); ++i) {
+    const GpuDeviceInfo& d = list[i];
+    std::printf("  %zu  %s (%s), Vulkan %s, %s, subgroups of %u, %.1f GiB device-local\n", i,
+                d.name.c_str(), d.type.c_str(), d.apiText().c_str(), d.driver.c_str(),
+                d.subgroupSize, double(d.deviceLocalBytes) / double(1ull << 30));
+    if (!d.usable) std::printf("     not usable: lacks %s\n", d.missing.c_str());
+  }
+  auto named = [&](DeviceChoice c) -> std::string {
+    try {
+      auto g = GpuDevice::forChoice(c, "info");
+      return g ? g->info().name : std::string("the CPU");
+    } catch (const InputError&) {
+      return "none (no usable device)";
+    }
+  };
+  std::printf("--device auto: %s\n--device gpu:  %s\n", named(DeviceChoice::Auto).c_str(),
+              named(DeviceChoice::Gpu).c_str());
+  return 0;
+}
+
 }  // namespace
 
 VerbRunner addInfoVerb(CLI::App& app) {
@@ -26,7 +57,11 @@ VerbRunner addInfoVerb(CLI::App& app) {
   sub->add_option("--default-lights", opts->defaultLights,
                   "auto (a sun-and-sky rig when the scene has no lights) or off");
   sub->add_flag("--objects", *verbose, "List every object");
-  return [opts, verbose] {
+  auto devices = std::make_shared<bool>(false);
+  sub->add_flag("--devices", *devices,
+                "List the Vulkan devices and which one --device auto and gpu would use");
+  return [opts, verbose, devices] {
+    if (*devices) return listDevices();
     validateRenderOptions(*opts);
     Scene s = loadSceneFor(*opts);
     Bounds3 b = s.bounds();

@@ -86,6 +86,7 @@ struct RenderVerb {
     for (const PassTiming& p : last.passes) {
       std::printf("  %-28s %9.2f ms", p.name.c_str(), p.ms);
       if (p.rays > 0) std::printf("  %8.2f Mrays/s", p.rays / (p.ms * 1e3));
+      if (p.bytes > 0) std::printf("  %8.2f MiB", p.bytes / 1048576.0);
       std::printf("\n");
     }
     std::printf("  %-28s %9.2f ms\n", "frame", last.totalMs);

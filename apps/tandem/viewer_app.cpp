@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/profiler.h"
+#include "pipeline/renderer.h"
 
 namespace tandem {
 
@@ -309,7 +310,8 @@ int runViewer(const ViewerOptions& o) {
   const int eyes = s.view.stereo.enabled ? 2 : 1;  // both eyes share the window side by side
   s.view.width = std::max(1, int(float(fbw) * o.scale) / eyes);
   s.view.height = std::max(1, int(float(fbh) * o.scale));
-  RenderWorker worker(scene, s.model, s.view, o.render.seed);
+  RenderWorker worker(scene, s.model, s.view, o.render.seed,
+                      renderSettingsFor(scene, o.render).gpu);
 
   double last = glfwGetTime();
   Pointer pointer;

@@ -119,8 +119,11 @@ class Renderer:
     their history from one render() to the next, as frames of `tandem render --frames`)."""
 
     def __init__(self, scene="cornell", pipeline="hybrid-heuristic", width=640, height=360,
-                 stereo=False, shutter=0.0, seed=0, camera=None, lights=None, sets=None):
+                 stereo=False, shutter=0.0, seed=0, camera=None, lights=None, sets=None,
+                 device="auto"):
         scene_name, scene_json = _spec(scene, "scene")
+        if not isinstance(device, str):
+            _fail("Renderer", "device", f"expected auto, cpu or gpu, got {device!r}")
         pipe_name, pipe_json = _spec(pipeline, "pipeline")
         w, h = _size(width, "Renderer", "width"), _size(height, "Renderer", "height")
         stereo = _boolean(stereo, "Renderer", "stereo")
@@ -134,7 +137,7 @@ class Renderer:
             _mapping(sets, "Renderer", "sets")
         self._scene = (scene_name, scene_json)
         self._r = _tandem.Renderer(scene_name, scene_json, pipe_name, pipe_json, w, h, stereo,
-                                   shutter, seed)
+                                   shutter, seed, device)
         self.width, self.height = int(w), int(h)
         if camera:
             self.set_camera(**camera)
@@ -178,6 +181,11 @@ class Renderer:
         self._r.set_lights(_json(list(lights), "lights"))
 
     @property
+    def device(self):
+        """Where passes with a GPU version run: the GPU's name, or "cpu"."""
+        return self._r.device
+
+    @property
     def shutter(self):
         return self._r.shutter
 
@@ -210,7 +218,8 @@ class Renderer:
         return self._r.render(min(frames, 2**31 - 1), names)
 
     def timings(self):
-        """Milliseconds of the last frame: {"frame": total, "passes": {label: ms}}."""
+        """Milliseconds of the last frame: {"frame": total, "passes": {label: ms}, "bytes":
+        {move: bytes}} (the moves between host and GPU, "upload:NAME" / "download:NAME")."""
         return self._r.timings()
 
     def counters(self):

@@ -17,7 +17,8 @@ inline double msSince(Clock::time_point t0) {
 struct PassTiming {
   std::string name;
   double ms = 0;
-  double rays = 0;  // rays traced by the pass this frame (0 when it traces none)
+  double rays = 0;   // rays traced by the pass this frame (0 when it traces none)
+  double bytes = 0;  // bytes a move between host and GPU carried (its own row)
 };
 
 struct FrameTimings {

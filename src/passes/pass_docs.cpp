@@ -24,7 +24,9 @@ const char* kIntro =
     "how one is wired. Each technique's passes live in their folder of `src/passes/`, one file\n"
     "per pass type. The counters a pass reports each frame are listed under it (read them with\n"
     "`tandem bench`, Python's `Renderer.counter(name)`); the shadow counters (`<pass>/shadow_*`)\n"
-    "take the pass's label in a pipeline.\n";
+    "take the pass's label in a pipeline. With `--device gpu` the passes that say they run on the\n"
+    "GPU run there and the others on the CPU; a buffer moves between them only when a pass on\n"
+    "the other side reads it (each move a timing row, `upload:NAME` or `download:NAME`).\n";
 
 const char* kTechniques[][2] = {
     {"common", "Common passes (G-buffers, shading, tone mapping)"},
@@ -153,7 +155,10 @@ std::string passesMarkdown() {
       if (e.technique != folder) continue;
       const std::unique_ptr<Pass> p = e.make();
       const std::string d = p->description();
-      o << "### `" << e.type << "`\n\n" << d << (d.empty() || d.back() == '.' ? "" : ".") << "\n\n";
+      o << "### `" << e.type << "`\n\n" << d << (d.empty() || d.back() == '.' ? "" : ".");
+      // Where it runs with --device gpu (the others stay on the CPU).
+      if (p->hasGpu()) o << " Runs on the GPU too (`--device gpu`).";
+      o << "\n\n";
       slots(o, *p);
       params(o, *p);
       counters(o, *p);

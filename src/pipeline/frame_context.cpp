@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "shading/surface_resolve.h"
-
+#include "pipeline/gpu_frame.h"
 #include "pipeline/pass.h"
+#include "shading/surface_resolve.h"
 
 namespace tandem {
 
@@ -54,10 +54,27 @@ BufferSlot declared(const Pass& pass, const std::string& slot, Access access) {
 Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, int h) {
   const std::optional<BufferSlot> s = declared(pass, slot, Access::Output);
   if (s->extent.scale != Extent::Scale::Any) s->extent.resolve(width, height, w, h);
-  Buffer& b = buffers[pass.bufferName(slot)];
+  const std::string& name = pass.bufferName(slot);
+  Buffer& b = buffers[name];
   if (b.width != w || b.height != h || b.channels != s->channels) b = Buffer(w, h, s->channels);
   b.kind = s->kind;
+  if (gpu) {  // the host writes it now: contents kept are the newest, the device copy is stale
+    if (gpu->deviceNewer(name)) gpu->download(name, b);
+    gpu->hostWrote(name);
+  }
   return b;
+}
+
+uint64_t FrameContext::deviceInput(const Pass& pass, const std::string& slot) const {
+  declared(pass, slot, Access::Input);
+  if (!gpu) throw std::logic_error("pass '" + pass.name() + "' ran on the GPU without one");
+  return gpu->read(pass.bufferName(slot)).address;
+}
+
+uint64_t FrameContext::deviceOutput(const Pass& pass, const std::string& slot, int w, int h) {
+  if (!gpu) throw std::logic_error("pass '" + pass.name() + "' ran on the GPU without one");
+  const Buffer& b = output(pass, slot, w, h);
+  return gpu->write(pass.bufferName(slot), b).address;
 }
 
 void FrameContext::report(const Pass& pass, const std::string& name, double value) {

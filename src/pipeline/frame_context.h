@@ -20,6 +20,7 @@
 namespace tandem {
 
 class Pass;
+class GpuFrame;
 
 struct FrameContext {
   const Scene* scene = nullptr;
@@ -50,6 +51,9 @@ struct FrameContext {
   // inputs, outputs), as a second device holding only what was moved to it would, and may leave
   // behind only its declared outputs; anything else is a logic_error naming the pass and buffer.
   bool isolatePasses = false;
+  // The renderer's GPU side when it runs on a GPU (--device gpu): GPU passes record their work
+  // into it, and the pipeline moves buffers between host and device (gpu_frame.h).
+  std::shared_ptr<GpuFrame> gpu;
 
   const Camera& camera() const { return views.front().camera; }  // the main view's, unjittered
   // Records `pass`'s counter `name` for this frame: a logic_error when the pass does not declare
@@ -107,6 +111,11 @@ struct FrameContext {
     const Buffer* b = previous(pass, slot);
     return b ? recordOf<T>(*b) : nullptr;
   }
+  // GPU passes (Pass::hasGpu): the device address of an input slot's buffer (moved to the device
+  // by the pipeline before the pass runs), and of an output slot's (shaped as output() shapes it;
+  // its new value is on the device until something on the host reads it).
+  uint64_t deviceInput(const Pass& pass, const std::string& slot) const;
+  uint64_t deviceOutput(const Pass& pass, const std::string& slot, int width = 0, int height = 0);
   // By buffer name (tests, AOV writing, the viewer).
   const Buffer& input(const std::string& name) const;
   bool has(const std::string& name) const { return buffers.count(name) != 0; }

@@ -53,6 +53,12 @@ class Pass {
   virtual std::vector<CounterDesc> counters() const { return {}; }
   bool declaresCounter(const std::string& name) const;
   virtual void execute(FrameContext& ctx) = 0;
+  // A GPU implementation beside the CPU one (same slots, settings and counters): with a GPU
+  // (ctx.gpu) the pipeline moves the declared inputs to the device and runs executeGpu, which
+  // records its kernels into ctx.gpu's commands (FrameContext::deviceInput / deviceOutput); the
+  // pipeline submits them and times them with GPU timestamps.
+  virtual bool hasGpu() const { return false; }
+  virtual void executeGpu(FrameContext& ctx) { execute(ctx); }
   // Asks for what the next frame needs (default: nothing).
   virtual void request(FrameRequest&) const {}
   // Forget everything carried from earlier frames (camera cut, resize, scene reload, pipeline

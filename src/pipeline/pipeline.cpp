@@ -9,6 +9,7 @@
 #include "core/image_io.h"
 #include "core/interrupt.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 
 namespace tandem {
 
@@ -324,6 +325,53 @@ void runIsolated(const Pass& p, FrameContext& ctx, Run&& run) {
 }
 }  // namespace
 
+namespace {
+// A move between host and device, as its own timing row with its bytes.
+void moveToHost(const std::string& name, FrameContext& ctx, FrameTimings& ft) {
+  auto it = ctx.buffers.find(name);
+  if (it == ctx.buffers.end()) return;
+  const auto t0 = Clock::now();
+  const size_t bytes = ctx.gpu->download(name, it->second);
+  if (bytes) ft.passes.push_back({"download:" + name, msSince(t0), 0, double(bytes)});
+}
+
+// Before a pass: its declared inputs where it runs (this frame's buffers; history stays on the
+// host, and records never move).
+void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameTimings& ft) {
+  for (const BufferSlot& in : p.inputs()) {
+    if (in.history) continue;
+    const std::string& name = p.bufferName(in.slot);
+    auto it = ctx.buffers.find(name);
+    if (it == ctx.buffers.end() || it->second.kind == BufferKind::Record) continue;
+    if (!onGpu) {
+      if (ctx.gpu->deviceNewer(name)) moveToHost(name, ctx, ft);
+      continue;
+    }
+    if (ctx.gpu->onDevice(name)) continue;
+    const auto t0 = Clock::now();
+    const size_t bytes = ctx.gpu->upload(name, it->second);
+    ft.passes.push_back({"upload:" + name, msSince(t0), 0, double(bytes)});
+  }
+}
+
+// Records the pass's kernels between two timestamps, submits and waits; the GPU milliseconds.
+double runOnGpu(Pass& p, FrameContext& ctx) {
+  GpuCommands& cmd = ctx.gpu->commands();
+  cmd.begin();
+  uint32_t a = 0, b = 0;
+  try {
+    a = cmd.timestamp();
+    p.executeGpu(ctx);
+    b = cmd.timestamp();
+  } catch (...) {
+    cmd.abandon();
+    throw;
+  }
+  cmd.submit();
+  return cmd.msBetween(a, b);
+}
+}  // namespace
+
 FrameTimings Pipeline::execute(FrameContext& ctx) {
   pollInterrupt();  // before a frame: a stop never leaves one half drawn
   FrameTimings ft;
@@ -346,9 +394,14 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
   for (auto& p : passes) {
     ctx.passRays = 0;
     ctx.passParts.clear();
+    const bool onGpu = ctx.gpu && p->enabled && p->hasGpu();
+    if (ctx.gpu) moveInputs(*p, ctx, onGpu, ft);
     auto t0 = Clock::now();
+    double gpuMs = -1;
     const auto run = [&] {
-      if (p->enabled)
+      if (onGpu)
+        gpuMs = runOnGpu(*p, ctx);
+      else if (p->enabled)
         p->execute(ctx);
       else
         bypass(*p, ctx);
@@ -358,11 +411,18 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     else
       run();
     const std::string label = p->name();
-    ft.passes.push_back({label, msSince(t0), ctx.passRays});
+    const double wallMs = msSince(t0);
+    // A GPU pass's row is its GPU time (timestamps); its part "host" is the wall time of
+    // recording, submitting and waiting.
+    ft.passes.push_back({label, gpuMs >= 0 ? gpuMs : wallMs, ctx.passRays});
+    if (gpuMs >= 0) ft.passes.push_back({label + "/host", wallMs, 0});
     // Parts are reported after their pass and are not added to the frame total again.
     for (PassTiming& part : ctx.passParts)
       ft.passes.push_back({label + "/" + part.name, part.ms, part.rays});
   }
+  // The caller reads the frame's buffers on the host: what is newer on the device comes back.
+  if (ctx.gpu)
+    for (const std::string& name : ctx.gpu->deviceOnly()) moveToHost(name, ctx, ft);
   // What the next frame reads as last frame's value (copied: the buffer stays readable).
   auto h0 = Clock::now();
   bool any = false;

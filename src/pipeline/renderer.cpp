@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "pipeline/gpu_frame.h"
+
 namespace tandem {
 
 Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings)
@@ -9,6 +11,7 @@ Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings setting
   ctx_.scene = scene_;
   ctx_.seed = settings.seed;
   ctx_.textureFootprint = settings.textureFootprint;
+  if (settings.gpu) ctx_.gpu = std::make_shared<GpuFrame>(settings.gpu);
   applySize();
   resetHistory("first frame");
 }
@@ -42,6 +45,7 @@ void Renderer::setScene(const Scene& scene) {
 void Renderer::setPipeline(Pipeline pipeline) {
   pipeline_ = std::move(pipeline);
   ctx_.buffers.clear();  // another pipeline's buffers must not look produced
+  if (ctx_.gpu) ctx_.gpu->forget();
   resetHistory("pipeline switch");
 }
 

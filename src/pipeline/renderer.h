@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/low_discrepancy.h"
+#include "gpu/gpu_device.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/pipeline.h"
 
@@ -20,6 +21,8 @@ struct RenderSettings {
   // Scales the pixel cone that picks texture levels of detail: a supersampled render of n x n
   // samples per pixel uses 1 / n, so each sample filters only its share of the pixel.
   float textureFootprint = 1.0f;
+  // The GPU the passes that have a GPU version run on (GpuDevice::forChoice); null: the CPU.
+  std::shared_ptr<GpuDevice> gpu = nullptr;
 };
 
 class Renderer {

@@ -39,8 +39,13 @@ Pipeline PipelineModel::build() const {
   return p;
 }
 
-RenderWorker::RenderWorker(const Scene& scene, PipelineModel model, ViewState view, uint64_t seed)
-    : scene_(scene), seed_(seed), view_(std::move(view)), model_(std::move(model)) {
+RenderWorker::RenderWorker(const Scene& scene, PipelineModel model, ViewState view, uint64_t seed,
+                           std::shared_ptr<GpuDevice> gpu)
+    : scene_(scene),
+      seed_(seed),
+      gpu_(std::move(gpu)),
+      view_(std::move(view)),
+      model_(std::move(model)) {
   thread_ = std::thread([this] { loop(); });
 }
 
@@ -142,6 +147,7 @@ void RenderWorker::loop() {
           RenderSettings rs{
               .width = std::max(view.width, 1), .height = std::max(view.height, 1), .seed = seed_};
           rs.stereo = view.stereo;
+          rs.gpu = gpu_;
           renderer = std::make_unique<Renderer>(scene_, model_.build(), rs);
           rebuild_ = false;
         } else {

@@ -7,11 +7,13 @@
 #include <condition_variable>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "gpu/gpu_device.h"
 #include "pipeline/pipeline.h"
 #include "scene/scene.h"
 
@@ -54,7 +56,9 @@ struct FinishedFrame {
 
 class RenderWorker {
  public:
-  RenderWorker(const Scene& scene, PipelineModel model, ViewState view, uint64_t seed = 0);
+  // `gpu`: the device passes with a GPU version run on (null: the CPU).
+  RenderWorker(const Scene& scene, PipelineModel model, ViewState view, uint64_t seed = 0,
+               std::shared_ptr<GpuDevice> gpu = nullptr);
   ~RenderWorker();
   RenderWorker(const RenderWorker&) = delete;
   RenderWorker& operator=(const RenderWorker&) = delete;
@@ -78,6 +82,7 @@ class RenderWorker {
 
   const Scene& scene_;
   uint64_t seed_;
+  std::shared_ptr<GpuDevice> gpu_;
   mutable std::mutex mutex_;
   std::condition_variable done_;
   ViewState view_;

@@ -186,6 +186,30 @@ echo '{"runner": "sweep", "scenes": ["cornell"], "pipelines": ["deferred"], "swe
 expect_error "experiment sweep of a missing pass" "no pipeline has" "$T" experiment "$D/badexp2.json" --out "$D/err/exp"
 expect_error "unknown experiment" "not an experiment file" "$T" experiment nosuch --out "$D/err/exp"
 expect_error "experiment bad frames" "--path-frames" "$T" experiment heuristic --path-frames 0 --out "$D/err/exp"
+# Devices: a bad --device names the option; with no Vulkan driver at all (the loader pointed at
+# none) `gpu` exits 2 saying so and `auto` renders on the CPU; with one (lavapipe in CI) `gpu`
+# gives the CPU's image.
+expect_error "bad device" "--device: expected auto, cpu or gpu" "$T" render --device cuda --out "$D/err/x.png"
+out=$(VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json "$T" render --device gpu --width 32 --height 18 --out "$D/err/x.png" 2>&1); rc=$?
+check "--device gpu with no Vulkan driver: exit 2, says none was found, nothing written" \
+  "[ $rc -eq 2 ] && grep -q 'no usable Vulkan device' <<<\"\$out\" && [ -z \"\$(ls -A $D/err 2>/dev/null)\" ]"
+out=$(VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json "$T" render --device auto --pipeline deferred --width 32 --height 18 --out "$D/auto_cpu.png" 2>&1)
+check "--device auto with no Vulkan driver renders on the CPU and says so" \
+  "[ -s $D/auto_cpu.png ] && grep -q 'device: cpu' <<<\"\$out\""
+out=$("$T" info --devices 2>&1); rc=$?
+check "info --devices lists what Vulkan sees" "[ $rc -eq 0 ] && grep -q -- '--device gpu' <<<\"\$out\""
+if grep -q '^--device gpu:  none' <<<"$out"; then
+  echo "skip: --device gpu renders (no Vulkan device here)"
+else
+  "$T" render cornell --pipeline deferred --device gpu --width 96 --height 54 --out "$D/dev_gpu.exr" >/dev/null 2>&1
+  "$T" render cornell --pipeline deferred --device cpu --width 96 --height 54 --out "$D/dev_cpu.exr" >/dev/null 2>&1
+  out=$("$T" compare "$D/dev_gpu.exr" "$D/dev_cpu.exr" 2>&1)
+  psnr=$(awk '/^psnr/ {print $2}' <<<"$out")
+  check "--device gpu gives the CPU's image (PSNR >= 45 dB, got $psnr)" \
+    "[ \"$psnr\" = inf ] || awk -v p=$psnr 'BEGIN{exit !(p >= 45)}'"
+  out=$("$T" bench cornell --pipeline deferred --device gpu --width 64 --height 36 --frames 2 --warmup 0 2>/dev/null)
+  check "bench names the GPU and the moves' bytes" "grep -q 'device llvmpipe\|device .*GPU' <<<\"\$out\" && grep -q 'upload:hdr.*MiB moved' <<<\"\$out\""
+fi
 expect_error "missing scene file" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/x.png"
 expect_error "unknown builtin" "not a file and not a built-in" "$T" render --scene nosuchscene --out "$D/err/x.png"
 expect_error "zero width" "--width" "$T" render --width 0 --out "$D/err/x.png"

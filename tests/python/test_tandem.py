@@ -310,6 +310,20 @@ def test_setters_wait_for_a_render_in_another_thread():
     assert set(shapes) <= {(27, 48, 3), (27, 96, 3)}
 
 
+def test_device_gpu_gives_the_cpu_image():
+    try:
+        gpu = tandem.Renderer("spheres", pipeline="deferred", width=64, height=36, device="gpu")
+    except tandem.Error as e:
+        pytest.skip(f"no Vulkan device: {e}")
+    cpu = tandem.Renderer("spheres", pipeline="deferred", width=64, height=36, device="cpu")
+    assert cpu.device == "cpu" and gpu.device != "cpu"
+    a, b = cpu.render()["output"], gpu.render()["output"]
+    assert gpu.timings()["bytes"]["upload:hdr"] == 64 * 36 * 3 * 4
+    assert cpu.timings()["bytes"] == {}
+    # The tonemap kernel's exp and log differ from the CPU's by a few ulps.
+    assert np.abs(a - b).max() <= 2e-6
+
+
 def test_a_scene_that_names_itself_is_an_error():
     d = scratch("self_scene")
     with open(os.path.join(d, "a.json"), "w") as f:
@@ -359,6 +373,8 @@ BAD_ARGUMENTS = [
     (lambda: tandem.Renderer(lights=5), "Renderer: lights: expected a list of lights"),
     (lambda: tandem.Renderer(camera=[1, 2, 3]), "Renderer: camera: expected a dict"),
     (lambda: tandem.Renderer(sets=[1, 2]), "Renderer: sets: expected a dict"),
+    (lambda: tandem.Renderer(device="cuda"), "Renderer: device: expected auto, cpu or gpu"),
+    (lambda: tandem.Renderer(device=3), "Renderer: device: expected auto, cpu or gpu"),
     (lambda: tandem.reference(time=float("nan")), "reference: time: must be finite"),
     (lambda: tandem.reference(shutter=-1), "reference: shutter: must be in [0, 1000] seconds"),
     (lambda: tandem.reference(spp=0), "reference: spp: must be in [1, 1048576]"),

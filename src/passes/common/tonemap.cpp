@@ -2,7 +2,10 @@
 
 #include "core/color.h"
 #include "core/parallel.h"
+#include "gpu/shaders/tonemap_args.h"
+#include "gpu/shaders/tonemap_spv.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 
 namespace tandem {
 
@@ -28,6 +31,22 @@ void TonemapPass::execute(FrameContext& ctx) {
       tonemapSpan(hdr.data.data() + i, out.data.data() + i, size_t(x1 - x0) * 3, ev, op);
     }
   });
+}
+
+void TonemapPass::executeGpu(FrameContext& ctx) {
+  const Buffer& hdr = ctx.input(*this, Slots::hdr);
+  TonemapArgs a{};
+  a.hdr = ctx.deviceInput(*this, Slots::hdr);
+  a.display = ctx.deviceOutput(*this, Slots::output);
+  a.count = uint32_t(hdr.data.size());
+  a.scale = std::exp2(settings().exposure);
+  a.op = uint32_t(settings().op);
+  // A 2D grid: one invocation a value, rows of at most 65535 groups of 64.
+  const uint32_t groups = (a.count + 63) / 64, gx = std::min<uint32_t>(groups, 65535);
+  a.rowWidth = gx * 64;
+  GpuFrame& gpu = *ctx.gpu;
+  const GpuKernel& k = gpu.kernel("tonemap", kTonemapSpv, sizeof(kTonemapSpv) / 4, sizeof a);
+  gpu.commands().dispatch(k, gx, (groups + gx - 1) / gx, 1, &a);
 }
 
 }  // namespace tandem

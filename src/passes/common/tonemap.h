@@ -27,6 +27,8 @@ class TonemapPass : public SettingsPass<TonemapSettings> {
     return {{Slots::output, 3, BufferKind::Display}};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }
+  void executeGpu(FrameContext& ctx) override;  // shaders/tonemap.comp
 
  protected:
   const ParamTable<TonemapSettings>& tableFor() const override;

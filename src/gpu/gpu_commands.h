@@ -1,0 +1,47 @@
+// Recording and running GPU work: one command buffer, recorded, submitted and waited for, with
+// timestamps around what the caller wants timed (the per-pass rows of `bench`).
+#pragma once
+#include <volk.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "gpu/gpu_device.h"
+#include "gpu/gpu_kernel.h"
+#include "gpu/gpu_memory.h"
+
+namespace tandem {
+
+class GpuCommands {
+ public:
+  static constexpr uint32_t kMaxTimestamps = 256;
+  explicit GpuCommands(GpuDevice& device);
+  ~GpuCommands();
+  GpuCommands(const GpuCommands&) = delete;
+  GpuCommands& operator=(const GpuCommands&) = delete;
+
+  void begin();  // starts a recording (timestamps reset)
+  void copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes);
+  // Runs `kernel` over groups (x, y, z) with `push` (kernel.pushBytes() bytes).
+  void dispatch(const GpuKernel& kernel, uint32_t x, uint32_t y, uint32_t z, const void* push);
+  // Everything recorded before is visible to what is recorded after (compute and copies).
+  void barrier();
+  // Writes a timestamp once the work before it completes; its index for msBetween.
+  uint32_t timestamp();
+  void submit();                          // submits what was recorded and waits for it
+  void abandon() { recording_ = false; }  // a recording left unsubmitted (an exception)
+  // Milliseconds of GPU time between two timestamps of the last submission.
+  double msBetween(uint32_t a, uint32_t b) const;
+  GpuDevice& device() { return device_; }
+
+ private:
+  GpuDevice& device_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cb_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+  uint32_t used_ = 0;
+  bool recording_ = false;
+  std::vector<uint64_t> stamps_;
+};
+
+}  // namespace tandem

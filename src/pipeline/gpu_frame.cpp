@@ -1,0 +1,113 @@
+#include "pipeline/gpu_frame.h"
+
+#include <cstring>
+#include <stdexcept>
+
+namespace tandem {
+
+GpuFrame::GpuFrame(std::shared_ptr<GpuDevice> device)
+    : device_(std::move(device)), memory_(*device_), commands_(*device_) {}
+
+GpuFrame::~GpuFrame() {
+  kernels_.clear();
+  for (auto& [name, c] : copies_) memory_.release(c.buffer);
+  memory_.release(staging_);
+}
+
+const GpuKernel& GpuFrame::kernel(const std::string& name, const uint32_t* spirv, size_t words,
+                                  uint32_t pushBytes) {
+  auto& k = kernels_[name];
+  if (!k) k = std::make_unique<GpuKernel>(*device_, name, spirv, words, pushBytes);
+  return *k;
+}
+
+bool GpuFrame::deviceNewer(const std::string& name) const {
+  auto it = copies_.find(name);
+  return it != copies_.end() && it->second.newer;
+}
+
+bool GpuFrame::onDevice(const std::string& name) const {
+  auto it = copies_.find(name);
+  return it != copies_.end() && it->second.current;
+}
+
+GpuFrame::Copy& GpuFrame::copyFor(const std::string& name, size_t bytes) {
+  Copy& c = copies_[name];
+  if (c.buffer && c.buffer.size < bytes) memory_.release(c.buffer);
+  if (!c.buffer) c.buffer = memory_.allocate(bytes, false);
+  return c;
+}
+
+GpuBuffer& GpuFrame::staging(size_t bytes) {
+  if (staging_ && staging_.size < bytes) memory_.release(staging_);
+  if (!staging_) staging_ = memory_.allocate(bytes, true);
+  return staging_;
+}
+
+size_t GpuFrame::upload(const std::string& name, const Buffer& b) {
+  if (onDevice(name)) return 0;
+  const size_t bytes = b.data.size() * sizeof(float);
+  Copy& c = copyFor(name, bytes);
+  if (bytes) {
+    GpuBuffer& s = staging(bytes);
+    std::memcpy(s.mapped, b.data.data(), bytes);
+    commands_.begin();
+    commands_.copy(s, c.buffer, bytes);
+    commands_.submit();
+  }
+  c.current = true;
+  c.newer = false;
+  return bytes;
+}
+
+size_t GpuFrame::download(const std::string& name, Buffer& b) {
+  auto it = copies_.find(name);
+  if (it == copies_.end() || !it->second.newer) return 0;
+  const size_t bytes = b.data.size() * sizeof(float);
+  if (bytes > it->second.buffer.size)
+    throw std::logic_error("GPU copy of '" + name + "' is smaller than its host buffer");
+  if (bytes) {
+    GpuBuffer& s = staging(bytes);
+    commands_.begin();
+    commands_.copy(it->second.buffer, s, bytes);
+    commands_.submit();
+    std::memcpy(b.data.data(), s.mapped, bytes);
+  }
+  it->second.newer = false;
+  return bytes;
+}
+
+const GpuBuffer& GpuFrame::write(const std::string& name, const Buffer& b) {
+  Copy& c = copyFor(name, b.data.size() * sizeof(float));
+  c.current = true;
+  c.newer = true;
+  return c.buffer;
+}
+
+const GpuBuffer& GpuFrame::read(const std::string& name) const {
+  auto it = copies_.find(name);
+  if (it == copies_.end() || !it->second.current)
+    throw std::logic_error("buffer '" + name + "' was read on the GPU before it was moved there");
+  return it->second.buffer;
+}
+
+void GpuFrame::hostWrote(const std::string& name) {
+  auto it = copies_.find(name);
+  if (it == copies_.end()) return;
+  it->second.current = false;
+  it->second.newer = false;
+}
+
+std::vector<std::string> GpuFrame::deviceOnly() const {
+  std::vector<std::string> out;
+  for (const auto& [name, c] : copies_)
+    if (c.newer) out.push_back(name);
+  return out;
+}
+
+void GpuFrame::forget() {
+  for (auto& [name, c] : copies_) memory_.release(c.buffer);
+  copies_.clear();
+}
+
+}  // namespace tandem

@@ -1,0 +1,65 @@
+// A renderer's GPU side: its command buffer, device memory and kernels, and where each named
+// buffer's current value lives. Buffers live where they were written: the pipeline moves a buffer
+// to the device before a GPU pass that declares it as an input, and back before a CPU pass (or
+// the caller) reads it, each move a timing row with its bytes (Pipeline::execute).
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/buffer.h"
+#include "gpu/gpu_commands.h"
+#include "gpu/gpu_device.h"
+#include "gpu/gpu_kernel.h"
+#include "gpu/gpu_memory.h"
+
+namespace tandem {
+
+class GpuFrame {
+ public:
+  explicit GpuFrame(std::shared_ptr<GpuDevice> device);
+  ~GpuFrame();
+  GpuDevice& device() { return *device_; }
+  GpuCommands& commands() { return commands_; }
+  GpuMemory& memory() { return memory_; }
+  // The kernel `name` built from `spirv` on first use, kept after.
+  const GpuKernel& kernel(const std::string& name, const uint32_t* spirv, size_t words,
+                          uint32_t pushBytes);
+
+  // Whether the device holds a newer value of `name` than the host.
+  bool deviceNewer(const std::string& name) const;
+  // Whether the device holds `name`'s current value (uploaded, or written there).
+  bool onDevice(const std::string& name) const;
+  // Makes the device copy of host buffer `b` (called `name`) current; the bytes moved (0 when it
+  // already was).
+  size_t upload(const std::string& name, const Buffer& b);
+  // Makes the host copy current (b must have the device copy's size); the bytes moved.
+  size_t download(const std::string& name, Buffer& b);
+  // The device buffer that will hold `name`'s new value (b's size), the host's copy now stale.
+  const GpuBuffer& write(const std::string& name, const Buffer& b);
+  // The device copy of `name` (which must be current there).
+  const GpuBuffer& read(const std::string& name) const;
+  // A host write: the device copy, if any, is stale.
+  void hostWrote(const std::string& name);
+  // Names whose newest value is on the device only.
+  std::vector<std::string> deviceOnly() const;
+  void forget();  // every device copy dropped (a pipeline switch)
+
+ private:
+  struct Copy {
+    GpuBuffer buffer;
+    bool current = false;  // holds the buffer's current value
+    bool newer = false;    // ... which the host does not have
+  };
+  Copy& copyFor(const std::string& name, size_t bytes);
+  GpuBuffer& staging(size_t bytes);
+  std::shared_ptr<GpuDevice> device_;
+  GpuMemory memory_;
+  GpuCommands commands_;
+  GpuBuffer staging_;
+  std::map<std::string, Copy> copies_;
+  std::map<std::string, std::unique_ptr<GpuKernel>> kernels_;
+};
+
+}  // namespace tandem

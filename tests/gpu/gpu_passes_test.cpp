@@ -1,0 +1,165 @@
+// GPU passes against their CPU passes, on whatever Vulkan device `--device gpu` would take (in
+// CI: lavapipe, Mesa's CPU Vulkan), with the Vulkan validation layers on: any message they print
+// fails the test. Without a Vulkan device every test here skips, saying so.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "core/color.h"
+#include "eval/metrics/metrics.h"
+#include "gpu/gpu_device.h"
+#include "gpu/gpu_memory.h"
+#include "passes/common/tonemap.h"
+#include "pipeline/gpu_frame.h"
+#include "scene/loaders.h"
+#include "scene/scene_camera.h"
+#include "test_util.h"
+
+namespace tandem {
+namespace {
+
+// The device the tests run on, or null with the reason in `why`.
+std::shared_ptr<GpuDevice> testDevice(std::string* why) {
+  setenv("TANDEM_VK_VALIDATION", "1", 0);  // before the first instance
+  try {
+    return GpuDevice::forChoice(DeviceChoice::Gpu, "test");
+  } catch (const InputError& e) {
+    *why = e.what();
+    return nullptr;
+  }
+}
+
+#define REQUIRE_GPU(dev)                                                                       \
+  std::string why;                                                                             \
+  std::shared_ptr<GpuDevice> dev = testDevice(&why);                                           \
+  if (!dev) GTEST_SKIP() << "no Vulkan device: " << why;                                       \
+  ASSERT_TRUE(dev->validating()) << "the Vulkan validation layers are not installed (package " \
+                                    "vulkan-validationlayers): GPU tests run only with them";
+
+void expectNoValidationMessages(const GpuDevice& dev) {
+  for (const std::string& m : dev.validationMessages()) ADD_FAILURE() << "validation: " << m;
+}
+
+TEST(GpuDevice, ListsWhatItOpens) {
+  REQUIRE_GPU(dev);
+  const std::vector<GpuDeviceInfo> all = listGpuDevices();
+  bool found = false;
+  for (const GpuDeviceInfo& d : all) found |= d.name == dev->info().name && d.usable;
+  EXPECT_TRUE(found);
+  EXPECT_GE(dev->info().apiVersion, uint32_t(VK_API_VERSION_1_3));
+  EXPECT_GT(dev->info().subgroupSize, 0u);
+}
+
+TEST(GpuDevice, ChoicesParseAndBadOnesNameTheField) {
+  EXPECT_EQ(parseDeviceChoice("auto", "x", "device"), DeviceChoice::Auto);
+  EXPECT_EQ(parseDeviceChoice("gpu", "x", "device"), DeviceChoice::Gpu);
+  EXPECT_EQ(GpuDevice::forChoice(DeviceChoice::Cpu, "x"), nullptr);
+  try {
+    parseDeviceChoice("cuda", "command line", "--device");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "command line: --device: expected auto, cpu or gpu, got 'cuda'");
+  }
+}
+
+// Sub-allocation: buffers share allocations, freed ranges are reused, and a buffer larger than
+// the device is a GpuError naming the size, not a crash.
+TEST(GpuMemory, SubAllocatesReusesAndRefusesTooMuch) {
+  REQUIRE_GPU(dev);
+  {
+    GpuMemory mem(*dev);
+    GpuBuffer a = mem.allocate(1000, false), b = mem.allocate(5000, false);
+    EXPECT_EQ(a.block, b.block);
+    EXPECT_NE(a.address, b.address);
+    EXPECT_EQ(mem.allocatedBytes(), GpuMemory::kBlockBytes);
+    const VkDeviceAddress first = a.address;
+    mem.release(a);
+    GpuBuffer c = mem.allocate(800, false);
+    EXPECT_EQ(c.address, first);  // the freed range, first fit
+    GpuBuffer s = mem.allocate(64, true);
+    EXPECT_NE(s.mapped, nullptr);
+    try {
+      mem.allocate(VkDeviceSize(1) << 50, false);
+      FAIL() << "no error";
+    } catch (const GpuError& e) {
+      EXPECT_NE(std::string(e.what()).find("out of device memory"), std::string::npos) << e.what();
+    }
+    mem.release(b);
+    mem.release(c);
+    mem.release(s);
+  }
+  expectNoValidationMessages(*dev);
+}
+
+// The tonemap kernel against tonemapSpan on values across the range, non-finite and negative
+// ones included, for every operator and a few exposures. The GPU's exp and log differ from
+// Highway's by a few ulps: 2e-6 is 1/2000 of an 8-bit step.
+TEST(GpuTonemap, MatchesTheCpuPassValueForValue) {
+  REQUIRE_GPU(dev);
+  const int w = 64, h = 32;
+  Buffer hdr(w, h, 3);
+  for (size_t i = 0; i < hdr.data.size(); ++i)
+    hdr.data[i] = float(std::pow(10.0, -6.0 + 9.0 * double(i) / double(hdr.data.size())));
+  hdr.data[0] = std::numeric_limits<float>::quiet_NaN();
+  hdr.data[1] = std::numeric_limits<float>::infinity();
+  hdr.data[2] = -1.0f;
+  hdr.data[3] = 3e38f;
+  for (const char* op : {"clamp", "reinhard", "aces"})
+    for (const double ev : {-3.0, 0.0, 2.5}) {
+      Buffer outs[2];
+      for (int onGpu = 0; onGpu < 2; ++onGpu) {
+        Pipeline p;
+        p.passes.push_back(std::make_unique<TonemapPass>());
+        p.setParam(std::string("tonemap.operator=") + op, "test");
+        p.setParam("tonemap.exposure=" + std::to_string(ev), "test");
+        FrameContext ctx;
+        ctx.width = w;
+        ctx.height = h;
+        if (onGpu) ctx.gpu = std::make_shared<GpuFrame>(dev);
+        ctx.buffers["hdr"] = hdr;
+        p.execute(ctx);
+        outs[onGpu] = ctx.input("output");
+      }
+      float worst = 0;
+      for (size_t i = 0; i < outs[0].data.size(); ++i)
+        worst = std::max(worst, std::abs(outs[0].data[i] - outs[1].data[i]));
+      EXPECT_LE(worst, 2e-6f) << op << " at " << ev << " EV";
+    }
+  expectNoValidationMessages(*dev);
+}
+
+// Whole pipelines with some passes on the GPU give the CPU's image on the built-in scenes
+// (PSNR >= 45 dB, as every deterministic GPU pass must), and each buffer crosses once a frame,
+// as its own timing row with its bytes.
+TEST(GpuPipeline, DeferredMatchesTheCpuAndMovesEachBufferOnce) {
+  REQUIRE_GPU(dev);
+  for (const char* name : {"cornell", "spheres", "atrium"}) {
+    Scene scene = loadScene(name);
+    const CameraDesc cam = defaultCamera(scene);
+    RenderSettings rs{.width = 160, .height = 90};
+    Renderer cpu(scene, Pipeline::load("deferred"), rs);
+    rs.gpu = dev;
+    Renderer gpu(scene, Pipeline::load("deferred"), rs);
+    for (int f = 0; f < 2; ++f) {
+      cpu.renderFrame(f, cam);
+      const FrameTimings ft = gpu.renderFrame(f, cam);
+      EXPECT_GE(psnr(cpu.output(), gpu.output(), 1.0), 45.0) << name;
+      int uploads = 0, downloads = 0;
+      for (const PassTiming& t : ft.passes) {
+        if (t.name == "upload:hdr") {
+          ++uploads;
+          EXPECT_EQ(t.bytes, 160.0 * 90 * 3 * 4);
+        }
+        if (t.name == "download:output") ++downloads;
+      }
+      EXPECT_EQ(uploads, 1) << name;
+      EXPECT_EQ(downloads, 1) << name;
+    }
+  }
+  expectNoValidationMessages(*dev);
+}
+
+}  // namespace
+}  // namespace tandem
