@@ -46,9 +46,10 @@ void GpuCommands::begin() {
   used_ = 0;
 }
 
-void GpuCommands::copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes) {
+void GpuCommands::copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes,
+                       VkDeviceSize srcOffset, VkDeviceSize dstOffset) {
   if (bytes == 0) return;
-  VkBufferCopy region{0, 0, bytes};
+  VkBufferCopy region{srcOffset, dstOffset, bytes};
   vkCmdCopyBuffer(cb_, src.buffer, dst.buffer, 1, &region);
 }
 
@@ -84,6 +85,16 @@ uint32_t GpuCommands::timestamp() {
 
 void GpuCommands::submit() {
   recording_ = false;
+  // What the work wrote is visible to the host once the wait returns (staging reads).
+  auto mb = vkStruct<VkMemoryBarrier2>(VK_STRUCTURE_TYPE_MEMORY_BARRIER_2);
+  mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+  mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+  mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+  auto di = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
+  di.memoryBarrierCount = 1;
+  di.pMemoryBarriers = &mb;
+  vkCmdPipelineBarrier2(cb_, &di);
   checkVk(vkEndCommandBuffer(cb_), "vkEndCommandBuffer");
   device_.submitAndWait(cb_);
   stamps_.assign(used_, 0);

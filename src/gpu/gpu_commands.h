@@ -21,7 +21,8 @@ class GpuCommands {
   GpuCommands& operator=(const GpuCommands&) = delete;
 
   void begin();  // starts a recording (timestamps reset)
-  void copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes);
+  void copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes,
+            VkDeviceSize srcOffset = 0, VkDeviceSize dstOffset = 0);
   // Runs `kernel` over groups (x, y, z) with `push` (kernel.pushBytes() bytes).
   void dispatch(const GpuKernel& kernel, uint32_t x, uint32_t y, uint32_t z, const void* push);
   // Everything recorded before is visible to what is recorded after (compute and copies).

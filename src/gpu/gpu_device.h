@@ -21,6 +21,15 @@ class GpuError : public std::runtime_error {
 };
 void checkVk(VkResult r, const char* call);
 
+// A Vulkan structure of type T, zeroed, with its sType and pNext chain set.
+template <class T>
+T vkStruct(VkStructureType type, void* next = nullptr) {
+  T v{};
+  v.sType = type;
+  v.pNext = next;
+  return v;
+}
+
 // Where passes run: `auto` takes a hardware GPU when there is one and the CPU otherwise; `gpu`
 // also takes a CPU Vulkan (lavapipe), so CI can run the GPU code; `cpu` never opens Vulkan.
 enum class DeviceChoice { Auto, Cpu, Gpu };
@@ -38,6 +47,7 @@ struct GpuDeviceInfo {
   bool usable = false;    // Vulkan 1.3 with a compute queue and what Tandem needs
   std::string missing;    // why not usable
   uint64_t deviceLocalBytes = 0;
+  uint64_t maxBufferBytes = 0;  // the largest one buffer or allocation may be
   uint32_t subgroupSize = 0;
   std::string apiText() const;  // "1.3.230"
 };

@@ -44,17 +44,8 @@ bool GpuMemory::carve(Block& b, VkDeviceSize size, VkDeviceSize align, VkDeviceS
 GpuBuffer GpuMemory::allocate(VkDeviceSize bytes, bool hostVisible) {
   VkDevice dev = device_.device();
   // What no allocation could hold is refused before Vulkan is asked (it must not be).
-  VkPhysicalDeviceMaintenance4Properties m4{};
-  m4.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES;
-  VkPhysicalDeviceMaintenance3Properties m3{};
-  m3.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES;
-  m3.pNext = &m4;
-  VkPhysicalDeviceProperties2 props{};
-  props.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
-  props.pNext = &m3;
-  vkGetPhysicalDeviceProperties2(device_.physical(), &props);
-  const VkDeviceSize limit = std::min({m3.maxMemoryAllocationSize, m4.maxBufferSize,
-                                       VkDeviceSize(device_.info().deviceLocalBytes)});
+  const VkDeviceSize limit =
+      std::min(device_.info().maxBufferBytes, device_.info().deviceLocalBytes);
   if (bytes > limit)
     throw GpuError("GPU: out of device memory: a buffer of " + std::to_string(bytes >> 20) +
                    " MiB is more than " + device_.info().name + " can hold (" +

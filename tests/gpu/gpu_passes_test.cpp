@@ -11,6 +11,7 @@
 #include "eval/metrics/metrics.h"
 #include "gpu/gpu_device.h"
 #include "gpu/gpu_memory.h"
+#include "gpu/gpu_test_util.h"
 #include "passes/common/tonemap.h"
 #include "pipeline/gpu_frame.h"
 #include "scene/loaders.h"
@@ -19,28 +20,6 @@
 
 namespace tandem {
 namespace {
-
-// The device the tests run on, or null with the reason in `why`.
-std::shared_ptr<GpuDevice> testDevice(std::string* why) {
-  setenv("TANDEM_VK_VALIDATION", "1", 0);  // before the first instance
-  try {
-    return GpuDevice::forChoice(DeviceChoice::Gpu, "test");
-  } catch (const InputError& e) {
-    *why = e.what();
-    return nullptr;
-  }
-}
-
-#define REQUIRE_GPU(dev)                                                                       \
-  std::string why;                                                                             \
-  std::shared_ptr<GpuDevice> dev = testDevice(&why);                                           \
-  if (!dev) GTEST_SKIP() << "no Vulkan device: " << why;                                       \
-  ASSERT_TRUE(dev->validating()) << "the Vulkan validation layers are not installed (package " \
-                                    "vulkan-validationlayers): GPU tests run only with them";
-
-void expectNoValidationMessages(const GpuDevice& dev) {
-  for (const std::string& m : dev.validationMessages()) ADD_FAILURE() << "validation: " << m;
-}
 
 TEST(GpuDevice, ListsWhatItOpens) {
   REQUIRE_GPU(dev);

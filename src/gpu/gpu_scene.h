@@ -1,0 +1,52 @@
+// The scene on the GPU: every object's world-space triangles with a BVH of their own, and one BVH
+// over the objects (two levels, so an object that moves is rebuilt alone and per-object
+// selections can skip whole objects), in device buffers that kernels reach by address.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gpu/gpu_commands.h"
+#include "gpu/gpu_memory.h"
+#include "gpu/shaders/bvh.h"
+#include "scene/frame_scene.h"
+
+namespace tandem {
+
+class GpuScene {
+ public:
+  explicit GpuScene(GpuMemory& memory) : memory_(memory) {}
+  ~GpuScene();
+  GpuScene(const GpuScene&) = delete;
+  GpuScene& operator=(const GpuScene&) = delete;
+
+  // Brings the device copy up to `fs` (geometryVersion): objects whose triangles changed get
+  // a new BVH, the BVH over the objects is rebuilt, and everything is uploaded through `cmd`
+  // (submitted and waited for).
+  void update(const FrameScene& fs, GpuCommands& cmd);
+  // The trace arguments for this scene (rays, hits and count left for the caller).
+  TraceArgs traceArgs() const;
+  size_t triangles() const { return triangleCount_; }
+  uint64_t deviceBytes() const;
+
+ private:
+  struct ObjectBvh {
+    std::vector<BvhNode> nodes;
+    std::vector<float> triangles;  // 9 floats each, in leaf order
+    std::vector<uint32_t> prims;   // each triangle's index in the object
+    Bounds3 bounds;
+  };
+  static ObjectBvh buildObject(const Scene& scene, const FrameObject& o, size_t index);
+  void upload(GpuCommands& cmd);
+  GpuBuffer& ensure(GpuBuffer& b, size_t bytes);
+
+  GpuMemory& memory_;
+  uint64_t version_ = ~0ull;
+  const Scene* scene_ = nullptr;
+  std::vector<ObjectBvh> objects_;
+  std::vector<std::vector<Vec3>> built_;  // each object's positions when its BVH was built
+  GpuBuffer nodes_, triangles_, prims_, roots_, staging_;
+  uint32_t topRoot_ = 0;
+  size_t triangleCount_ = 0;
+};
+
+}  // namespace tandem
