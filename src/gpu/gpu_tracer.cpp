@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "gpu/shaders/trace_any_spv.h"
 #include "gpu/shaders/trace_closest_spv.h"
 
 namespace tandem {
@@ -11,8 +12,9 @@ GpuTracer::GpuTracer(std::shared_ptr<GpuDevice> device)
       memory_(*device_),
       commands_(*device_),
       scene_(memory_),
-      kernel_(*device_, "trace_closest", kTraceClosestSpv, sizeof(kTraceClosestSpv) / 4,
-              sizeof(TraceArgs)) {}
+      closest_(*device_, "trace_closest", kTraceClosestSpv, sizeof(kTraceClosestSpv) / 4,
+               sizeof(TraceArgs)),
+      any_(*device_, "trace_any", kTraceAnySpv, sizeof(kTraceAnySpv) / 4, sizeof(TraceArgs)) {}
 
 GpuTracer::~GpuTracer() {
   memory_.release(rays_);
@@ -20,7 +22,14 @@ GpuTracer::~GpuTracer() {
   memory_.release(staging_);
 }
 
-std::vector<GpuHit> GpuTracer::closest(const std::vector<GpuRay>& rays) {
+std::vector<uint8_t> GpuTracer::occluded(const std::vector<GpuRay>& rays) {
+  const std::vector<GpuHit> hits = trace(rays, any_);
+  std::vector<uint8_t> out(hits.size());
+  for (size_t i = 0; i < hits.size(); ++i) out[i] = hits[i].object >= 0 ? 1 : 0;
+  return out;
+}
+
+std::vector<GpuHit> GpuTracer::trace(const std::vector<GpuRay>& rays, const GpuKernel& kernel) {
   std::vector<GpuHit> hits(rays.size());
   if (rays.empty()) return hits;
   if (rays.size() > size_t(65535) * 64)
@@ -42,7 +51,7 @@ std::vector<GpuHit> GpuTracer::closest(const std::vector<GpuRay>& rays) {
   commands_.copy(staging_, rays_, rayBytes);
   commands_.barrier();
   const uint32_t t0 = commands_.timestamp();
-  commands_.dispatch(kernel_, (a.count + 63) / 64, 1, 1, &a);
+  commands_.dispatch(kernel, (a.count + 63) / 64, 1, 1, &a);
   const uint32_t t1 = commands_.timestamp();
   commands_.barrier();
   commands_.copy(hits_, staging_, hitBytes);

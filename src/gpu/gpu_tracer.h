@@ -18,7 +18,9 @@ class GpuTracer {
   ~GpuTracer();
   void update(const FrameScene& fs) { scene_.update(fs, commands_); }
   // The closest hit of every ray (both faces).
-  std::vector<GpuHit> closest(const std::vector<GpuRay>& rays);
+  std::vector<GpuHit> closest(const std::vector<GpuRay>& rays) { return trace(rays, closest_); }
+  // Whether each ray hits anything between tnear and tfar (1) or not (0).
+  std::vector<uint8_t> occluded(const std::vector<GpuRay>& rays);
   double lastKernelMs() const { return lastMs_; }  // GPU time of the last batch
   const GpuScene& scene() const { return scene_; }
 
@@ -27,7 +29,8 @@ class GpuTracer {
   GpuMemory memory_;
   GpuCommands commands_;
   GpuScene scene_;
-  GpuKernel kernel_;
+  std::vector<GpuHit> trace(const std::vector<GpuRay>& rays, const GpuKernel& kernel);
+  GpuKernel closest_, any_;
   GpuBuffer rays_, hits_, staging_;
   double lastMs_ = 0;
 };

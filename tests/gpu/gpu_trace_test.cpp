@@ -91,6 +91,7 @@ TEST(GpuTrace, ClosestHitsMatchEmbree) {
       gr.push_back(
           {r.origin.x, r.origin.y, r.origin.z, r.tnear, r.dir.x, r.dir.y, r.dir.z, r.tfar});
     const std::vector<GpuHit> hits = gpu.closest(gr);
+    ASSERT_EQ(hits.size(), rays.size());
     // A tie (another triangle at the same distance: a shared edge, walls meeting in a corner)
     // may go either way; the distance may not.
     int hitMiss = 0, farther = 0, hitCount = 0, ties = 0;
@@ -120,6 +121,25 @@ TEST(GpuTrace, ClosestHitsMatchEmbree) {
     EXPECT_LE(ties, int(rays.size()) / 200) << name;
     std::printf("%s: %zu rays, %d hit, %d hit/miss, %d at another distance, %d ties\n", name,
                 rays.size(), hitCount, hitMiss, farther, ties);
+
+    // Occlusion (any hit) over segments ending short of or past the first surface: the same
+    // answer as Embree's for all but 1 segment in 2,000 (one ending on a surface).
+    std::uniform_real_distribution<float> reach(0.05f, 2.0f);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const float t = hits[i].object >= 0 ? hits[i].t : 10.0f;
+      rays[i].tfar = t * reach(rng);
+      gr[i].tfar = rays[i].tfar;
+    }
+    const std::vector<uint8_t> occ = gpu.occluded(gr);
+    int disagree = 0, blocked = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const bool o = cpu.occluded(rays[i]);
+      blocked += o;
+      disagree += o != (occ[i] != 0);
+    }
+    EXPECT_GT(blocked, int(rays.size()) / 4) << name;
+    EXPECT_LT(blocked, int(rays.size()) * 3 / 4) << name;
+    EXPECT_LE(disagree, int(rays.size()) / 2000) << name << ": " << disagree << " segments";
   }
   expectNoValidationMessages(*dev);
 }
