@@ -14,7 +14,8 @@ struct BvhBuild {
   std::vector<uint32_t> items;  // the input indices in leaf order (a leaf's a..a+count-1)
 };
 
-// A BVH over `boxes` (leaves of at most 4), node and item indices relative to the first.
+// A BVH over `boxes` (leaves of at most 4), node and item indices relative to the first;
+// children always come after their parent (a refit walks the nodes backwards).
 BvhBuild buildBvh(const std::vector<Bounds3>& boxes);
 
 }  // namespace tandem

@@ -36,6 +36,38 @@ GpuScene::ObjectBvh GpuScene::buildObject(const Scene& scene, const FrameObject&
   return out;
 }
 
+void GpuScene::refitObject(ObjectBvh& ob, const Scene& scene, const FrameObject& o, size_t index) {
+  const Mesh& mesh = scene.meshes[size_t(scene.objects[index].mesh)];
+  for (size_t i = 0; i < ob.prims.size(); ++i)
+    for (size_t k = 0; k < 3; ++k) {
+      const Vec3 p = o.positions[mesh.indices[3 * size_t(ob.prims[i]) + k]];
+      float* v = &ob.triangles[9 * i + 3 * k];
+      v[0] = p.x, v[1] = p.y, v[2] = p.z;
+    }
+  // Children always follow their parent (buildBvh's order): from the last node back, every
+  // child's box is final before its parent's is drawn around it.
+  for (size_t n = ob.nodes.size(); n-- > 0;) {
+    BvhNode& node = ob.nodes[n];
+    if (node.lox > node.hix) continue;  // an empty slot stays empty
+    Bounds3 b;
+    if (node.count) {
+      for (size_t t = node.a; t < node.a + node.count; ++t)
+        for (size_t k = 0; k < 3; ++k)
+          b.extend({ob.triangles[9 * t + 3 * k], ob.triangles[9 * t + 3 * k + 1],
+                    ob.triangles[9 * t + 3 * k + 2]});
+    } else {
+      for (size_t c = node.a; c < node.a + 2; ++c) {
+        const BvhNode& k = ob.nodes[c];
+        if (k.lox <= k.hix) b.extend(Bounds3{{k.lox, k.loy, k.loz}, {k.hix, k.hiy, k.hiz}});
+      }
+    }
+    node.lox = b.lo.x, node.loy = b.lo.y, node.loz = b.lo.z;
+    node.hix = b.hi.x, node.hiy = b.hi.y, node.hiz = b.hi.z;
+  }
+  ob.bounds = Bounds3{{ob.nodes[0].lox, ob.nodes[0].loy, ob.nodes[0].loz},
+                      {ob.nodes[0].hix, ob.nodes[0].hiy, ob.nodes[0].hiz}};
+}
+
 void GpuScene::update(const FrameScene& fs, GpuCommands& cmd) {
   if (fs.geometryVersion == version_ && fs.scene == scene_ && fs.objects.size() == objects_.size())
     return;
@@ -43,11 +75,17 @@ void GpuScene::update(const FrameScene& fs, GpuCommands& cmd) {
   const bool fresh = fs.scene != scene_ || objects_.size() != fs.objects.size();
   objects_.resize(fs.objects.size());
   built_.resize(fs.objects.size());
-  for (size_t o = 0; o < fs.objects.size(); ++o)
-    if (fresh || !samePositions(built_[o], fs.objects[o].positions)) {  // only what moved
-      objects_[o] = buildObject(scene, fs.objects[o], o);
-      built_[o] = fs.objects[o].positions;
-    }
+  for (size_t o = 0; o < fs.objects.size(); ++o) {
+    const FrameObject& fo = fs.objects[o];
+    if (!fresh && samePositions(built_[o], fo.positions)) continue;  // only what moved
+    // A BVH built for these triangles is refitted (its tree kept, its boxes redrawn around where
+    // the triangles are now): cheaper than a build, and rigid motion barely loosens the boxes.
+    if (!fresh && built_[o].size() == fo.positions.size())
+      refitObject(objects_[o], scene, fo, o);
+    else
+      objects_[o] = buildObject(scene, fo, o);
+    built_[o] = fo.positions;
+  }
   scene_ = fs.scene;
   version_ = fs.geometryVersion;
   upload(cmd);

@@ -19,9 +19,9 @@ class GpuScene {
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
 
-  // Brings the device copy up to `fs` (geometryVersion): objects whose triangles changed get
-  // a new BVH, the BVH over the objects is rebuilt, and everything is uploaded through `cmd`
-  // (submitted and waited for).
+  // Brings the device copy up to `fs` (geometryVersion): objects whose triangles moved have
+  // their BVH refitted (built on first sight), the BVH over the objects is rebuilt, and
+  // everything is uploaded through `cmd` (submitted and waited for).
   void update(const FrameScene& fs, GpuCommands& cmd);
   // The trace arguments for this scene (rays, hits and count left for the caller).
   TraceArgs traceArgs() const;
@@ -36,6 +36,7 @@ class GpuScene {
     Bounds3 bounds;
   };
   static ObjectBvh buildObject(const Scene& scene, const FrameObject& o, size_t index);
+  static void refitObject(ObjectBvh& ob, const Scene& scene, const FrameObject& o, size_t index);
   void upload(GpuCommands& cmd);
   GpuBuffer& ensure(GpuBuffer& b, size_t bytes);
 
