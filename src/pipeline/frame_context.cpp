@@ -71,6 +71,12 @@ uint64_t FrameContext::deviceInput(const Pass& pass, const std::string& slot) co
   return gpu->read(pass.bufferName(slot)).address;
 }
 
+uint64_t FrameContext::devicePrevious(const Pass& pass, const std::string& slot) const {
+  if (!previous(pass, slot)) return 0;
+  if (!gpu) throw std::logic_error("pass '" + pass.name() + "' ran on the GPU without one");
+  return gpu->read(historyKey(pass.bufferName(slot))).address;
+}
+
 uint64_t FrameContext::deviceOutput(const Pass& pass, const std::string& slot, int w, int h) {
   if (!gpu) throw std::logic_error("pass '" + pass.name() + "' ran on the GPU without one");
   const Buffer& b = output(pass, slot, w, h);

@@ -116,6 +116,9 @@ struct FrameContext {
   // its new value is on the device until something on the host reads it).
   uint64_t deviceInput(const Pass& pass, const std::string& slot) const;
   uint64_t deviceOutput(const Pass& pass, const std::string& slot, int width = 0, int height = 0);
+  // Last frame's value of a history input slot on the device (moved there by the pipeline); 0
+  // after a reset or before it exists, as previous() gives null.
+  uint64_t devicePrevious(const Pass& pass, const std::string& slot) const;
   // By buffer name (tests, AOV writing, the viewer).
   const Buffer& input(const std::string& name) const;
   bool has(const std::string& name) const { return buffers.count(name) != 0; }

@@ -16,6 +16,11 @@
 
 namespace tandem {
 
+// The name under which last frame's value of buffer `name` (a history input) lives on the device.
+inline std::string historyKey(const std::string& name) {
+  return "history:" + name;
+}
+
 class GpuFrame {
  public:
   explicit GpuFrame(std::shared_ptr<GpuDevice> device);

@@ -339,7 +339,16 @@ void moveToHost(const std::string& name, FrameContext& ctx, FrameTimings& ft) {
 // host, and records never move).
 void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameTimings& ft) {
   for (const BufferSlot& in : p.inputs()) {
-    if (in.history) continue;
+    if (in.history) {  // last frame's value: on the host, moved for a GPU pass that reads it
+      const std::string& name = p.bufferName(in.slot);
+      auto it = ctx.history.find(name);
+      const std::string key = historyKey(name);
+      if (!onGpu || it == ctx.history.end() || ctx.gpu->onDevice(key)) continue;
+      const auto t0 = Clock::now();
+      const size_t bytes = ctx.gpu->upload(key, it->second);
+      ft.passes.push_back({"upload:" + key, msSince(t0), 0, double(bytes)});
+      continue;
+    }
     const std::string& name = p.bufferName(in.slot);
     auto it = ctx.buffers.find(name);
     if (it == ctx.buffers.end() || it->second.kind == BufferKind::Record) continue;
@@ -430,6 +439,7 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     auto it = ctx.buffers.find(name);
     if (it == ctx.buffers.end()) continue;
     ctx.history[name] = it->second;
+    if (ctx.gpu) ctx.gpu->hostWrote(historyKey(name));  // a new value: moved again when read
     any = true;
   }
   if (any) ft.passes.push_back({"history", msSince(h0), 0});

@@ -140,5 +140,32 @@ TEST(GpuPipeline, DeferredMatchesTheCpuAndMovesEachBufferOnce) {
   expectNoValidationMessages(*dev);
 }
 
+// TAA on the GPU over 8 frames of a moving camera (its history kept from frame to frame, the
+// reprojection through motion vectors, the neighbourhood clamp) gives the CPU's frames: PSNR of
+// every frame >= 45 dB, and the history moves to the device each frame as its own row.
+TEST(GpuPipeline, TaaMatchesTheCpuOverEightFrames) {
+  REQUIRE_GPU(dev);
+  for (const char* name : {"cornell", "spheres"}) {
+    Scene scene = loadScene(name);
+    CameraDesc cam = defaultCamera(scene);
+    RenderSettings rs{.width = 96, .height = 54};
+    Renderer cpu(scene, Pipeline::load("deferred-taa"), rs);
+    rs.gpu = dev;
+    Renderer gpu(scene, Pipeline::load("deferred-taa"), rs);
+    for (int f = 0; f < 8; ++f) {
+      cam.position = cam.position + Vec3(0.02f, 0.0f, 0.0f);
+      cpu.renderFrame(f, cam);
+      const FrameTimings ft = gpu.renderFrame(f, cam);
+      const double db = psnr(cpu.context().input("taa"), gpu.context().input("taa"), 1.0);
+      EXPECT_GE(db, 45.0) << name << " frame " << f;
+      if (f == 7) std::printf("%s: frame 8 PSNR %.1f dB\n", name, db);
+      bool historyMoved = false;
+      for (const PassTiming& t : ft.passes) historyMoved |= t.name == "upload:history:taa";
+      EXPECT_EQ(historyMoved, f > 0) << name << " frame " << f;
+    }
+  }
+  expectNoValidationMessages(*dev);
+}
+
 }  // namespace
 }  // namespace tandem

@@ -3,7 +3,10 @@
 #include <cmath>
 
 #include "core/image_filters.h"
+#include "gpu/shaders/taa_args.h"
+#include "gpu/shaders/taa_spv.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 #include "pipeline/view_tiles.h"
 
 namespace tandem {
@@ -141,6 +144,36 @@ void TAAPass::execute(FrameContext& ctx) {
       for (int tx = x0; tx < x1; tx += kTile)
         tile(v, tx, ty, std::min(tx + kTile, x1), std::min(ty + kTile, y1));
   });
+}
+
+void TAAPass::executeGpu(FrameContext& ctx) {
+  const Buffer* prev = ctx.previous(*this, Slots::taa);
+  const Buffer& cur = ctx.input(*this, Slots::hdr);
+  TaaArgs a{};
+  a.current = ctx.deviceInput(*this, Slots::hdr);
+  a.motion = ctx.deviceInput(*this, Slots::motion);
+  a.result = ctx.deviceOutput(*this, Slots::taa);
+  // As execute(): no usable history, the current frame as is (the kernel copies it).
+  if (prev && prev->sameShape(cur)) {
+    a.history = ctx.devicePrevious(*this, Slots::taa);
+    ++framesAveraged_;
+  } else {
+    framesAveraged_ = 1;
+  }
+  const TAASettings& s = settings();
+  const float converging = s.converge ? 1.0f / float(framesAveraged_) : 0.0f;
+  a.width = uint32_t(ctx.width);
+  a.height = uint32_t(ctx.height);
+  a.viewWidth = uint32_t(ctx.views.front().width());
+  a.viewHeight = uint32_t(ctx.views.front().height());
+  a.alpha = std::max(s.alpha, converging);
+  a.motionAlpha = std::max(s.motionAlpha, converging);
+  a.invMotionPixels = 1.0f / s.motionPixels;
+  a.clampHistory = s.clamp ? 1 : 0;
+  a.catmullRom = s.filter == TAASettings::Filter::CatmullRom ? 1 : 0;
+  GpuFrame& gpu = *ctx.gpu;
+  const GpuKernel& k = gpu.kernel("taa", kTaaSpv, sizeof(kTaaSpv) / 4, sizeof a);
+  gpu.commands().dispatch(k, (a.width + 7) / 8, (a.height + 7) / 8, 1, &a);
 }
 
 }  // namespace tandem

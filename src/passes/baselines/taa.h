@@ -41,6 +41,8 @@ class TAAPass : public SettingsPass<TAASettings> {
   std::vector<BufferSlot> outputs() const override { return {{Slots::taa, 3}}; }
   void request(FrameRequest& r) const override;
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }
+  void executeGpu(FrameContext& ctx) override;  // shaders/taa.comp
   void resetHistory() override { framesAveraged_ = 0; }
 
  protected:
