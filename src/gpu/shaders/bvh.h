@@ -23,7 +23,7 @@ struct TraceArgs {
   TD_ADDR nodes;         // every object's BVH, then the one over the objects
   TD_ADDR triangles;     // 9 floats a triangle (v0, v1, v2, world space), in leaf order
   TD_ADDR trianglePrim;  // the triangle's index in its object
-  TD_ADDR objectRoot;    // per object: its BVH's root node
+  TD_ADDR objectRoot;    // per object its BVH's root node, then the top leaves' object ids
   TD_ADDR rays;
   TD_ADDR hits;
   TD_UINT topRoot;  // the root of the BVH over the objects
