@@ -335,8 +335,8 @@ void moveToHost(const std::string& name, FrameContext& ctx, FrameTimings& ft) {
   if (bytes) ft.passes.push_back({"download:" + name, msSince(t0), 0, double(bytes)});
 }
 
-// Before a pass: its declared inputs where it runs (this frame's buffers; history stays on the
-// host, and records never move).
+// Before a pass: its declared inputs where it runs (this frame's buffers, and for a GPU pass
+// last frame's value of its history inputs, under historyKey; records never move).
 void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameTimings& ft) {
   for (const BufferSlot& in : p.inputs()) {
     if (in.history) {  // last frame's value: on the host, moved for a GPU pass that reads it
