@@ -1,19 +1,84 @@
 #include "gpu/gpu_scene.h"
 
+#include <cmath>
 #include <cstring>
 
+#include "core/color.h"
 #include "gpu/gpu_bvh.h"
+#include "shading/blinn_phong.h"
 
 namespace tandem {
 
 namespace {
+void put(float* out, Vec3 v) {
+  out[0] = v.x, out[1] = v.y, out[2] = v.z;
+}
+
+GpuMaterial gpuMaterial(const Material& m) {
+  GpuMaterial g{};
+  put(g.emission, m.emission);
+  put(g.ambient, m.ambient);
+  put(g.diffuse, m.diffuse);
+  g.diffuseOpacity = m.diffuseOpacity;
+  put(g.specular, m.specular);
+  g.specularExponent = m.specularExponent;
+  g.reflectivity = m.reflectivity;
+  g.ior = m.ior;
+  g.opacity = m.opacity;
+  put(g.transmissionFilter, m.transmissionFilter);
+  g.tiling[0] = m.tiling.x, g.tiling[1] = m.tiling.y;
+  g.offset[0] = m.offset.x, g.offset[1] = m.offset.y;
+  g.uvCos = std::cos(m.uvRotation);  // as Material::transformUv computes them
+  g.uvSin = std::sin(m.uvRotation);
+  g.alphaCutoff = m.alphaCutoff;
+  g.normalScale = m.normalScale;
+  g.occlusionStrength = m.occlusionStrength;
+  put(g.baseColor, m.baseColor);
+  g.metallic = m.metallic;
+  g.roughness = m.roughness;
+  g.diffuseTexture = m.diffuseTexture;
+  g.emissionTexture = m.emissionTexture;
+  g.specularTexture = m.specularTexture;
+  g.normalTexture = m.normalTexture;
+  g.metallicRoughnessTexture = m.metallicRoughnessTexture;
+  g.occlusionTexture = m.occlusionTexture;
+  g.flags = (m.castsShadows ? TD_MAT_CASTS_SHADOWS : 0u) |
+            (m.doubleSided ? TD_MAT_DOUBLE_SIDED : 0u) |
+            (m.alphaMode == AlphaMode::Mask ? TD_MAT_ALPHA_MASK : 0u) |
+            (m.alphaMode == AlphaMode::Blend ? TD_MAT_ALPHA_BLEND : 0u) |
+            (m.uvRotation != 0.0f ? TD_MAT_UV_ROTATION : 0u);
+  return g;
+}
+
+GpuLight gpuLight(const Light& light) {
+  const PreparedLight l = PreparedLight::from(light);
+  GpuLight g{};
+  g.type = uint32_t(l.type);
+  g.castsShadows = light.castsShadows ? 1 : 0;
+  g.hemisphere = l.hemisphere ? 1 : 0;
+  put(g.power, l.power);
+  g.range = l.range;
+  put(g.position, l.position);
+  g.attConstant = l.attConstant;
+  put(g.direction, l.direction);
+  g.attLinear = l.attLinear;
+  g.attQuadratic = l.attQuadratic;
+  g.cosOuter = l.cosOuter;
+  g.cosInner = l.cosInner;
+  g.cosinePower = l.cosinePower;
+  return g;
+}
+
 bool samePositions(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
 }  // namespace
 
 GpuScene::~GpuScene() {
-  for (GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &staging_}) memory_.release(*b);
+  for (GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &staging_, &materials_, &textures_,
+                       &levels_, &texels_, &lights_, &decode_, &objectsBuf_, &positions_, &normals_,
+                       &tangents_, &uvs_, &indices_, &args_})
+    memory_.release(*b);
 }
 
 GpuScene::ObjectBvh GpuScene::buildObject(const Scene& scene, const FrameObject& o, size_t index) {
@@ -88,7 +153,7 @@ void GpuScene::update(const FrameScene& fs, GpuCommands& cmd) {
   }
   scene_ = fs.scene;
   version_ = fs.geometryVersion;
-  upload(cmd);
+  upload(cmd, fresh, fs);
 }
 
 GpuBuffer& GpuScene::ensure(GpuBuffer& b, size_t bytes) {
@@ -97,7 +162,7 @@ GpuBuffer& GpuScene::ensure(GpuBuffer& b, size_t bytes) {
   return b;
 }
 
-void GpuScene::upload(GpuCommands& cmd) {
+void GpuScene::upload(GpuCommands& cmd, bool sceneChanged, const FrameScene& fs) {
   // One array of nodes (each object's, offset, then the top level's), one of triangles.
   std::vector<BvhNode> nodes;
   std::vector<float> tris;
@@ -128,26 +193,132 @@ void GpuScene::upload(GpuCommands& cmd) {
     if (nodes[i].count) nodes[i].a += listBase;
   roots.insert(roots.end(), top.items.begin(), top.items.end());
 
-  const size_t nodeBytes = nodes.size() * sizeof(BvhNode), triBytes = tris.size() * 4,
-               primBytes = prims.size() * 4, rootBytes = roots.size() * 4;
-  const size_t total = nodeBytes + triBytes + primBytes + rootBytes;
-  ensure(nodes_, nodeBytes);
-  ensure(triangles_, triBytes);
-  ensure(prims_, primBytes);
-  ensure(roots_, rootBytes);
+  Staging st;
+  stage(st, nodes_, nodes.data(), nodes.size() * sizeof(BvhNode));
+  stage(st, triangles_, tris.data(), tris.size() * 4);
+  stage(st, prims_, prims.data(), prims.size() * 4);
+  stage(st, roots_, roots.data(), roots.size() * 4);
+  stageShading(st, sceneChanged, fs);
+  record(st, cmd);
+}
+
+void GpuScene::record(const Staging& st, GpuCommands& cmd) {
+  size_t total = 0;
+  for (const Staging::Piece& p : st.pieces) total += p.bytes.size();
   if (staging_ && staging_.size < total) memory_.release(staging_);
-  if (!staging_) staging_ = memory_.allocate(total, true);
-  char* s = static_cast<char*>(staging_.mapped);
-  std::memcpy(s, nodes.data(), nodeBytes);
-  std::memcpy(s + nodeBytes, tris.data(), triBytes);
-  std::memcpy(s + nodeBytes + triBytes, prims.data(), primBytes);
-  std::memcpy(s + nodeBytes + triBytes + primBytes, roots.data(), rootBytes);
+  if (!staging_) staging_ = memory_.allocate(std::max<size_t>(total, 16), true);
   cmd.begin();
-  cmd.copy(staging_, nodes_, nodeBytes, 0);
-  cmd.copy(staging_, triangles_, triBytes, nodeBytes);
-  cmd.copy(staging_, prims_, primBytes, nodeBytes + triBytes);
-  cmd.copy(staging_, roots_, rootBytes, nodeBytes + triBytes + primBytes);
+  size_t at = 0;
+  for (const Staging::Piece& p : st.pieces) {
+    if (p.bytes.empty()) continue;
+    std::memcpy(static_cast<char*>(staging_.mapped) + at, p.bytes.data(), p.bytes.size());
+    cmd.copy(staging_, *p.dst, p.bytes.size(), at, 0);
+    at += p.bytes.size();
+  }
   cmd.submit();
+}
+
+void GpuScene::stageShading(Staging& st, bool sceneChanged, const FrameScene& fs) {
+  const Scene& scene = *fs.scene;
+  if (sceneChanged) {
+    std::vector<GpuMaterial> mats;
+    for (const Material& m : scene.materials) mats.push_back(gpuMaterial(m));
+    std::vector<GpuTexture> texs;
+    std::vector<GpuTextureLevel> levels;
+    std::vector<uint32_t> texels;
+    for (const Texture& t : scene.textures) {
+      GpuTexture g{};
+      g.firstLevel = uint32_t(levels.size());
+      g.levels = uint32_t(t.levels.size());
+      g.wrapS = uint32_t(t.wrapS);
+      g.wrapT = uint32_t(t.wrapT);
+      g.srgb = t.srgb ? 1 : 0;
+      g.size = t.levels.empty() ? 0 : uint32_t(std::max(t.levels[0].width, t.levels[0].height));
+      for (const Texture::Level& l : t.levels) {
+        levels.push_back({uint32_t(texels.size()), l.width, l.height, 0});
+        const size_t n = size_t(l.width) * size_t(l.height);
+        const size_t base = texels.size();
+        texels.resize(base + n);
+        std::memcpy(&texels[base], l.rgba.data(), n * 4);  // RGBA bytes: one little-endian uint
+      }
+      texs.push_back(g);
+    }
+    std::vector<GpuLight> lights;
+    for (const Light& l : scene.lights) lights.push_back(gpuLight(l));
+    std::vector<float> decode(512);
+    for (int n = 0; n < 256; ++n) {
+      decode[size_t(n)] = srgbToLinear(float(n) / 255.0f);
+      decode[256 + size_t(n)] = float(n) / 255.0f;
+    }
+    stage(st, materials_, mats.data(), mats.size() * sizeof(GpuMaterial));
+    stage(st, textures_, texs.data(), texs.size() * sizeof(GpuTexture));
+    stage(st, levels_, levels.data(), levels.size() * sizeof(GpuTextureLevel));
+    stage(st, texels_, texels.data(), texels.size() * 4);
+    stage(st, lights_, lights.data(), lights.size() * sizeof(GpuLight));
+    stage(st, decode_, decode.data(), decode.size() * 4);
+    SceneArgs& a = sceneArgs_;
+    a.lightCount = uint32_t(lights.size());
+    for (int f = 0; f < 6; ++f)
+      a.skyFaces[f] = scene.skybox.hasFaces() ? scene.skybox.faces[f] : -1;
+    put(a.skyColor, scene.skybox.color);
+    put(a.ambient, scene.ambient);
+    a.environmentIor = scene.environmentIor;
+  }
+  // Vertices as the frame has them (world space), every object's after the one before.
+  std::vector<GpuObject> objects;
+  std::vector<Vec3> positions, normals;
+  std::vector<Vec4> tangents;
+  std::vector<Vec2> uvs;
+  std::vector<uint32_t> indices;
+  for (size_t o = 0; o < fs.objects.size(); ++o) {
+    const FrameObject& fo = fs.objects[o];
+    const Object& obj = scene.objects[o];
+    const Mesh& mesh = scene.meshes[size_t(obj.mesh)];
+    GpuObject g{};
+    g.material = uint32_t(obj.material);
+    g.firstVertex = uint32_t(positions.size());
+    g.firstIndex = uint32_t(indices.size());
+    g.hasUvs = mesh.uvs.empty() ? 0 : 1;
+    g.hasTangents = fo.tangents.size() == fo.positions.size() ? 1 : 0;
+    objects.push_back(g);
+    positions.insert(positions.end(), fo.positions.begin(), fo.positions.end());
+    normals.insert(normals.end(), fo.normals.begin(), fo.normals.end());
+    if (g.hasTangents)
+      tangents.insert(tangents.end(), fo.tangents.begin(), fo.tangents.end());
+    else
+      tangents.resize(positions.size());
+    if (g.hasUvs)
+      uvs.insert(uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
+    else
+      uvs.resize(positions.size());
+    indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+  }
+  static_assert(sizeof(Vec3) == 12 && sizeof(Vec4) == 16 && sizeof(Vec2) == 8);
+  stage(st, objectsBuf_, objects.data(), objects.size() * sizeof(GpuObject));
+  stage(st, positions_, positions.data(), positions.size() * sizeof(Vec3));
+  stage(st, normals_, normals.data(), normals.size() * sizeof(Vec3));
+  stage(st, tangents_, tangents.data(), tangents.size() * sizeof(Vec4));
+  stage(st, uvs_, uvs.data(), uvs.size() * sizeof(Vec2));
+  stage(st, indices_, indices.data(), indices.size() * 4);
+  SceneArgs& a = sceneArgs_;
+  a.nodes = nodes_.address;
+  a.triangles = triangles_.address;
+  a.trianglePrim = prims_.address;
+  a.objectRoot = roots_.address;
+  a.topRoot = topRoot_;
+  a.objects = objectsBuf_.address;
+  a.materials = materials_.address;
+  a.textures = textures_.address;
+  a.levels = levels_.address;
+  a.texels = texels_.address;
+  a.lights = lights_.address;
+  a.decode = decode_.address;
+  a.positions = positions_.address;
+  a.normals = normals_.address;
+  a.tangents = tangents_.address;
+  a.uvs = uvs_.address;
+  a.indices = indices_.address;
+  stage(st, args_, &a, sizeof a);
 }
 
 TraceArgs GpuScene::traceArgs() const {
@@ -161,7 +332,12 @@ TraceArgs GpuScene::traceArgs() const {
 }
 
 uint64_t GpuScene::deviceBytes() const {
-  return nodes_.size + triangles_.size + prims_.size + roots_.size;
+  uint64_t n = 0;
+  for (const GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &materials_, &textures_,
+                             &levels_, &texels_, &lights_, &decode_, &objectsBuf_, &positions_,
+                             &normals_, &tangents_, &uvs_, &indices_, &args_})
+    n += b->size;
+  return n;
 }
 
 }  // namespace tandem

@@ -1,13 +1,17 @@
 // The scene on the GPU: every object's world-space triangles with a BVH of their own, and one BVH
 // over the objects (two levels, so an object that moves is rebuilt alone and per-object
-// selections can skip whole objects), in device buffers that kernels reach by address.
+// selections can skip whole objects), in device buffers that kernels reach by address; and what
+// shading needs (shaders/scene_data.h): vertex attributes, materials, textures with their mip
+// chains, lights and the sky, reached from one SceneArgs record.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "gpu/gpu_commands.h"
 #include "gpu/gpu_memory.h"
 #include "gpu/shaders/bvh.h"
+#include "gpu/shaders/scene_data.h"
 #include "scene/frame_scene.h"
 
 namespace tandem {
@@ -25,6 +29,8 @@ class GpuScene {
   void update(const FrameScene& fs, GpuCommands& cmd);
   // The trace arguments for this scene (rays, hits and count left for the caller).
   TraceArgs traceArgs() const;
+  // The device address of the scene's SceneArgs record.
+  uint64_t sceneAddress() const { return args_.address; }
   size_t triangles() const { return triangleCount_; }
   uint64_t deviceBytes() const;
 
@@ -37,7 +43,27 @@ class GpuScene {
   };
   static ObjectBvh buildObject(const Scene& scene, const FrameObject& o, size_t index);
   static void refitObject(ObjectBvh& ob, const Scene& scene, const FrameObject& o, size_t index);
-  void upload(GpuCommands& cmd);
+  // What goes to the device in one submission: each piece copied through the staging buffer
+  // into its own device buffer.
+  struct Staging {
+    struct Piece {
+      GpuBuffer* dst;
+      std::vector<char> bytes;
+    };
+    std::vector<Piece> pieces;
+  };
+  // Adds a piece, growing `dst` to hold it first (so its address is final once staged).
+  template <class T>
+  void stage(Staging& st, GpuBuffer& dst, const T* data, size_t bytes) {
+    ensure(dst, std::max<size_t>(bytes, 16));
+    const char* p = reinterpret_cast<const char*>(data);
+    st.pieces.push_back({&dst, std::vector<char>(p, p + bytes)});
+  }
+  void record(const Staging& st, GpuCommands& cmd);
+  void upload(GpuCommands& cmd, bool sceneChanged, const FrameScene& fs);
+  // The shading data (materials, textures, lights, sky: when the scene changed; vertices: every
+  // update) and the SceneArgs record.
+  void stageShading(Staging& st, bool sceneChanged, const FrameScene& fs);
   GpuBuffer& ensure(GpuBuffer& b, size_t bytes);
 
   GpuMemory& memory_;
@@ -46,6 +72,10 @@ class GpuScene {
   std::vector<ObjectBvh> objects_;
   std::vector<std::vector<Vec3>> built_;  // each object's positions when its BVH was built
   GpuBuffer nodes_, triangles_, prims_, roots_, staging_;
+  // Shading data: per scene, and per update (vertices).
+  GpuBuffer materials_, textures_, levels_, texels_, lights_, decode_, objectsBuf_;
+  GpuBuffer positions_, normals_, tangents_, uvs_, indices_, args_;
+  SceneArgs sceneArgs_{};
   uint32_t topRoot_ = 0;
   size_t triangleCount_ = 0;
 };

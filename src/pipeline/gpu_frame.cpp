@@ -6,12 +6,47 @@
 namespace tandem {
 
 GpuFrame::GpuFrame(std::shared_ptr<GpuDevice> device)
-    : device_(std::move(device)), memory_(*device_), commands_(*device_) {}
+    : device_(std::move(device)),
+      memory_(*device_),
+      commands_(*device_),
+      uploads_(*device_),
+      scene_(memory_) {}
 
 GpuFrame::~GpuFrame() {
   kernels_.clear();
   for (auto& [name, c] : copies_) memory_.release(c.buffer);
   memory_.release(staging_);
+  memory_.release(constants_);
+}
+
+GpuScene& GpuFrame::scene(const FrameScene& fs) {
+  scene_.update(fs, uploads_);
+  return scene_;
+}
+
+uint64_t GpuFrame::constants(const void* data, size_t bytes) {
+  constexpr size_t kAlign = 16, kBytes = size_t(1) << 16;
+  const size_t at = (constantsUsed_ + kAlign - 1) / kAlign * kAlign;
+  if (at + bytes > kBytes) throw std::length_error("GPU: more than 64 KiB of kernel constants");
+  if (!constants_) constants_ = memory_.allocate(kBytes, true);
+  std::memcpy(static_cast<char*>(constants_.mapped) + at, data, bytes);
+  constantsUsed_ = at + bytes;
+  return constants_.address + at;
+}
+
+const void* GpuFrame::constantsData(uint64_t address) const {
+  return static_cast<const char*>(constants_.mapped) + (address - constants_.address);
+}
+
+void GpuFrame::beginSubmission() {
+  constantsUsed_ = 0;
+  after_.clear();
+}
+
+void GpuFrame::endSubmission() {
+  std::vector<std::function<void()>> after;
+  after.swap(after_);
+  for (auto& f : after) f();
 }
 
 const GpuKernel& GpuFrame::kernel(const std::string& name, const uint32_t* spirv, size_t words,

@@ -3,6 +3,7 @@
 // to the device before a GPU pass that declares it as an input, and back before a CPU pass (or
 // the caller) reads it, each move a timing row with its bytes (Pipeline::execute).
 #pragma once
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 #include "gpu/gpu_device.h"
 #include "gpu/gpu_kernel.h"
 #include "gpu/gpu_memory.h"
+#include "gpu/gpu_scene.h"
 
 namespace tandem {
 
@@ -31,6 +33,20 @@ class GpuFrame {
   // The kernel `name` built from `spirv` on first use, kept after.
   const GpuKernel& kernel(const std::string& name, const uint32_t* spirv, size_t words,
                           uint32_t pushBytes);
+
+  // The frame's scene on the device, brought up to `fs` first (its own submission: call it before
+  // recording kernels that read it).
+  GpuScene& scene(const FrameScene& fs);
+  // A copy of `bytes` of `data` in device-readable memory for this submission's kernels (records
+  // too large for push constants); its address. Valid until the next beginSubmission().
+  uint64_t constants(const void* data, size_t bytes);
+  // The host's view of constants at `address` (kernels may write there: counters read back).
+  const void* constantsData(uint64_t address) const;
+  // Work to do once the recorded commands completed (reading back counters), in the order given.
+  void afterSubmit(std::function<void()> f) { after_.push_back(std::move(f)); }
+  // Called by the pipeline around each GPU pass's recording and submission.
+  void beginSubmission();
+  void endSubmission();
 
   // Whether the device holds a newer value of `name` than the host.
   bool deviceNewer(const std::string& name) const;
@@ -62,7 +78,11 @@ class GpuFrame {
   std::shared_ptr<GpuDevice> device_;
   GpuMemory memory_;
   GpuCommands commands_;
-  GpuBuffer staging_;
+  GpuCommands uploads_;  // the scene's, recorded while a pass records into commands_
+  GpuScene scene_;
+  GpuBuffer staging_, constants_;
+  size_t constantsUsed_ = 0;
+  std::vector<std::function<void()>> after_;
   std::map<std::string, Copy> copies_;
   std::map<std::string, std::unique_ptr<GpuKernel>> kernels_;
 };

@@ -366,6 +366,7 @@ void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameTimings& ft) 
 // Records the pass's kernels between two timestamps, submits and waits; the GPU milliseconds.
 double runOnGpu(Pass& p, FrameContext& ctx) {
   GpuCommands& cmd = ctx.gpu->commands();
+  ctx.gpu->beginSubmission();
   cmd.begin();
   uint32_t a = 0, b = 0;
   try {
@@ -377,6 +378,7 @@ double runOnGpu(Pass& p, FrameContext& ctx) {
     throw;
   }
   cmd.submit();
+  ctx.gpu->endSubmission();
   return cmd.msBetween(a, b);
 }
 }  // namespace

@@ -6,5 +6,5 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_GOOGLE_include_directive : require
 #include "bvh.h"
-#define TRACE_ANY 1
+#define TRACE_KIND TRACE_ANY
 #include "trace.glsl"

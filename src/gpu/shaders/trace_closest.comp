@@ -5,5 +5,5 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_GOOGLE_include_directive : require
 #include "bvh.h"
-#define TRACE_ANY 0
+#define TRACE_KIND 0u
 #include "trace.glsl"

@@ -1,7 +1,11 @@
 #include "passes/baselines/rt_whitted.h"
 
+#include "gpu/gpu_camera.h"
+#include "gpu/shaders/rt_whitted_spv.h"
+#include "gpu/shaders/whitted_args.h"
 #include "passes/common/whitted_settings.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 #include "rt/primary_rays.h"
 #include "rt/whitted.h"
 #include "shading/surface_resolve.h"
@@ -47,6 +51,44 @@ void RTWhittedPass::execute(FrameContext& ctx) {
         });
   }
   wf.finish(ctx, *this, double(ctx.width) * double(ctx.height));
+}
+
+void RTWhittedPass::executeGpu(FrameContext& ctx) {
+  GpuFrame& gpu = *ctx.gpu;
+  const GpuScene& scene = gpu.scene(ctx.frame);
+  const WhittedSettings w = settings().whitted.settings();
+  WhittedArgs a{};
+  a.scene = scene.sceneAddress();
+  a.hdr = ctx.deviceOutput(*this, Slots::hdr);
+  a.objectId = ctx.deviceOutput(*this, Slots::objectId);
+  const uint32_t zero[TD_COUNT_N] = {};
+  a.counters = gpu.constants(zero, sizeof zero);
+  a.frameWidth = ctx.width;
+  a.maxDepth = w.maxDepth;
+  a.importanceCutoff = w.importanceCutoff;
+  a.shadowCull = w.shadowCull;
+  a.flags = (w.texturedShadows ? TD_WHITTED_TEXTURED_SHADOWS : 0u) |
+            (w.shadeAtMaxDepth ? TD_WHITTED_SHADE_AT_MAX_DEPTH : 0u);
+  const GpuKernel& k =
+      gpu.kernel("rt_whitted", kRtWhittedSpv, sizeof(kRtWhittedSpv) / 4, sizeof(WhittedArgs));
+  for (const View& v : ctx.views) {
+    const GpuCamera cam = gpuCamera(v.jitteredCamera, ctx.pixelSpread(v));
+    a.camera = gpu.constants(&cam, sizeof cam);
+    a.viewX = v.x;
+    a.viewY = v.y;
+    gpu.commands().dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
+  }
+  // The counters are read once the frame's commands completed.
+  const auto* counts = static_cast<const uint32_t*>(gpu.constantsData(a.counters));
+  const double pixels = double(ctx.width) * double(ctx.height);
+  gpu.afterSubmit([this, &ctx, counts, pixels] {
+    ShadowCounts c;
+    c.culled = counts[TD_COUNT_CULLED];
+    c.traced = counts[TD_COUNT_TRACED];
+    c.surfaces = counts[TD_COUNT_SURFACES];
+    reportShadows(ctx, *this, c, pixels);
+    ctx.passRays += double(counts[TD_COUNT_RAYS]);
+  });
 }
 
 }  // namespace tandem

@@ -1,6 +1,7 @@
 // rt_whitted: Whitted ray tracing from the camera with the same effects for every pixel, no
 // rasterization and no heuristic (Walewski et al. 2019's "RAYT ONLY"); primary rays as rt_gbuffer
 // traces them. Output: hdr. Parameters: the Whitted settings, every shadow traced by default.
+// On the GPU (shaders/rt_whitted.comp) pixel for pixel the same, when every shadow is traced.
 #pragma once
 #include "passes/common/whitted_settings.h"
 
@@ -25,6 +26,9 @@ class RTWhittedPass : public SettingsPass<RTWhittedSettings> {
     return {{Slots::hdr, 3}, {Slots::objectId, 1, BufferKind::Id}};
   }
   void execute(FrameContext& ctx) override;
+  // On the GPU with every shadow traced (classified and map shadows stay on the CPU).
+  bool hasGpu() const override { return settings().whitted.shadows == ShadowMode::Rays; }
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override { return whittedCounters(*this); }
 
  protected:
