@@ -51,13 +51,18 @@ BufferSlot declared(const Pass& pass, const std::string& slot, Access access) {
 
 }  // namespace
 
-Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, int h) {
+Buffer& FrameContext::shapedOutput(const Pass& pass, const std::string& slot, int w, int h) {
   const std::optional<BufferSlot> s = declared(pass, slot, Access::Output);
   if (s->extent.scale != Extent::Scale::Any) s->extent.resolve(width, height, w, h);
-  const std::string& name = pass.bufferName(slot);
-  Buffer& b = buffers[name];
+  Buffer& b = buffers[pass.bufferName(slot)];
   if (b.width != w || b.height != h || b.channels != s->channels) b = Buffer(w, h, s->channels);
   b.kind = s->kind;
+  return b;
+}
+
+Buffer& FrameContext::output(const Pass& pass, const std::string& slot, int w, int h) {
+  Buffer& b = shapedOutput(pass, slot, w, h);
+  const std::string& name = pass.bufferName(slot);
   if (gpu) {  // the host writes it now: contents kept are the newest, the device copy is stale
     if (gpu->deviceNewer(name)) gpu->download(name, b);
     gpu->hostWrote(name);
@@ -79,8 +84,16 @@ uint64_t FrameContext::devicePrevious(const Pass& pass, const std::string& slot)
 
 uint64_t FrameContext::deviceOutput(const Pass& pass, const std::string& slot, int w, int h) {
   if (!gpu) throw std::logic_error("pass '" + pass.name() + "' ran on the GPU without one");
-  const Buffer& b = output(pass, slot, w, h);
+  // The device writes it: the host buffer only gives the shape (its contents are stale).
+  const Buffer& b = shapedOutput(pass, slot, w, h);
   return gpu->write(pass.bufferName(slot), b).address;
+}
+
+uint64_t FrameContext::deviceOutputIfConsumed(const Pass& pass, const std::string& slot) {
+  if (isConsumed(pass, slot)) return deviceOutput(pass, slot);
+  buffers.erase(pass.bufferName(slot));
+  if (gpu) gpu->drop(pass.bufferName(slot));
+  return 0;
 }
 
 void FrameContext::report(const Pass& pass, const std::string& name, double value) {

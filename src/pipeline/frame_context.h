@@ -77,6 +77,8 @@ struct FrameContext {
   // The buffer bound to `pass`'s output slot, created or reshaped to the slot's extent, kind and
   // channels (contents kept when the shape matches). Extent Any: `width` x `height` given here.
   Buffer& output(const Pass& pass, const std::string& slot, int width = 0, int height = 0);
+  // The same buffer, shaped, without the device bookkeeping (deviceOutput's).
+  Buffer& shapedOutput(const Pass& pass, const std::string& slot, int width, int height);
   // The same when anything reads the output (see keepAllOutputs), else null, and a value left
   // from an earlier frame is dropped (never shown stale).
   Buffer* outputIfConsumed(const Pass& pass, const std::string& slot);
@@ -116,6 +118,8 @@ struct FrameContext {
   // its new value is on the device until something on the host reads it).
   uint64_t deviceInput(const Pass& pass, const std::string& slot) const;
   uint64_t deviceOutput(const Pass& pass, const std::string& slot, int width = 0, int height = 0);
+  // outputIfConsumed's device side: 0 (and no buffer, on either side) when nothing reads it.
+  uint64_t deviceOutputIfConsumed(const Pass& pass, const std::string& slot);
   // Last frame's value of a history input slot on the device (moved there by the pipeline); 0
   // after a reset or before it exists, as previous() gives null.
   uint64_t devicePrevious(const Pass& pass, const std::string& slot) const;

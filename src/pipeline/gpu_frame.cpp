@@ -1,5 +1,6 @@
 #include "pipeline/gpu_frame.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -16,7 +17,7 @@ GpuFrame::~GpuFrame() {
   kernels_.clear();
   for (auto& [name, c] : copies_) memory_.release(c.buffer);
   memory_.release(staging_);
-  memory_.release(constants_);
+  for (GpuBuffer& b : constants_) memory_.release(b);
 }
 
 GpuScene& GpuFrame::scene(const FrameScene& fs) {
@@ -25,20 +26,34 @@ GpuScene& GpuFrame::scene(const FrameScene& fs) {
 }
 
 uint64_t GpuFrame::constants(const void* data, size_t bytes) {
-  constexpr size_t kAlign = 16, kBytes = size_t(1) << 16;
-  const size_t at = (constantsUsed_ + kAlign - 1) / kAlign * kAlign;
-  if (at + bytes > kBytes) throw std::length_error("GPU: more than 64 KiB of kernel constants");
-  if (!constants_) constants_ = memory_.allocate(kBytes, true);
-  std::memcpy(static_cast<char*>(constants_.mapped) + at, data, bytes);
+  constexpr size_t kAlign = 16, kArenaBytes = size_t(1) << 16;
+  size_t at = (constantsUsed_ + kAlign - 1) / kAlign * kAlign;
+  // The next arena (made as large as needed) once this one is full: earlier addresses stay valid.
+  while (constantsArena_ >= constants_.size() || at + bytes > constants_[constantsArena_].size) {
+    if (constantsArena_ < constants_.size()) ++constantsArena_;
+    at = 0;
+    if (constantsArena_ == constants_.size())
+      constants_.push_back(memory_.allocate(std::max(kArenaBytes, bytes), true));
+    else if (constants_[constantsArena_].size < bytes) {
+      memory_.release(constants_[constantsArena_]);
+      constants_[constantsArena_] = memory_.allocate(bytes, true);
+    }
+  }
+  GpuBuffer& arena = constants_[constantsArena_];
+  std::memcpy(static_cast<char*>(arena.mapped) + at, data, bytes);
   constantsUsed_ = at + bytes;
-  return constants_.address + at;
+  return arena.address + at;
 }
 
 const void* GpuFrame::constantsData(uint64_t address) const {
-  return static_cast<const char*>(constants_.mapped) + (address - constants_.address);
+  for (const GpuBuffer& b : constants_)
+    if (address >= b.address && address < b.address + b.size)
+      return static_cast<const char*>(b.mapped) + (address - b.address);
+  throw std::logic_error("GPU: not an address of this submission's constants");
 }
 
 void GpuFrame::beginSubmission() {
+  constantsArena_ = 0;
   constantsUsed_ = 0;
   after_.clear();
 }
@@ -138,6 +153,13 @@ std::vector<std::string> GpuFrame::deviceOnly() const {
   for (const auto& [name, c] : copies_)
     if (c.newer) out.push_back(name);
   return out;
+}
+
+void GpuFrame::drop(const std::string& name) {
+  auto it = copies_.find(name);
+  if (it == copies_.end()) return;
+  memory_.release(it->second.buffer);
+  copies_.erase(it);
 }
 
 void GpuFrame::forget() {

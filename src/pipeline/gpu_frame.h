@@ -38,7 +38,8 @@ class GpuFrame {
   // recording kernels that read it).
   GpuScene& scene(const FrameScene& fs);
   // A copy of `bytes` of `data` in device-readable memory for this submission's kernels (records
-  // too large for push constants); its address. Valid until the next beginSubmission().
+  // too large for push constants); its address. Valid until the next beginSubmission(); host
+  // visible, so what kernels write there reads back after the submission (constantsData).
   uint64_t constants(const void* data, size_t bytes);
   // The host's view of constants at `address` (kernels may write there: counters read back).
   const void* constantsData(uint64_t address) const;
@@ -65,7 +66,8 @@ class GpuFrame {
   void hostWrote(const std::string& name);
   // Names whose newest value is on the device only.
   std::vector<std::string> deviceOnly() const;
-  void forget();  // every device copy dropped (a pipeline switch)
+  void drop(const std::string& name);  // the device copy of `name` dropped (no longer produced)
+  void forget();                       // every device copy dropped (a pipeline switch)
 
  private:
   struct Copy {
@@ -80,8 +82,9 @@ class GpuFrame {
   GpuCommands commands_;
   GpuCommands uploads_;  // the scene's, recorded while a pass records into commands_
   GpuScene scene_;
-  GpuBuffer staging_, constants_;
-  size_t constantsUsed_ = 0;
+  GpuBuffer staging_;
+  std::vector<GpuBuffer> constants_;  // arenas, filled in turn each submission
+  size_t constantsArena_ = 0, constantsUsed_ = 0;
   std::vector<std::function<void()>> after_;
   std::map<std::string, Copy> copies_;
   std::map<std::string, std::unique_ptr<GpuKernel>> kernels_;

@@ -1,5 +1,7 @@
 #include "pipeline/pipeline.h"
 
+#include <algorithm>
+
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -431,9 +433,16 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     for (PassTiming& part : ctx.passParts)
       ft.passes.push_back({label + "/" + part.name, part.ms, part.rays});
   }
-  // The caller reads the frame's buffers on the host: what is newer on the device comes back.
-  if (ctx.gpu)
-    for (const std::string& name : ctx.gpu->deviceOnly()) moveToHost(name, ctx, ft);
+  // The caller reads the frame's buffers on the host: what is newer on the device comes back
+  // (without keepAllOutputs only what the caller reads: the output, what it wants and history;
+  // the rest stays on the device, moved only if a pass on the host reads it later).
+  if (ctx.gpu) {
+    const std::vector<std::string> history = historyBuffers();
+    for (const std::string& name : ctx.gpu->deviceOnly())
+      if (ctx.keepAllOutputs || name == output || ctx.wanted.count(name) ||
+          std::find(history.begin(), history.end(), name) != history.end())
+        moveToHost(name, ctx, ft);
+  }
   // What the next frame reads as last frame's value (copied: the buffer stays readable).
   auto h0 = Clock::now();
   bool any = false;

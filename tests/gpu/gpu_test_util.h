@@ -3,11 +3,14 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <memory>
 #include <string>
 
+#include "core/buffer.h"
 #include "core/error.h"
+#include "eval/metrics/metrics.h"
 #include "gpu/gpu_device.h"
 
 namespace tandem {
@@ -29,6 +32,52 @@ inline std::shared_ptr<GpuDevice> testDevice(std::string* why) {
   if (!dev) GTEST_SKIP() << "no Vulkan device: " << why;                                       \
   ASSERT_TRUE(dev->validating()) << "the Vulkan validation layers are not installed (package " \
                                     "vulkan-validationlayers): GPU tests run only with them";
+
+// A GPU image against the CPU's where both trace the same rays: where a ray passes within
+// rounding of two surfaces (a corner where two walls meet, a grazed silhouette) Embree and the
+// GPU's traversal may each take another one, so those pixels are told apart by the object ids the
+// two sides saw. `psnr` over the pixels where they saw the same object, `ties` the share of the
+// others, and `tiesOffEdges` those of them whose 3x3 neighbourhood in the CPU's ids shows no
+// pixel of the GPU's object (a disagreement that is not a near-tie: a bug).
+struct ImageAgreement {
+  double psnrAll = 0, psnr = 0, ties = 0;
+  int tiesOffEdges = 0;
+};
+inline ImageAgreement imageAgreement(const Buffer& cpu, const Buffer& gpu, const Buffer& cpuIds,
+                                     const Buffer& gpuIds) {
+  ImageAgreement r;
+  r.psnrAll = psnr(cpu, gpu, 1.0);
+  Buffer a = cpu, b = gpu;
+  size_t ties = 0;
+  const int w = cpuIds.width, h = cpuIds.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      const float g = gpuIds.data[i];
+      if (cpuIds.data[i] == g) continue;
+      ++ties;
+      for (int k = 0; k < cpu.channels; ++k)
+        b.data[i * size_t(cpu.channels) + size_t(k)] = a.data[i * size_t(cpu.channels) + size_t(k)];
+      bool near = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx >= 0 && ny >= 0 && nx < w && ny < h)
+            near |= cpuIds.data[size_t(ny) * size_t(w) + size_t(nx)] == g;
+        }
+      r.tiesOffEdges += near ? 0 : 1;
+    }
+  r.psnr = psnr(a, b, 1.0);
+  r.ties = double(ties) / double(std::max<size_t>(cpuIds.data.size(), 1));
+  return r;
+}
+// The bar of every deterministic GPU pass: PSNR >= 45 dB where both saw the same surface, near
+// ties on at most 0.2 % of the pixels, and every one of them on an edge.
+inline void expectAgreement(const ImageAgreement& a, const std::string& what) {
+  EXPECT_GE(a.psnr, 45.0) << what << " (whole image: " << a.psnrAll << " dB)";
+  EXPECT_LE(a.ties, 0.002) << what;
+  EXPECT_EQ(a.tiesOffEdges, 0) << what;
+}
 
 inline void expectNoValidationMessages(const GpuDevice& dev) {
   for (const std::string& m : dev.validationMessages()) ADD_FAILURE() << "validation: " << m;

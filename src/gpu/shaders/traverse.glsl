@@ -28,6 +28,30 @@ struct TraceHit {
 int hitFilter(uint flags, int object, int prim, float t, float u, float v, vec3 ng, vec3 o,
               vec3 d);
 
+// Triangle t against the ray within [tnear, tfar] (Moller-Trumbore, both faces). ng:
+// cross(v1 - v0, v2 - v0), unnormalised. Where two surfaces meet (a corner of two walls) the
+// distances to both agree within rounding, and which one a ray takes may differ from Embree's.
+bool hitTriangle(Floats tris, uint t, vec3 o, vec3 d, float tnear, float tfar, out float th,
+                 out float u, out float v, out vec3 ng) {
+  th = u = v = 0.0;
+  const vec3 v0 = vec3(tris.v[9u * t], tris.v[9u * t + 1u], tris.v[9u * t + 2u]);
+  const vec3 e1 = vec3(tris.v[9u * t + 3u], tris.v[9u * t + 4u], tris.v[9u * t + 5u]) - v0;
+  const vec3 e2 = vec3(tris.v[9u * t + 6u], tris.v[9u * t + 7u], tris.v[9u * t + 8u]) - v0;
+  ng = cross(e1, e2);
+  const vec3 p = cross(d, e2);
+  const float det = dot(e1, p);
+  if (det == 0.0) return false;
+  const float invDet = 1.0 / det;
+  const vec3 s = o - v0;
+  u = dot(s, p) * invDet;
+  if (u < 0.0 || u > 1.0) return false;
+  const vec3 q = cross(s, e1);
+  v = dot(d, q) * invDet;
+  if (v < 0.0 || u + v > 1.0) return false;
+  th = dot(e2, q) * invDet;
+  return th >= tnear && th <= tfar;
+}
+
 // Entry distance into node n's box within [tnear, tfar], or -1 when the ray misses it (an empty
 // box, lo > hi, is always missed).
 float enterBox(BvhNode n, vec3 o, vec3 inv, float tnear, float tfar) {
@@ -75,25 +99,12 @@ bool traverse(vec3 o, vec3 d, float tnear, float tfar, uint flags, out TraceHit 
           continue;
         }
         for (uint t = m.a; t < m.a + m.count; ++t) {
-          // Moller-Trumbore.
-          const vec3 v0 = vec3(tris.v[9u * t], tris.v[9u * t + 1u], tris.v[9u * t + 2u]);
-          const vec3 e1 = vec3(tris.v[9u * t + 3u], tris.v[9u * t + 4u], tris.v[9u * t + 5u]) - v0;
-          const vec3 e2 = vec3(tris.v[9u * t + 6u], tris.v[9u * t + 7u], tris.v[9u * t + 8u]) - v0;
-          const vec3 p = cross(d, e2);
-          const float det = dot(e1, p);
-          if (det == 0.0) continue;
-          const float invDet = 1.0 / det;
-          const vec3 s = o - v0;
-          const float u = dot(s, p) * invDet;
-          if (u < 0.0 || u > 1.0) continue;
-          const vec3 q = cross(s, e1);
-          const float v = dot(d, q) * invDet;
-          if (v < 0.0 || u + v > 1.0) continue;
-          const float th = dot(e2, q) * invDet;
-          if (th < tnear || th > best) continue;
+          float th, u, v;
+          vec3 ng;
+          if (!hitTriangle(tris, t, o, d, tnear, best, th, u, v, ng)) continue;
           const int prim = int(prims.v[t]);
           if ((flags & TRACE_FILTERED) != 0u) {
-            const int f = hitFilter(flags, int(object), prim, th, u, v, cross(e1, e2), o, d);
+            const int f = hitFilter(flags, int(object), prim, th, u, v, ng, o, d);
             if (f == HIT_IGNORE) continue;
             if (f == HIT_STOP) {
               hit = TraceHit(th, u, v, int(object), prim);

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 
+#include "gpu/shaders/deferred_shading_spv.h"
 #include "pipeline/gbuffer_io.h"
+#include "pipeline/gpu_frame.h"
+#include "pipeline/gpu_gbuffer.h"
 #include "pipeline/view_tiles.h"
 #include "shading/batch_shader.h"
 
@@ -54,6 +57,23 @@ void DeferredShadingPass::execute(FrameContext& ctx) {
         }
       }
   });
+}
+
+void DeferredShadingPass::executeGpu(FrameContext& ctx) {
+  GpuFrame& gpu = *ctx.gpu;
+  GBufferShadeArgs a{};
+  a.scene = gpu.scene(ctx.frame).sceneAddress();
+  a.targets = gbufferDeviceSources(ctx, *this);
+  a.hdr = ctx.deviceOutput(*this, Slots::hdr);
+  a.frameWidth = ctx.width;
+  const GpuKernel& k = gpu.kernel("deferred_shading", kDeferredShadingSpv,
+                                  sizeof(kDeferredShadingSpv) / 4, sizeof(GBufferShadeArgs));
+  for (const View& v : ctx.views) {
+    a.view = gpuViewConstants(ctx, v);
+    a.viewX = v.x;
+    a.viewY = v.y;
+    gpu.commands().dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
+  }
 }
 
 }  // namespace tandem

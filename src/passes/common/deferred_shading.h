@@ -1,7 +1,8 @@
 // deferred_shading: Walewski et al. 2019 Listing 5 over the G-buffer, through the one shading
 // function (shading/blinn_phong.h); background pixels show the skybox along the camera ray. Inputs:
 // position, normal, geo_normal, diffuse, specular, emission, ambient, optical, object_id,
-// material_id. Output: hdr (linear radiance). Parameters: none.
+// material_id. Output: hdr (linear radiance). Parameters: none. On the GPU the same, pixel for
+// pixel.
 #pragma once
 #include "pipeline/pass.h"
 
@@ -20,6 +21,8 @@ class DeferredShadingPass : public Pass {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {{Slots::hdr, 3}}; }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/deferred_shading.comp
+  void executeGpu(FrameContext& ctx) override;
 };
 
 }  // namespace tandem

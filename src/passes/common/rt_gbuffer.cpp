@@ -4,7 +4,10 @@
 
 #include <atomic>
 
+#include "gpu/shaders/rt_gbuffer_spv.h"
 #include "pipeline/gbuffer_io.h"
+#include "pipeline/gpu_frame.h"
+#include "pipeline/gpu_gbuffer.h"
 #include "pipeline/view_tiles.h"
 #include "rt/primary_rays.h"
 
@@ -54,6 +57,26 @@ void RTGBufferPass::execute(FrameContext& ctx) {
                          });
   });
   ctx.passRays += double(rays.load());
+}
+
+void RTGBufferPass::executeGpu(FrameContext& ctx) {
+  GpuFrame& gpu = *ctx.gpu;
+  GBufferArgs a{};
+  a.scene = gpu.scene(ctx.frame).sceneAddress();
+  a.targets = gbufferDeviceTargets(ctx, *this);
+  a.motion = gpuObjectMotionConstants(ctx);
+  a.frameWidth = ctx.width;
+  const GpuKernel& k =
+      gpu.kernel("rt_gbuffer", kRtGbufferSpv, sizeof(kRtGbufferSpv) / 4, sizeof(GBufferArgs));
+  double rays = 0;
+  for (const View& v : ctx.views) {
+    a.view = gpuViewConstants(ctx, v);
+    a.viewX = v.x;
+    a.viewY = v.y;
+    gpu.commands().dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
+    rays += double(v.width()) * double(v.height());
+  }
+  ctx.passRays += rays;  // one camera ray a pixel
 }
 
 }  // namespace tandem
