@@ -157,7 +157,9 @@ std::string passesMarkdown() {
       const std::string d = p->description();
       o << "### `" << e.type << "`\n\n" << d << (d.empty() || d.back() == '.' ? "" : ".");
       // Where it runs with --device gpu (the others stay on the CPU).
-      if (p->hasGpu()) o << " Runs on the GPU too (`--device gpu`).";
+      if (p->hasGpu() || !p->gpuCondition().empty())
+        o << " Runs on the GPU too (`--device gpu`)"
+          << (p->gpuCondition().empty() ? "" : " with " + p->gpuCondition()) << ".";
       o << "\n\n";
       slots(o, *p);
       params(o, *p);

@@ -28,6 +28,7 @@ class RTWhittedPass : public SettingsPass<RTWhittedSettings> {
   void execute(FrameContext& ctx) override;
   // On the GPU with every shadow traced (classified and map shadows stay on the CPU).
   bool hasGpu() const override { return settings().whitted.shadows == ShadowMode::Rays; }
+  std::string gpuCondition() const override { return "`shadows=rays` (the default)"; }
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override { return whittedCounters(*this); }
 
