@@ -216,15 +216,17 @@ class PyRenderer {
 
   py::dict timings() const {
     const auto lock = exclusive();
-    py::dict passes, moved;
+    py::dict passes, moved, rays;
     for (const PassTiming& p : last_.passes) {
       passes[p.name.c_str()] = p.ms;
       if (p.bytes > 0) moved[p.name.c_str()] = p.bytes;
+      if (p.rays > 0) rays[p.name.c_str()] = p.rays;
     }
     py::dict d;
     d["frame"] = last_.totalMs;
     d["passes"] = passes;
     d["bytes"] = moved;
+    d["rays"] = rays;
     return d;
   }
   std::map<std::string, double> counters() const {

@@ -219,7 +219,8 @@ class Renderer:
 
     def timings(self):
         """Milliseconds of the last frame: {"frame": total, "passes": {label: ms}, "bytes":
-        {move: bytes}} (the moves between host and GPU, "upload:NAME" / "download:NAME")."""
+        {move: bytes}, "rays": {label: rays}} (the moves between host and GPU,
+        "upload:NAME" / "download:NAME"; the rays each tracing pass traced)."""
         return self._r.timings()
 
     def counters(self):

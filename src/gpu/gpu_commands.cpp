@@ -44,6 +44,7 @@ void GpuCommands::begin() {
   recording_ = true;
   vkCmdResetQueryPool(cb_, queries_, 0, kMaxTimestamps);
   used_ = 0;
+  gaps_.clear();
 }
 
 void GpuCommands::copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes,
@@ -54,12 +55,28 @@ void GpuCommands::copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize 
 }
 
 void GpuCommands::dispatch(const GpuKernel& kernel, uint32_t x, uint32_t y, uint32_t z,
-                           const void* push) {
+                           const void* push, uint32_t firstY) {
   vkCmdBindPipeline(cb_, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
   if (kernel.pushBytes())
     vkCmdPushConstants(cb_, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kernel.pushBytes(),
                        push);
-  vkCmdDispatch(cb_, x, y, z);
+  if (firstY)
+    vkCmdDispatchBase(cb_, 0, firstY, 0, x, y, z);
+  else
+    vkCmdDispatch(cb_, x, y, z);
+}
+
+void GpuCommands::checkpoint() {
+  const uint32_t end = timestamp();
+  submit();
+  // Recording again, the timestamps so far kept (no reset): the time between the two
+  // submissions is left out of activeMs.
+  checkVk(vkResetCommandBuffer(cb_, 0), "vkResetCommandBuffer");
+  auto bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  checkVk(vkBeginCommandBuffer(cb_, &bi), "vkBeginCommandBuffer");
+  recording_ = true;
+  gaps_.push_back({end, timestamp()});
 }
 
 void GpuCommands::barrier() {
@@ -78,7 +95,7 @@ void GpuCommands::barrier() {
 }
 
 uint32_t GpuCommands::timestamp() {
-  if (used_ >= kMaxTimestamps) throw GpuError("GPU: more than 256 timestamps in one submission");
+  if (used_ >= kMaxTimestamps) throw GpuError("GPU: more than 1024 timestamps in one recording");
   vkCmdWriteTimestamp2(cb_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, used_);
   return used_++;
 }
@@ -103,6 +120,13 @@ void GpuCommands::submit() {
                                   stamps_.data(), sizeof(uint64_t),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults");
+}
+
+double GpuCommands::activeMs(uint32_t a, uint32_t b) const {
+  double ms = msBetween(a, b);
+  for (const auto& [end, start] : gaps_)
+    if (end >= a && start <= b) ms -= msBetween(end, start);
+  return ms;
 }
 
 double GpuCommands::msBetween(uint32_t a, uint32_t b) const {

@@ -4,6 +4,7 @@
 #include <volk.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "gpu/gpu_device.h"
@@ -14,7 +15,7 @@ namespace tandem {
 
 class GpuCommands {
  public:
-  static constexpr uint32_t kMaxTimestamps = 256;
+  static constexpr uint32_t kMaxTimestamps = 1024;
   explicit GpuCommands(GpuDevice& device);
   ~GpuCommands();
   GpuCommands(const GpuCommands&) = delete;
@@ -23,8 +24,13 @@ class GpuCommands {
   void begin();  // starts a recording (timestamps reset)
   void copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes,
             VkDeviceSize srcOffset = 0, VkDeviceSize dstOffset = 0);
-  // Runs `kernel` over groups (x, y, z) with `push` (kernel.pushBytes() bytes).
-  void dispatch(const GpuKernel& kernel, uint32_t x, uint32_t y, uint32_t z, const void* push);
+  // Runs `kernel` over groups (x, y, z) with `push` (kernel.pushBytes() bytes); `firstY`: the
+  // groups' y starts there (gl_WorkGroupID and gl_GlobalInvocationID include it).
+  void dispatch(const GpuKernel& kernel, uint32_t x, uint32_t y, uint32_t z, const void* push,
+                uint32_t firstY = 0);
+  // Submits what was recorded, waits, and records on: timestamps taken before stay valid (the
+  // caller may stop between two checkpoints: a long pass on a slow device stays interruptible).
+  void checkpoint();
   // Everything recorded before is visible to what is recorded after (compute and copies).
   void barrier();
   // Writes a timestamp once the work before it completes; its index for msBetween.
@@ -33,6 +39,8 @@ class GpuCommands {
   void abandon() { recording_ = false; }  // a recording left unsubmitted (an exception)
   // Milliseconds of GPU time between two timestamps of the last submission.
   double msBetween(uint32_t a, uint32_t b) const;
+  // The same less the time between checkpoints' submissions: the GPU's working time.
+  double activeMs(uint32_t a, uint32_t b) const;
   GpuDevice& device() { return device_; }
 
  private:
@@ -43,6 +51,7 @@ class GpuCommands {
   uint32_t used_ = 0;
   bool recording_ = false;
   std::vector<uint64_t> stamps_;
+  std::vector<std::pair<uint32_t, uint32_t>> gaps_;  // per checkpoint: its end, the next start
 };
 
 }  // namespace tandem

@@ -27,6 +27,7 @@ GpuKernel::GpuKernel(GpuDevice& device, std::string name, const uint32_t* spirv,
     ci.stage.module = module;
     ci.stage.pName = "main";
     ci.layout = layout_;
+    ci.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_BIT;  // banded dispatches (GpuCommands::dispatch)
     r = vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
   }
   vkDestroyShaderModule(dev, module, nullptr);

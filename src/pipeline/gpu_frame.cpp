@@ -4,6 +4,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/interrupt.h"
+
 namespace tandem {
 
 GpuFrame::GpuFrame(std::shared_ptr<GpuDevice> device)
@@ -50,6 +52,23 @@ const void* GpuFrame::constantsData(uint64_t address) const {
     if (address >= b.address && address < b.address + b.size)
       return static_cast<const char*>(b.mapped) + (address - b.address);
   throw std::logic_error("GPU: not an address of this submission's constants");
+}
+
+void GpuFrame::dispatchInterruptibly(const GpuKernel& kernel, uint32_t x, uint32_t y,
+                                     const void* push) {
+  constexpr uint32_t kBands = 64;  // at most, per dispatch (two timestamps each)
+  if (device_->info().hardware || y <= 1) {
+    commands_.dispatch(kernel, x, y, 1, push);
+    return;
+  }
+  const uint32_t rows = (y + kBands - 1) / kBands;
+  for (uint32_t y0 = 0; y0 < y; y0 += rows) {
+    if (y0 > 0) {
+      commands_.checkpoint();
+      pollInterrupt();
+    }
+    commands_.dispatch(kernel, x, std::min(rows, y - y0), 1, push, y0);
+  }
 }
 
 void GpuFrame::beginSubmission() {

@@ -43,6 +43,10 @@ class GpuFrame {
   uint64_t constants(const void* data, size_t bytes);
   // The host's view of constants at `address` (kernels may write there: counters read back).
   const void* constantsData(uint64_t address) const;
+  // commands().dispatch over groups (x, y) for a kernel whose work is heavy (a ray per pixel and
+  // more): on a CPU Vulkan, where one such dispatch of a large frame runs for seconds, in bands of
+  // group rows submitted one by one, Ctrl-C (pollInterrupt) honoured between them; on a GPU whole.
+  void dispatchInterruptibly(const GpuKernel& kernel, uint32_t x, uint32_t y, const void* push);
   // Work to do once the recorded commands completed (reading back counters), in the order given.
   void afterSubmit(std::function<void()> f) { after_.push_back(std::move(f)); }
   // Called by the pipeline around each GPU pass's recording and submission.

@@ -381,7 +381,7 @@ double runOnGpu(Pass& p, FrameContext& ctx) {
   }
   cmd.submit();
   ctx.gpu->endSubmission();
-  return cmd.msBetween(a, b);
+  return cmd.activeMs(a, b);
 }
 }  // namespace
 

@@ -310,6 +310,14 @@ interrupt "reference" "$T" reference --scene cornell --spp 1000000 --width 64 --
 check "reference: nothing written" "[ ! -e $D/int/ref.png ]"
 interrupt "experiment" "$T" experiment taa --no-cache --out "$D/int/exp"
 check "experiment: no folder, no staging folder" "[ ! -e $D/int/exp ] && [ ! -e $D/int/exp.partial ]"
+# On a CPU Vulkan one frame of rt-only at 720p runs for tens of seconds: the pass is submitted in
+# bands and stops between them.
+if grep -q '^--device gpu:  none' <<<"$("$T" info --devices 2>&1)"; then
+  echo "skip: Ctrl-C during a GPU pass (no Vulkan device here)"
+else
+  interrupt "render on the GPU" "$T" render atrium --pipeline rt-only --device gpu --width 1280 --height 720 --frames 1000 --out "$D/int/gpu.png"
+  check "render on the GPU: nothing written" "[ ! -e $D/int/gpu.png ]"
+fi
 
 if [ $fail -ne 0 ]; then echo "cli tests failed"; exit 1; fi
 echo "cli tests passed"

@@ -324,6 +324,21 @@ def test_device_gpu_gives_the_cpu_image():
     assert np.abs(a - b).max() <= 2e-6
 
 
+def test_rt_only_on_the_gpu_counts_its_rays():
+    try:
+        gpu = tandem.Renderer("spheres", pipeline="rt-only", width=64, height=36, device="gpu")
+    except tandem.Error as e:
+        pytest.skip(f"no Vulkan device: {e}")
+    cpu = tandem.Renderer("spheres", pipeline="rt-only", width=64, height=36, device="cpu")
+    a, b = cpu.render()["output"], gpu.render()["output"]
+    # The whole pipeline on the device: only the output comes back, and the kernel counts the
+    # rays the CPU pass traces.
+    assert "upload:hdr" not in gpu.timings()["bytes"]
+    assert gpu.timings()["rays"]["rt_whitted"] == cpu.timings()["rays"]["rt_whitted"]
+    mse = float(np.mean((a - b) ** 2))
+    assert mse == 0 or 10 * np.log10(1 / mse) >= 45
+
+
 def test_a_scene_that_names_itself_is_an_error():
     d = scratch("self_scene")
     with open(os.path.join(d, "a.json"), "w") as f:

@@ -76,7 +76,7 @@ void RTWhittedPass::executeGpu(FrameContext& ctx) {
     a.camera = gpu.constants(&cam, sizeof cam);
     a.viewX = v.x;
     a.viewY = v.y;
-    gpu.commands().dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
+    gpu.dispatchInterruptibly(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, &a);
   }
   // The counters are read once the frame's commands completed.
   const auto* counts = static_cast<const uint32_t*>(gpu.constantsData(a.counters));

@@ -73,7 +73,7 @@ void RTGBufferPass::executeGpu(FrameContext& ctx) {
     a.view = gpuViewConstants(ctx, v);
     a.viewX = v.x;
     a.viewY = v.y;
-    gpu.commands().dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
+    gpu.dispatchInterruptibly(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, &a);
     rays += double(v.width()) * double(v.height());
   }
   ctx.passRays += rays;  // one camera ray a pixel
