@@ -27,6 +27,8 @@ class GpuScene {
   // their BVH refitted (built on first sight), the BVH over the objects is rebuilt, and
   // everything is uploaded through `cmd` (submitted and waited for).
   void update(const FrameScene& fs, GpuCommands& cmd);
+  // The scene's contents changed in place (lights, materials): the next update uploads all.
+  void invalidate() { scene_ = nullptr; }
   // The trace arguments for this scene (rays, hits and count left for the caller).
   TraceArgs traceArgs() const;
   // The device address of the scene's SceneArgs record.

@@ -37,6 +37,7 @@ class GpuFrame {
   // The frame's scene on the device, brought up to `fs` first (its own submission: call it before
   // recording kernels that read it).
   GpuScene& scene(const FrameScene& fs);
+  void sceneChanged() { scene_.invalidate(); }  // a scene (re)set, perhaps edited in place
   // A copy of `bytes` of `data` in device-readable memory for this submission's kernels (records
   // too large for push constants); its address. Valid until the next beginSubmission(); host
   // visible, so what kernels write there reads back after the submission (constantsData).

@@ -38,6 +38,7 @@ void Renderer::setScene(const Scene& scene) {
   scene_ = &scene;
   ctx_.scene = scene_;
   ctx_.frame = FrameScene{};
+  if (ctx_.gpu) ctx_.gpu->sceneChanged();  // the same Scene may come back with other lights
   first_ = true;
   resetHistory("scene reload");
 }

@@ -1,6 +1,7 @@
 #include "scene/frame_scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 
 #include "core/parallel.h"
@@ -92,8 +93,12 @@ void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
     for (const auto& step : f.stepPositions)
       for (const Vec3& p : step) f.bounds.extend(p);
   }
-  if (changed) ++geometryVersion;
-  if (staticChanged) ++staticVersion;
+  // Versions unique in the process, not per FrameScene: a FrameScene made afresh (a scene reset
+  // with new lights) must not repeat a version that caches keyed on it (the ray tracer's BVH,
+  // shadow maps, probes) saw for other geometry.
+  static std::atomic<uint64_t> versions{0};
+  if (changed) geometryVersion = ++versions;
+  if (staticChanged) staticVersion = ++versions;
 }
 
 }  // namespace tandem

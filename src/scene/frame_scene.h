@@ -26,11 +26,13 @@ struct FrameScene {
   const Scene* scene = nullptr;
   float time = 0, prevTime = 0;
   std::vector<FrameObject> objects;
-  float shutterClose = 0;        // == time: no motion blur
-  float shutterLength = 0;       // seconds, as the last update was given it
-  int motionSteps = 4;           // time steps per moving object while the shutter is open
-  uint64_t geometryVersion = 0;  // bumps whenever world-space geometry changed
-  uint64_t staticVersion = 0;    // bumps when geometry of an object that is not animated changed
+  float shutterClose = 0;   // == time: no motion blur
+  float shutterLength = 0;  // seconds, as the last update was given it
+  int motionSteps = 4;      // time steps per moving object while the shutter is open
+  // Change whenever world-space geometry changed (any object / an object that is not animated),
+  // to a value no FrameScene of this process had before.
+  uint64_t geometryVersion = 0;
+  uint64_t staticVersion = 0;
 
   // Re-evaluates transforms; recomputes world geometry only for objects whose matrix changed.
   // A shutter > 0 (seconds) keeps the shutter's time steps of objects that move in it.

@@ -337,6 +337,20 @@ def test_rt_only_on_the_gpu_counts_its_rays():
     assert gpu.timings()["rays"]["rt_whitted"] == cpu.timings()["rays"]["rt_whitted"]
     mse = float(np.mean((a - b) ** 2))
     assert mse == 0 or 10 * np.log10(1 / mse) >= 45
+    # New lights in the same scene reach the device too, and nothing drawn for the old lights
+    # (the BVH, the GPU's scene) is taken for the new frame's: the same image as a renderer that
+    # had the new lights from the start, at the same frame.
+    lights = [{"type": "point", "position": [2, 3, 2], "intensity": 40}]
+    for r in (cpu, gpu):
+        r.lights = lights
+    c, d = cpu.render()["output"], gpu.render()["output"]
+    assert np.abs(c - a).max() > 0.1
+    fresh = tandem.Renderer("spheres", pipeline="rt-only", width=64, height=36, device="cpu")
+    fresh.lights = lights
+    fresh.render()
+    assert np.array_equal(fresh.render()["output"], c)
+    mse = float(np.mean((c - d) ** 2))
+    assert mse == 0 or 10 * np.log10(1 / mse) >= 45
 
 
 def test_a_scene_that_names_itself_is_an_error():
