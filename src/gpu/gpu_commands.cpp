@@ -66,6 +66,11 @@ void GpuCommands::dispatch(const GpuKernel& kernel, uint32_t x, uint32_t y, uint
     vkCmdDispatch(cb_, x, y, z);
 }
 
+void GpuCommands::fill(const GpuBuffer& b, VkDeviceSize offset, VkDeviceSize bytes,
+                       uint32_t value) {
+  vkCmdFillBuffer(cb_, b.buffer, offset, bytes, value);
+}
+
 void GpuCommands::checkpoint() {
   const uint32_t end = timestamp();
   submit();
@@ -82,9 +87,10 @@ void GpuCommands::checkpoint() {
 void GpuCommands::barrier() {
   VkMemoryBarrier2 mb{};
   mb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-  mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+  // Transfers: copies and fills.
+  mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
   mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+  mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
   mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                      VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
   VkDependencyInfo di{};

@@ -24,6 +24,8 @@ class GpuCommands {
   void begin();  // starts a recording (timestamps reset)
   void copy(const GpuBuffer& src, const GpuBuffer& dst, VkDeviceSize bytes,
             VkDeviceSize srcOffset = 0, VkDeviceSize dstOffset = 0);
+  // Sets `bytes` (a multiple of 4) of b from `offset` to copies of the 32-bit `value`.
+  void fill(const GpuBuffer& b, VkDeviceSize offset, VkDeviceSize bytes, uint32_t value);
   // Runs `kernel` over groups (x, y, z) with `push` (kernel.pushBytes() bytes); `firstY`: the
   // groups' y starts there (gl_WorkGroupID and gl_GlobalInvocationID include it).
   void dispatch(const GpuKernel& kernel, uint32_t x, uint32_t y, uint32_t z, const void* push,

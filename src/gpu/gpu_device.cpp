@@ -214,6 +214,8 @@ GpuDeviceInfo describe(VkPhysicalDevice pd) {
   need(info.apiVersion >= VK_API_VERSION_1_3, "Vulkan 1.3");
   need(computeFamily(pd) >= 0, "a compute queue with timestamps");
   need(feats.features.shaderInt64, "shaderInt64");
+  need(f12.shaderBufferInt64Atomics, "shaderBufferInt64Atomics");
+  info.float64 = feats.features.shaderFloat64;
   need(f12.bufferDeviceAddress, "bufferDeviceAddress");
   need(f12.scalarBlockLayout, "scalarBlockLayout");
   need(f13.synchronization2, "synchronization2");
@@ -309,10 +311,12 @@ GpuDevice::GpuDevice(size_t index) {
   f12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
   f12.bufferDeviceAddress = VK_TRUE;
   f12.scalarBlockLayout = VK_TRUE;
+  f12.shaderBufferInt64Atomics = VK_TRUE;  // the rasterizer's visibility buffer
   f12.pNext = &f13;
   VkPhysicalDeviceFeatures2 feats{};
   feats.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
   feats.features.shaderInt64 = VK_TRUE;
+  feats.features.shaderFloat64 = info_.float64 ? VK_TRUE : VK_FALSE;
   feats.pNext = &f12;
   VkDeviceCreateInfo ci{};
   ci.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;

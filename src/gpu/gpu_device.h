@@ -49,6 +49,7 @@ struct GpuDeviceInfo {
   uint64_t deviceLocalBytes = 0;
   uint64_t maxBufferBytes = 0;  // the largest one buffer or allocation may be
   uint32_t subgroupSize = 0;
+  bool float64 = false;  // shaderFloat64: the rasterizer solves depth planes in double as the CPU
   std::string apiText() const;  // "1.3.230"
 };
 

@@ -18,6 +18,7 @@ GpuFrame::GpuFrame(std::shared_ptr<GpuDevice> device)
 GpuFrame::~GpuFrame() {
   kernels_.clear();
   for (auto& [name, c] : copies_) memory_.release(c.buffer);
+  for (auto& [key, b] : scratch_) memory_.release(b);
   memory_.release(staging_);
   for (GpuBuffer& b : constants_) memory_.release(b);
 }
@@ -69,6 +70,13 @@ void GpuFrame::dispatchInterruptibly(const GpuKernel& kernel, uint32_t x, uint32
     }
     commands_.dispatch(kernel, x, std::min(rows, y - y0), 1, push, y0);
   }
+}
+
+const GpuBuffer& GpuFrame::scratch(const std::string& key, size_t bytes) {
+  GpuBuffer& b = scratch_[key];
+  if (b && b.size < bytes) memory_.release(b);
+  if (!b) b = memory_.allocate(std::max<size_t>(bytes, 4), false);
+  return b;
 }
 
 void GpuFrame::beginSubmission() {
@@ -184,6 +192,8 @@ void GpuFrame::drop(const std::string& name) {
 void GpuFrame::forget() {
   for (auto& [name, c] : copies_) memory_.release(c.buffer);
   copies_.clear();
+  for (auto& [key, b] : scratch_) memory_.release(b);
+  scratch_.clear();
 }
 
 }  // namespace tandem

@@ -54,6 +54,10 @@ class GpuFrame {
   void beginSubmission();
   void endSubmission();
 
+  // A device buffer of at least `bytes` kept under `key` across frames for one pass's own use (a
+  // visibility buffer, a queue): never moved, its contents whatever the pass left there.
+  const GpuBuffer& scratch(const std::string& key, size_t bytes);
+
   // Whether the device holds a newer value of `name` than the host.
   bool deviceNewer(const std::string& name) const;
   // Whether the device holds `name`'s current value (uploaded, or written there).
@@ -72,7 +76,7 @@ class GpuFrame {
   // Names whose newest value is on the device only.
   std::vector<std::string> deviceOnly() const;
   void drop(const std::string& name);  // the device copy of `name` dropped (no longer produced)
-  void forget();                       // every device copy dropped (a pipeline switch)
+  void forget();  // every device copy and scratch buffer dropped (a pipeline switch)
 
  private:
   struct Copy {
@@ -92,6 +96,7 @@ class GpuFrame {
   size_t constantsArena_ = 0, constantsUsed_ = 0;
   std::vector<std::function<void()>> after_;
   std::map<std::string, Copy> copies_;
+  std::map<std::string, GpuBuffer> scratch_;
   std::map<std::string, std::unique_ptr<GpuKernel>> kernels_;
 };
 

@@ -29,6 +29,14 @@ uint64_t gbufferDeviceTargets(FrameContext& ctx, const Pass& pass) {
   return ctx.gpu->constants(&t, sizeof t);
 }
 
+uint64_t gbufferDeviceTargetsIfConsumed(FrameContext& ctx, const Pass& pass) {
+  GBufferTargets t{};
+  const std::vector<BufferSlot>& slots = gbufferSlots();
+  for (size_t i = 0; i < slots.size(); ++i)
+    *targetField(t, i) = ctx.deviceOutputIfConsumed(pass, slots[i].slot);
+  return ctx.gpu->constants(&t, sizeof t);
+}
+
 uint64_t gbufferDeviceSources(FrameContext& ctx, const Pass& pass) {
   GBufferTargets t{};
   const std::vector<BufferSlot>& slots = gbufferSlots();

@@ -10,6 +10,8 @@ namespace tandem {
 // The G-buffer targets `pass` writes, on the device (depth and motion 0 unless something reads
 // them, as gbufferTargets), recorded in this submission's constants; its address.
 uint64_t gbufferDeviceTargets(FrameContext& ctx, const Pass& pass);
+// The same with only the targets something reads (the rest 0): vbuffer_shading's.
+uint64_t gbufferDeviceTargetsIfConsumed(FrameContext& ctx, const Pass& pass);
 // The targets `pass` reads (gbufferSampleSlots; depth and motion 0), likewise.
 uint64_t gbufferDeviceSources(FrameContext& ctx, const Pass& pass);
 // View v of the frame as kernels take it; its address in this submission's constants.

@@ -89,9 +89,9 @@ int clipPolygon(Vec4* poly, int n, unsigned mask) {
   return n;
 }
 
-// True when the world box lies entirely outside one plane of the view frustum (the real one,
-// not the clipper's guard band): none of its triangles can cover a pixel.
-bool outsideFrustum(const Mat4& vp, const Bounds3& b) {
+}  // namespace
+
+bool boundsOutsideFrustum(const Mat4& vp, const Bounds3& b) {
   if (!(b.lo.x <= b.hi.x)) return true;  // empty object
   unsigned andCode = 0x3f;
   for (int k = 0; k < 8; ++k) {
@@ -108,8 +108,6 @@ bool outsideFrustum(const Mat4& vp, const Bounds3& b) {
   }
   return andCode != 0;
 }
-
-}  // namespace
 
 void Rasterizer::render(const FrameScene& fs, const Camera& cam, VisibilityBuffer& out,
                         RasterStats* stats, float tau) {
@@ -175,7 +173,7 @@ void Rasterizer::transformVertices(const FrameScene& fs, const Mat4& vp, int W, 
   for (size_t o = 0; o < fs.objects.size(); ++o) {
     const FrameObject& fo = fs.objects[o];
     const auto& pos = fo.positions;
-    if ((subset.objects && !(*subset.objects)[o]) || outsideFrustum(vp, fo.bounds)) {
+    if ((subset.objects && !(*subset.objects)[o]) || boundsOutsideFrustum(vp, fo.bounds)) {
       objectCulled_[o] = 1;
       continue;
     }

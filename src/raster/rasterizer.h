@@ -19,6 +19,10 @@ namespace tandem {
 // Screen coordinates are fixed point with this many sub-pixel bits.
 constexpr int kRasterSubBits = 8;
 
+// True when the world box lies entirely outside one plane of the view frustum of `vp` (the real
+// one, not the clipper's guard band): none of its triangles can cover a pixel.
+bool boundsOutsideFrustum(const Mat4& vp, const Bounds3& b);
+
 struct RasterStats {
   size_t trianglesIn = 0, trianglesCulled = 0, trianglesClipped = 0, trianglesBinned = 0;
 };

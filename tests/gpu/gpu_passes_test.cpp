@@ -109,34 +109,46 @@ TEST(GpuTonemap, MatchesTheCpuPassValueForValue) {
   expectNoValidationMessages(*dev);
 }
 
-// Whole pipelines with some passes on the GPU give the CPU's image on the built-in scenes
-// (PSNR >= 45 dB, as every deterministic GPU pass must), and each buffer crosses once a frame,
-// as its own timing row with its bytes.
-TEST(GpuPipeline, DeferredMatchesTheCpuAndMovesEachBufferOnce) {
+// Whole pipelines on the GPU, and with some passes there, give the CPU's image on the built-in
+// scenes (PSNR >= 45 dB, as every deterministic GPU pass must), and each buffer crosses once a
+// frame, as its own timing row with its bytes: `deferred` runs there whole (only its output comes
+// back); `rt-only` with shadow maps traces on the CPU (rt_whitted has no GPU version with maps)
+// and tonemaps on the GPU (hdr goes up).
+TEST(GpuPipeline, PipelinesMatchTheCpuAndMoveEachBufferOnce) {
   REQUIRE_GPU(dev);
-  for (const char* name : {"cornell", "spheres", "atrium"}) {
-    Scene scene = loadScene(name);
-    const CameraDesc cam = defaultCamera(scene);
-    RenderSettings rs{.width = 160, .height = 90};
-    Renderer cpu(scene, Pipeline::load("deferred"), rs);
-    rs.gpu = dev;
-    Renderer gpu(scene, Pipeline::load("deferred"), rs);
-    for (int f = 0; f < 2; ++f) {
-      cpu.renderFrame(f, cam);
-      const FrameTimings ft = gpu.renderFrame(f, cam);
-      EXPECT_GE(psnr(cpu.output(), gpu.output(), 1.0), 45.0) << name;
-      int uploads = 0, downloads = 0;
-      for (const PassTiming& t : ft.passes) {
-        if (t.name == "upload:hdr") {
-          ++uploads;
-          EXPECT_EQ(t.bytes, 160.0 * 90 * 3 * 4);
+  for (const char* name : {"cornell", "spheres", "atrium"})
+    for (const bool mixed : {false, true}) {
+      Scene scene = loadScene(name);
+      const CameraDesc cam = defaultCamera(scene);
+      RenderSettings rs{.width = 160, .height = 90};
+      const auto pipeline = [&] {
+        Pipeline p = Pipeline::load(mixed ? "rt-only" : "deferred");
+        if (mixed) p.setParam("rt_whitted.shadows=maps", "test");
+        return p;
+      };
+      Renderer cpu(scene, pipeline(), rs);
+      rs.gpu = dev;
+      Renderer gpu(scene, pipeline(), rs);
+      gpu.context().keepAllOutputs = false;  // as render and bench: only the output comes back
+      const std::string what = std::string(name) + (mixed ? ", rt-only with maps" : ", deferred");
+      for (int f = 0; f < 2; ++f) {
+        cpu.renderFrame(f, cam);
+        const FrameTimings ft = gpu.renderFrame(f, cam);
+        EXPECT_GE(psnr(cpu.output(), gpu.output(), 1.0), 45.0) << what;
+        int uploads = 0, downloads = 0, moves = 0;
+        for (const PassTiming& t : ft.passes) {
+          if (t.name == "upload:hdr") {
+            ++uploads;
+            EXPECT_EQ(t.bytes, 160.0 * 90 * 3 * 4) << what;
+          }
+          if (t.name == "download:output") ++downloads;
+          if (t.name.rfind("upload:", 0) == 0 || t.name.rfind("download:", 0) == 0) ++moves;
         }
-        if (t.name == "download:output") ++downloads;
+        EXPECT_EQ(uploads, mixed ? 1 : 0) << what;
+        EXPECT_EQ(downloads, 1) << what;
+        EXPECT_EQ(moves, mixed ? 2 : 1) << what;
       }
-      EXPECT_EQ(uploads, 1) << name;
-      EXPECT_EQ(downloads, 1) << name;
     }
-  }
   expectNoValidationMessages(*dev);
 }
 

@@ -318,10 +318,11 @@ def test_device_gpu_gives_the_cpu_image():
     cpu = tandem.Renderer("spheres", pipeline="deferred", width=64, height=36, device="cpu")
     assert cpu.device == "cpu" and gpu.device != "cpu"
     a, b = cpu.render()["output"], gpu.render()["output"]
-    assert gpu.timings()["bytes"]["upload:hdr"] == 64 * 36 * 3 * 4
+    # `deferred` runs on the device whole: only the output comes back.
+    assert gpu.timings()["bytes"] == {"download:output": 64 * 36 * 3 * 4}
     assert cpu.timings()["bytes"] == {}
-    # The tonemap kernel's exp and log differ from the CPU's by a few ulps.
-    assert np.abs(a - b).max() <= 2e-6
+    # GLSL's rounding against C++'s, in shading and in the tonemap's exp and log.
+    assert np.abs(a - b).max() <= 1e-3
 
 
 def test_rt_only_on_the_gpu_counts_its_rays():

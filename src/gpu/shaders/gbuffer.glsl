@@ -32,33 +32,34 @@ vec4 get4(uint64_t target, uint i) {
   return vec4(t.v[4u * i], t.v[4u * i + 1u], t.v[4u * i + 2u], t.v[4u * i + 3u]);
 }
 
+// Each target is written where its address is non-zero (vbuffer_shading writes only what is read).
 void writeSurface(GBufferTargets g, uint i, Surface s, float depth, vec2 motion) {
   if (g.depth != 0ul) Target(g.depth).v[i] = depth;
-  put3(g.position, i, s.position);
-  put3(g.normal, i, s.normal);
-  put3(g.geoNormal, i, s.geoNormal);
-  put4(g.diffuse, i, s.diffuse, s.diffuseOpacity);
-  put4(g.specular, i, s.specular, s.specularExponent);
-  put3(g.emission, i, s.emission);
-  put3(g.ambient, i, s.ambient);
-  put3(g.optical, i, vec3(s.reflectivity, s.ior, s.opacity));
-  Target(g.objectId).v[i] = float(s.object);
-  Target(g.materialId).v[i] = float(s.material);
+  if (g.position != 0ul) put3(g.position, i, s.position);
+  if (g.normal != 0ul) put3(g.normal, i, s.normal);
+  if (g.geoNormal != 0ul) put3(g.geoNormal, i, s.geoNormal);
+  if (g.diffuse != 0ul) put4(g.diffuse, i, s.diffuse, s.diffuseOpacity);
+  if (g.specular != 0ul) put4(g.specular, i, s.specular, s.specularExponent);
+  if (g.emission != 0ul) put3(g.emission, i, s.emission);
+  if (g.ambient != 0ul) put3(g.ambient, i, s.ambient);
+  if (g.optical != 0ul) put3(g.optical, i, vec3(s.reflectivity, s.ior, s.opacity));
+  if (g.objectId != 0ul) Target(g.objectId).v[i] = float(s.object);
+  if (g.materialId != 0ul) Target(g.materialId).v[i] = float(s.material);
   if (g.motion != 0ul) Target(g.motion).v[2u * i] = motion.x, Target(g.motion).v[2u * i + 1u] = motion.y;
 }
 
 void writeBackground(GBufferTargets g, uint i, vec2 motion) {
   if (g.depth != 0ul) Target(g.depth).v[i] = 0.0;
-  put3(g.position, i, vec3(0.0));
-  put3(g.normal, i, vec3(0.0));
-  put3(g.geoNormal, i, vec3(0.0));
-  put4(g.diffuse, i, vec3(0.0), 0.0);
-  put4(g.specular, i, vec3(0.0), 0.0);
-  put3(g.emission, i, vec3(0.0));
-  put3(g.ambient, i, vec3(0.0));
-  put3(g.optical, i, vec3(0.0));
-  Target(g.objectId).v[i] = -1.0;
-  Target(g.materialId).v[i] = -1.0;
+  if (g.position != 0ul) put3(g.position, i, vec3(0.0));
+  if (g.normal != 0ul) put3(g.normal, i, vec3(0.0));
+  if (g.geoNormal != 0ul) put3(g.geoNormal, i, vec3(0.0));
+  if (g.diffuse != 0ul) put4(g.diffuse, i, vec3(0.0), 0.0);
+  if (g.specular != 0ul) put4(g.specular, i, vec3(0.0), 0.0);
+  if (g.emission != 0ul) put3(g.emission, i, vec3(0.0));
+  if (g.ambient != 0ul) put3(g.ambient, i, vec3(0.0));
+  if (g.optical != 0ul) put3(g.optical, i, vec3(0.0));
+  if (g.objectId != 0ul) Target(g.objectId).v[i] = -1.0;
+  if (g.materialId != 0ul) Target(g.materialId).v[i] = -1.0;
   if (g.motion != 0ul) Target(g.motion).v[2u * i] = motion.x, Target(g.motion).v[2u * i + 1u] = motion.y;
 }
 
@@ -119,6 +120,23 @@ vec2 motionVector(GpuView v, uint64_t motion, int object, vec3 p) {
                 w[8] * p.x + w[9] * p.y + w[10] * p.z + w[11]);
   }
   return screenMotion(v, vec4(p, 1.0), vec4(prev, 1.0));
+}
+
+// motionVectorAtPixel: a point on the camera ray through view-local pixel centre `pixel` is seen
+// now at pixel + jitter by the unjittered camera; only where it was needs a projection.
+vec2 motionAtPixel(GpuView v, uint64_t motion, int object, vec3 p, vec2 pixel) {
+  const GpuObjectMotion m = MotionRef(motion).m[object];
+  if (m.moved == 0u && v.cameraMoved == 0) return vec2(0.0);
+  vec3 prev = p;
+  if (m.moved != 0u) {
+    const float w[12] = m.worldToPrev;
+    prev = vec3(w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3],
+                w[4] * p.x + w[5] * p.y + w[6] * p.z + w[7],
+                w[8] * p.x + w[9] * p.y + w[10] * p.z + w[11]);
+  }
+  vec2 before;
+  if (!projectToPixel(v.prevViewProj, v.camera, vec4(prev, 1.0), before)) return vec2(0.0);
+  return pixel + vec2(v.camera.jitter[0], v.camera.jitter[1]) - before;
 }
 
 vec2 backgroundMotion(GpuView v, vec3 dir) {

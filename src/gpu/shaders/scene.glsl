@@ -155,6 +155,24 @@ vec2 transformUv(GpuMaterial m, vec2 uv) {
   return s + vec2(m.offset[0], m.offset[1]);
 }
 
+// intersectTriangle (shading/surface_resolve.cpp): Moller-Trumbore relative to vertex a, no
+// bounds on t, u, v; false only for a ray parallel to the plane.
+bool intersectTriangle(vec3 o, vec3 d, vec3 a, vec3 b, vec3 c, out float t, out float u,
+                       out float v) {
+  const vec3 e1 = b - a, e2 = c - a;
+  const vec3 p = cross(d, e2);
+  const float det = dot(e1, p);
+  t = u = v = 0.0;
+  if (det == 0.0) return false;
+  const float inv = 1.0 / det;
+  const vec3 s = o - a;
+  u = dot(s, p) * inv;
+  const vec3 q = cross(s, e1);
+  v = dot(d, q) * inv;
+  t = dot(e2, q) * inv;
+  return true;
+}
+
 // Alpha of the material's diffuse texture at barycentrics (u, v) (surfaceAlpha).
 float surfaceAlpha(int object, int prim, float u, float v) {
   const GpuObject ob = Objects(S.objects).o[object];

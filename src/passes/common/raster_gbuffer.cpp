@@ -1,6 +1,7 @@
 #include "passes/common/raster_gbuffer.h"
 
 #include "pipeline/gbuffer_io.h"
+#include "pipeline/gpu_gbuffer.h"
 #include "pipeline/view_tiles.h"
 
 namespace tandem {
@@ -20,6 +21,10 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
         [](int, int, Vec3) {});
   });
   ctx.passParts.push_back({"resolve", msSince(t1), 0});
+}
+
+void RasterGBufferPass::executeGpu(FrameContext& ctx) {
+  gpuSurfaces_.record(ctx, *this, gbufferDeviceTargets(ctx, *this), 0, "resolve");
 }
 
 }  // namespace tandem

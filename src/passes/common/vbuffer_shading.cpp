@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "pipeline/gbuffer_io.h"
+#include "pipeline/gpu_gbuffer.h"
 #include "pipeline/view_tiles.h"
 #include "shading/batch_shader.h"
 
@@ -84,6 +85,13 @@ void VBufferShadingPass::execute(FrameContext& ctx) {
     });
   }
   ctx.passParts.push_back({"shading", msSince(t1), 0});
+}
+
+// On the GPU each G-buffer target is written only when something reads it (the CPU writes them
+// all once one is read): the image and every target read are the same.
+void VBufferShadingPass::executeGpu(FrameContext& ctx) {
+  const uint64_t hdr = ctx.deviceOutput(*this, Slots::hdr);
+  gpuSurfaces_.record(ctx, *this, gbufferDeviceTargetsIfConsumed(ctx, *this), hdr, "shading");
 }
 
 }  // namespace tandem

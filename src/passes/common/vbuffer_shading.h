@@ -8,6 +8,7 @@
 // Inputs: none (scene). Outputs: hdr and raster_gbuffer's targets. Parameters: none.
 #pragma once
 #include "passes/common/gbuffer_writer.h"
+#include "passes/common/gpu_visible_surfaces.h"
 #include "passes/common/visible_surfaces.h"
 #include "pipeline/pass.h"
 
@@ -26,11 +27,14 @@ class VBufferShadingPass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // compute rasterizer: gpu_visible_surfaces.h
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override { return RasterCounters::all(); }
 
  private:
   VisibleSurfaces surfaces_;
   GBufferWriter writer_;
+  GpuVisibleSurfaces gpuSurfaces_;
 };
 
 }  // namespace tandem

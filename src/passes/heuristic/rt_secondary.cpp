@@ -8,11 +8,15 @@
 #include <atomic>
 
 #include "core/cycle_clock.h"
+#include "gpu/shaders/rt_secondary_spv.h"
+#include "gpu/shaders/secondary_args.h"
 #include "passes/common/lights_in_view.h"
 #include "passes/heuristic/ranked_tiles.h"
 #include "passes/heuristic/rt_feedback.h"
 #include "passes/heuristic/shadow_tile.h"
 #include "pipeline/gbuffer_io.h"
+#include "pipeline/gpu_frame.h"
+#include "pipeline/gpu_gbuffer.h"
 #include "pipeline/view_tiles.h"
 #include "rt/whitted.h"
 #include "shading/shade_batch.h"
@@ -364,6 +368,75 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
   ctx.outputRecord<RtStats>(*this, Slots::rtStats) = std::move(stats);
   reportShadows(ctx, *this, sum(shadowTally), double(ctx.width) * double(ctx.height));
   ctx.passRays += double(rt.raysTraced() - raysBefore);
+}
+
+void RTSecondaryPass::executeGpu(FrameContext& ctx) {
+  GpuFrame& gpu = *ctx.gpu;
+  const WhittedSettings w = settings().whitted.settings();
+  const size_t objects = ctx.scene->objects.size();
+  SecondaryArgs a{};
+  a.scene = gpu.scene(ctx.frame).sceneAddress();
+  a.sources = gbufferDeviceSources(ctx, *this);
+  a.mask = ctx.deviceInput(*this, Slots::heuristicMask);
+  a.shadow = ctx.deviceOutput(*this, Slots::shadow);
+  a.reflection = ctx.deviceOutput(*this, Slots::reflection);
+  a.refraction = ctx.deviceOutput(*this, Slots::refraction);
+  a.traced = ctx.deviceOutput(*this, Slots::tracedMask);
+  a.shadowClass = ctx.deviceOutputIfConsumed(*this, Slots::shadowClass);
+  const uint32_t zero[TD_COUNT_N] = {};
+  a.counters = gpu.constants(zero, sizeof zero);
+  const std::vector<uint32_t> noStats(std::max<size_t>(objects, 1) * TD_STATS_PER_OBJECT, 0);
+  a.stats = gpu.constants(noStats.data(), noStats.size() * sizeof(uint32_t));
+  a.frameWidth = ctx.width;
+  a.maxDepth = w.maxDepth;
+  a.importanceCutoff = w.importanceCutoff;
+  a.shadowCull = w.shadowCull;
+  a.outsideShadow = settings().outsideMaskShadow;
+  a.flags = (w.texturedShadows ? TD_WHITTED_TEXTURED_SHADOWS : 0u) |
+            (w.shadeAtMaxDepth ? TD_WHITTED_SHADE_AT_MAX_DEPTH : 0u);
+  a.classLight = settings().shadowClassLight;
+  const GpuKernel& k = gpu.kernel("rt_secondary", kRtSecondarySpv, sizeof(kRtSecondarySpv) / 4,
+                                  sizeof(SecondaryArgs));
+  GpuCommands& cmd = gpu.commands();
+  const uint32_t t0 = cmd.timestamp();
+  for (const View& v : ctx.views) {
+    a.view = gpuViewConstants(ctx, v);
+    a.viewX = v.x;
+    a.viewY = v.y;
+    gpu.dispatchInterruptibly(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, &a);
+  }
+  const uint32_t t1 = cmd.timestamp();
+  const RtRequest* request = ctx.inputRecord<RtRequest>(*this, Slots::rtRequest);
+  const bool timed = request && request->timeEffects;
+  if (request && request->deadlineMs > 0) ctx.report(*this, RTSecondaryCounters::itemsCut, 0.0);
+  // Counters and tallies are read once the frame's commands completed.
+  const auto* counts = static_cast<const uint32_t*>(gpu.constantsData(a.counters));
+  const auto* tallies = static_cast<const uint32_t*>(gpu.constantsData(a.stats));
+  const double pixels = double(ctx.width) * double(ctx.height);
+  gpu.afterSubmit([this, &ctx, &cmd, counts, tallies, objects, timed, pixels, t0, t1] {
+    ShadowCounts c;
+    c.culled = counts[TD_COUNT_CULLED];
+    c.traced = counts[TD_COUNT_TRACED];
+    c.surfaces = counts[TD_COUNT_SURFACES];
+    reportShadows(ctx, *this, c, pixels);
+    ctx.passRays += double(counts[TD_COUNT_RAYS]);
+    RtStats stats;
+    stats.timeEffects = timed;
+    stats.ms = cmd.activeMs(t0, t1);
+    stats.pixels.assign(objects, {});
+    stats.rays.assign(objects, {});
+    stats.cpuMs.assign(objects, {});
+    const double allRays = std::max(1.0, double(counts[TD_COUNT_RAYS]));
+    for (size_t o = 0; o < objects; ++o)
+      for (size_t e = 0; e < size_t(kEffectCount); ++e) {
+        const uint32_t* t = tallies + o * TD_STATS_PER_OBJECT;
+        stats.pixels[o][e] = t[e];
+        stats.rays[o][e] = t[kEffectCount + e];
+        // The GPU has no clock per object: the pass's time shared by each one's rays.
+        if (timed) stats.cpuMs[o][e] = stats.ms * double(t[kEffectCount + e]) / allRays;
+      }
+    ctx.outputRecord<RtStats>(*this, Slots::rtStats) = std::move(stats);
+  });
 }
 
 }  // namespace tandem

@@ -51,6 +51,11 @@ class RTSecondaryPass : public SettingsPass<RTSecondarySettings> {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
+  // On the GPU every masked pixel is traced: a deadline (rt_request) cuts nothing there, and
+  // rt_stats' times are the pass's GPU time shared by each object's rays.
+  bool hasGpu() const override { return settings().whitted.shadows == ShadowMode::Rays; }
+  std::string gpuCondition() const override { return "`shadows=rays` (the default)"; }
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   void resetHistory() override { tailMs_ = 0; }
 

@@ -1,0 +1,76 @@
+// The compute rasterizer's per-pixel side, operation for operation Rasterizer::render's
+// (raster/raster_tile.h): the same fixed-point edge functions and top-left rule, the same depth
+// plane evaluated as the CPU evaluates it in its 64-pixel tiles (so depths agree to the bit where
+// the set-up does), alpha masks tested along the pixel's camera ray. A pixel keeps the largest
+// key, depth bits over the complement of the triangle's index (raster_args.h).
+layout(buffer_reference, scalar, buffer_reference_align = 8) buffer Visibility { uint64_t v[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer RasterArgsRef {
+  RasterArgs a;
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer RasterQueue {
+  uint count, pad0, pad1, pad2;
+  RasterTriangle t[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer RasterCounters { uint c[]; };
+
+const int kRasterTile = 64;  // the CPU's tile: its depth is evaluated from each tile's left edge
+
+// The object whose triangles include `triangle` (an index over all objects' triangles): the last
+// one starting at or before it.
+int objectOfTriangle(uint triangle, uint objectCount) {
+  int lo = 0, hi = int(objectCount) - 1;
+  while (lo < hi) {
+    const int mid = (lo + hi + 1) / 2;
+    if (Objects(S.objects).o[mid].firstIndex / 3u <= triangle)
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return lo;
+}
+
+// Whether the centre of pixel (px, py) lies inside t (triangleBox's edge functions at one pixel).
+bool coversPixel(RasterTriangle t, int px, int py) {
+  const int64_t sx = (int64_t(px) << 8) + 128, sy = (int64_t(py) << 8) + 128;
+  for (int e = 0; e < 3; ++e) {
+    const int c = e == 2 ? 0 : e + 1;
+    const int64_t dx = int64_t(t.x[c]) - t.x[e], dy = int64_t(t.y[c]) - t.y[e];
+    const bool owns = dy < 0 || (dy == 0 && dx > 0);
+    if (dx * (sy - t.y[e]) - dy * (sx - t.x[e]) + (owns ? 0 : -1) < 0) return false;
+  }
+  return true;
+}
+
+// The depth at pixel (px, py) as rowDepth and walkRowPixels compute it in the pixel's CPU tile.
+float pixelDepth(RasterTriangle t, int px, int py) {
+  const int x0 = max(px / kRasterTile * kRasterTile, t.px0);
+  precise const float zRow =
+      t.zRef + t.dzdy * (float(py) + 0.5 - t.yRef) + t.dzdx * (float(x0) + 0.5 - t.xRef);
+  precise const float z = zRow + t.dzdx * float(px - x0);
+  return z;
+}
+
+// Rasterizer::alphaKeeps: the texel under the pixel centre's camera ray passes the cutoff.
+bool alphaKeeps(RasterTriangle t, GpuCamera cam, uint objectCount, int px, int py) {
+  const int object = objectOfTriangle(t.triangle, objectCount);
+  const GpuObject ob = Objects(S.objects).o[object];
+  const int prim = int(t.triangle - ob.firstIndex / 3u);
+  const uvec3 k = triangleVertices(ob, prim);
+  vec3 o, d;
+  float tnear, th, u, v;
+  cameraRay(cam, px, py, o, d, tnear);
+  intersectTriangle(o, d, vertexPosition(k.x), vertexPosition(k.y), vertexPosition(k.z), th, u, v);
+  return surfaceAlpha(object, prim, u, v) >= Materials(S.materials).m[ob.material].alphaCutoff;
+}
+
+void drawPixel(RasterTriangle t, RasterArgs a, int px, int py) {
+  if (!coversPixel(t, px, py)) return;
+  const float z = pixelDepth(t, px, py);
+  if (!(z > 0.0 && z <= 1.0)) return;
+  const uint64_t key = (uint64_t(floatBitsToUint(z)) << 32) | uint64_t(~t.triangle);
+  Visibility vis = Visibility(a.visibility);
+  const uint i = uint(py) * uint(a.camera.width) + uint(px);
+  if (vis.v[i] >= key) return;  // a plain read first: a hidden pixel needs no atomic
+  if (t.alphaMask != 0u && !alphaKeeps(t, a.camera, a.objectCount, px, py)) return;
+  atomicMax(vis.v[i], key);
+}

@@ -1,0 +1,45 @@
+// The compute rasterizer's records (C++ and GLSL): what raster_triangles.comp, raster_queue.comp
+// and raster_resolve.comp take, and a large triangle handed from the first to the second.
+#ifndef TANDEM_GPU_RASTER_ARGS_H
+#define TANDEM_GPU_RASTER_ARGS_H
+#include "camera_data.h"
+
+// Counters the rasterizer adds to (uints), as RasterStats counts them; trianglesIn and the
+// triangles of objects outside the frustum are counted on the host.
+#define TD_RASTER_CULLED 0
+#define TD_RASTER_CLIPPED 1
+#define TD_RASTER_BINNED 2
+#define TD_RASTER_QUEUED 3
+#define TD_RASTER_COUNT_N 4
+
+// One view's draw. The visibility buffer holds a uint64 a pixel: the depth's bits (reversed Z,
+// greater is nearer) above the complement of the triangle's index over all objects, so one
+// atomicMax keeps the nearest and, between equal depths, the triangle drawn first on the CPU.
+struct RasterArgs {
+  TD_ADDR scene;          // SceneArgs
+  TD_ADDR draw;           // uint per object: 0 when outside the frustum or not drawn
+  TD_ADDR visibility;     // uint64 per view pixel, cleared to 0 (nothing drawn)
+  TD_ADDR queue;          // uint count, 3 uints padding, then queueCapacity RasterTriangles
+  TD_ADDR counters;       // TD_RASTER_COUNT_N uints
+  TD_FLOAT viewProj[16];  // the jittered camera's, row-major
+  GpuCamera camera;       // the pixel rays of alpha-tested texels
+  TD_UINT triangles, objectCount, queueCapacity, bothFaces;
+};
+
+// A set-up triangle (Rasterizer::SetupTriangle) whose pixel box is large: drawn by a workgroup.
+struct RasterTriangle {
+  TD_INT x[3], y[3];  // 8-bit sub-pixel fixed point, positive orientation
+  TD_FLOAT zRef, dzdx, dzdy, xRef, yRef;
+  TD_UINT triangle, alphaMask;
+  TD_INT px0, px1, py0, py1;  // the pixels whose centres it may cover
+  TD_UINT pad;
+};
+
+// The resolve of one view's visibility buffer into the G-buffer targets that are non-zero and,
+// when hdr is, its shading (vbuffer_shading).
+struct RasterResolveArgs {
+  TD_ADDR scene, view, targets, motion, visibility, hdr;
+  TD_INT viewX, viewY, frameWidth;
+  TD_UINT objectCount;
+};
+#endif

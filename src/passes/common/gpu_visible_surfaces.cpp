@@ -1,0 +1,140 @@
+#include "passes/common/gpu_visible_surfaces.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "gpu/gpu_camera.h"
+#include "gpu/shaders/raster_args.h"
+#include "gpu/shaders/raster_queue_spv.h"
+#include "gpu/shaders/raster_resolve_spv.h"
+#include "gpu/shaders/raster_triangles_f32_spv.h"
+#include "gpu/shaders/raster_triangles_spv.h"
+#include "passes/common/visible_surfaces.h"
+#include "pipeline/gpu_frame.h"
+#include "pipeline/gpu_gbuffer.h"
+#include "raster/rasterizer.h"
+
+namespace tandem {
+
+namespace {
+constexpr uint32_t kQueueGroups = 1024;             // raster_queue's persistent workgroups
+constexpr size_t kQueueCapacity = size_t(1) << 18;  // large triangles; the rest drawn directly
+constexpr size_t kQueueHeader = 16;                 // the count, padded
+}  // namespace
+
+void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t targets, uint64_t hdr,
+                                const char* resolvePart) {
+  GpuFrame& gpu = *ctx.gpu;
+  GpuCommands& cmd = gpu.commands();
+  const FrameScene& fs = ctx.frame;
+  const Scene& scene = *fs.scene;
+  const uint64_t sceneAddress = gpu.scene(fs).sceneAddress();
+  const GpuKernel& triangles =
+      gpu.device().info().float64
+          ? gpu.kernel("raster_triangles", kRasterTrianglesSpv, sizeof(kRasterTrianglesSpv) / 4,
+                       sizeof(uint64_t))
+          : gpu.kernel("raster_triangles_f32", kRasterTrianglesF32Spv,
+                       sizeof(kRasterTrianglesF32Spv) / 4, sizeof(uint64_t));
+  const GpuKernel& queue =
+      gpu.kernel("raster_queue", kRasterQueueSpv, sizeof(kRasterQueueSpv) / 4, sizeof(uint64_t));
+  const GpuKernel& resolve = gpu.kernel("raster_resolve", kRasterResolveSpv,
+                                        sizeof(kRasterResolveSpv) / 4, sizeof(RasterResolveArgs));
+
+  size_t triangleCount = 0;
+  std::vector<uint32_t> firstTriangle(fs.objects.size());
+  for (size_t o = 0; o < fs.objects.size(); ++o) {
+    firstTriangle[o] = uint32_t(triangleCount);
+    triangleCount += scene.meshes[size_t(scene.objects[o].mesh)].triangleCount();
+  }
+  const size_t capacity = std::min(std::max<size_t>(triangleCount, 1024), kQueueCapacity);
+  const std::string key = "raster:" + pass.name() + ":";
+  const GpuBuffer& queueBuffer =
+      gpu.scratch(key + "queue", kQueueHeader + capacity * sizeof(RasterTriangle));
+  const uint64_t motion = gpuObjectMotionConstants(ctx);
+
+  // Counted on the host, as the CPU counts them: every triangle in, those of objects outside
+  // the frustum culled; the rest counted by the kernel, per view.
+  double in = 0, culledOnHost = 0;
+  std::vector<uint64_t> counters;
+  const uint32_t t0 = cmd.timestamp();
+  std::vector<RasterResolveArgs> resolves;
+  for (size_t vi = 0; vi < ctx.views.size(); ++vi) {
+    const View& v = ctx.views[vi];
+    const Camera& cam = v.jitteredCamera;
+    std::vector<uint32_t> draw(std::max<size_t>(fs.objects.size(), 1), 0);
+    for (size_t o = 0; o < fs.objects.size(); ++o) {
+      draw[o] = boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 0 : 1;
+      if (!draw[o])
+        culledOnHost += double(scene.meshes[size_t(scene.objects[o].mesh)].triangleCount());
+    }
+    in += double(triangleCount);
+    const size_t pixels = size_t(cam.width) * size_t(cam.height);
+    const GpuBuffer& vis = gpu.scratch(key + std::to_string(vi), pixels * sizeof(uint64_t));
+    const uint32_t zero[TD_RASTER_COUNT_N] = {};
+    RasterArgs a{};
+    a.scene = sceneAddress;
+    a.draw = gpu.constants(draw.data(), draw.size() * sizeof(uint32_t));
+    a.visibility = vis.address;
+    a.queue = queueBuffer.address;
+    a.counters = gpu.constants(zero, sizeof zero);
+    std::memcpy(a.viewProj, &cam.viewProj.m[0][0], sizeof a.viewProj);
+    a.camera = gpuCamera(cam, ctx.pixelSpread(v));
+    a.triangles = uint32_t(triangleCount);
+    a.objectCount = uint32_t(fs.objects.size());
+    a.queueCapacity = uint32_t(capacity);
+    a.bothFaces = 0;
+    counters.push_back(a.counters);
+    const uint64_t args = gpu.constants(&a, sizeof a);
+
+    cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
+    cmd.fill(queueBuffer, 0, kQueueHeader, 0);
+    cmd.barrier();
+    if (triangleCount > 0) {
+      const uint32_t groups = uint32_t((triangleCount + 63) / 64);
+      const uint32_t gx = std::min<uint32_t>(groups, 4096);
+      cmd.dispatch(triangles, gx, (groups + gx - 1) / gx, 1, &args);
+      cmd.barrier();
+      cmd.dispatch(queue, kQueueGroups, 1, 1, &args);
+      cmd.barrier();
+    }
+    RasterResolveArgs r{};
+    r.scene = sceneAddress;
+    r.view = gpuViewConstants(ctx, v);
+    r.targets = targets;
+    r.motion = motion;
+    r.visibility = vis.address;
+    r.hdr = hdr;
+    r.viewX = v.x;
+    r.viewY = v.y;
+    r.frameWidth = ctx.width;
+    r.objectCount = uint32_t(fs.objects.size());
+    resolves.push_back(r);
+  }
+  // The resolves after every view's visibility: one part each, as on the CPU.
+  const uint32_t t1 = cmd.timestamp();
+  for (size_t vi = 0; vi < ctx.views.size(); ++vi) {
+    const View& v = ctx.views[vi];
+    gpu.dispatchInterruptibly(resolve, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8,
+                              &resolves[vi]);
+  }
+  const uint32_t t2 = cmd.timestamp();
+  std::vector<const uint32_t*> counts;
+  for (uint64_t c : counters) counts.push_back(static_cast<const uint32_t*>(gpu.constantsData(c)));
+  gpu.afterSubmit([&ctx, &pass, &cmd, counts, in, culledOnHost, t0, t1, t2, resolvePart] {
+    double culled = culledOnHost, clipped = 0, binned = 0;
+    for (const uint32_t* c : counts) {
+      culled += c[TD_RASTER_CULLED];
+      clipped += c[TD_RASTER_CLIPPED];
+      binned += c[TD_RASTER_BINNED];
+    }
+    ctx.report(pass, RasterCounters::trianglesIn, in);
+    ctx.report(pass, RasterCounters::trianglesCulled, culled);
+    ctx.report(pass, RasterCounters::trianglesClipped, clipped);
+    ctx.report(pass, RasterCounters::trianglesBinned, binned);
+    ctx.passParts.push_back({"visibility", cmd.activeMs(t0, t1), 0});
+    ctx.passParts.push_back({resolvePart, cmd.activeMs(t1, t2), 0});
+  });
+}
+
+}  // namespace tandem
