@@ -56,5 +56,15 @@ TEST(GpuHybrid, SecondaryEffectsMatchTheCpu) {
   expectNoValidationMessages(*dev);
 }
 
+// The heuristic's selection with ss_fallback standing in for what it leaves out: blend reads the
+// fallback buffer on the GPU.
+TEST(GpuHybrid, HeuristicHybridMatchesTheCpu) {
+  REQUIRE_GPU(dev);
+  const Scene spheres = loadScene("spheres");
+  compareHybrid(dev, "hybrid-heuristic", spheres, defaultCamera(spheres), "spheres");
+  compareHybrid(dev, "hybrid-heuristic", featureScene(), featureCamera(), "features");
+  expectNoValidationMessages(*dev);
+}
+
 }  // namespace
 }  // namespace tandem

@@ -1,7 +1,10 @@
 #include "passes/heuristic/blend.h"
 
 #include "core/parallel.h"
+#include "gpu/shaders/blend_args.h"
+#include "gpu/shaders/blend_spv.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 #include "rt/whitted.h"
 
 namespace tandem {
@@ -47,6 +50,30 @@ void BlendPass::execute(FrameContext& ctx) {
         out.setRgb(x, y, combineEffects(om, orr, refl, refr, c));
       }
   });
+}
+
+void BlendPass::executeGpu(FrameContext& ctx) {
+  static_assert(TD_FALLBACK_CHANNELS == fallback::kChannels &&
+                TD_FALLBACK_COVERS_EFFECT == fallback::kCoversEffect &&
+                TD_FALLBACK_COVERS_SHADOW == fallback::kCoversShadow &&
+                TD_FALLBACK_SHADOW == fallback::kShadow &&
+                TD_FALLBACK_REFLECTION == fallback::kReflection &&
+                TD_FALLBACK_REFRACTION == fallback::kRefraction);
+  BlendArgs a{};
+  a.hdr = ctx.deviceInput(*this, Slots::hdr);
+  a.shadow = ctx.deviceInput(*this, Slots::shadow);
+  a.reflection = ctx.deviceInput(*this, Slots::reflection);
+  a.refraction = ctx.deviceInput(*this, Slots::refraction);
+  a.optical = ctx.deviceInput(*this, Slots::optical);
+  a.mask = ctx.deviceInput(*this, Slots::heuristicMask);
+  a.fallback =
+      ctx.optionalInput(*this, Slots::fallback) ? ctx.deviceInput(*this, Slots::fallback) : 0;
+  a.composite = ctx.deviceOutput(*this, Slots::composite);
+  a.width = uint32_t(ctx.width);
+  a.height = uint32_t(ctx.height);
+  GpuFrame& gpu = *ctx.gpu;
+  const GpuKernel& k = gpu.kernel("blend", kBlendSpv, sizeof(kBlendSpv) / 4, sizeof a);
+  gpu.commands().dispatch(k, (a.width + 7) / 8, (a.height + 7) / 8, 1, &a);
 }
 
 }  // namespace tandem

@@ -39,6 +39,8 @@ class BlendPass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override { return {{Slots::composite, 3}}; }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/blend.comp
+  void executeGpu(FrameContext& ctx) override;
 
  private:
   static BufferSlot optionalFallback() {

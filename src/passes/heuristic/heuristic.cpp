@@ -7,7 +7,10 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "gpu/shaders/heuristic_args.h"
+#include "gpu/shaders/heuristic_spv.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 
 namespace tandem {
 
@@ -336,7 +339,7 @@ std::vector<HeuristicNode> HeuristicPass::priceNodes(const Scene& scene,
 
 std::vector<uint8_t> HeuristicPass::select(const FrameContext& ctx,
                                            const std::vector<HeuristicNode>& nodes,
-                                           const Buffer& ids, double& partialR2) {
+                                           const Buffer* ids, double& partialR2) {
   const HeuristicSettings& s = settings();
   const size_t n = ctx.scene->objects.size();
   const bool perEffect = s.perEffect, msBudget = s.budgetMs > 0;
@@ -358,11 +361,11 @@ std::vector<uint8_t> HeuristicPass::select(const FrameContext& ctx,
   }
   partial_ = {};
   partialR2 = -1;
-  if (msBudget && s.partialObjects && !s.selectAll) {
+  if (msBudget && s.partialObjects && !s.selectAll && ids) {  // ids: none on the GPU
     partial_ = partialNode(nodes, selected_, budget_ - selectedCost_);
     if (partial_.id >= 0) {
       selectedCost_ += partial_.fraction * costOf[size_t(partial_.id)];
-      partialR2 = centralRadius2(ids, int(nodeObject(partial_.id)), partial_.fraction,
+      partialR2 = centralRadius2(*ids, int(nodeObject(partial_.id)), partial_.fraction,
                                  [&](int x) { return viewCentre(ctx, x); });
     }
   }
@@ -408,7 +411,8 @@ std::vector<CounterDesc> HeuristicPass::counters() const {
   };
 }
 
-void HeuristicPass::execute(FrameContext& ctx) {
+std::vector<uint8_t> HeuristicPass::decide(FrameContext& ctx, const std::vector<uint32_t>& pixels,
+                                           const Buffer* ids, double& partialR2) {
   const HeuristicSettings& s = settings();
   const Scene& scene = *ctx.scene;
   const size_t n = scene.objects.size();
@@ -425,8 +429,6 @@ void HeuristicPass::execute(FrameContext& ctx) {
   updateMeasurements(rtStats);
   measuredRays_.resize(n);
 
-  const Buffer& ids = ctx.input(*this, Slots::objectId);
-  std::vector<uint32_t> pixels = countObjectPixels(ids, n);
   selectedLast_.resize(n, 0);
   evaluated_ = evaluateObjects(scene, bounds_, ctx.camera(), pixels, selectedLast_, s.importance,
                                s.countRecursion ? &measuredRays_ : nullptr);
@@ -439,7 +441,7 @@ void HeuristicPass::execute(FrameContext& ctx) {
     calibrationPrior_ = true;
   }
   const std::vector<HeuristicNode> nodes = priceNodes(scene, pixels);
-  double partialR2 = -1;
+  partialR2 = -1;
   const std::vector<uint8_t> selected = select(ctx, nodes, ids, partialR2);
   selectedFrame_ = ctx.serial;
   selectedLast_ = selected;
@@ -454,7 +456,46 @@ void HeuristicPass::execute(FrameContext& ctx) {
   ctx.report(*this, HeuristicCounters::selectedCost, selectedCost_);
   ctx.report(*this, HeuristicCounters::partialFraction, partial_.id >= 0 ? partial_.fraction : 0.0);
   writeOrder(nodes, s.perEffect, ctx.output(*this, Slots::heuristicOrder, int(n), 1));
+  return selected;
+}
+
+void HeuristicPass::execute(FrameContext& ctx) {
+  const Buffer& ids = ctx.input(*this, Slots::objectId);
+  double partialR2 = -1;
+  const std::vector<uint8_t> selected =
+      decide(ctx, countObjectPixels(ids, ctx.scene->objects.size()), &ids, partialR2);
   writeMask(ctx, ids, selected, partialR2, ctx.output(*this, Slots::heuristicMask));
+}
+
+void HeuristicPass::executeGpu(FrameContext& ctx) {
+  GpuFrame& gpu = *ctx.gpu;
+  GpuCommands& cmd = gpu.commands();
+  const size_t n = ctx.scene->objects.size();
+  const std::vector<uint32_t> zero(std::max<size_t>(n, 1), 0);
+  HeuristicArgs a{};
+  a.objectId = ctx.deviceInput(*this, Slots::objectId);
+  a.pixels = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
+  a.pixelCount = uint32_t(size_t(ctx.width) * size_t(ctx.height));
+  a.objectCount = uint32_t(n);
+  // A 2D grid: one invocation a pixel, rows of at most 65535 groups of 64.
+  const uint32_t groups = (a.pixelCount + 63) / 64, gx = std::max(1u, std::min(groups, 65535u));
+  a.rowWidth = gx * 64;
+  const GpuKernel& k =
+      gpu.kernel("heuristic", kHeuristicSpv, sizeof(kHeuristicSpv) / 4, sizeof(HeuristicArgs));
+  a.mode = TD_HEURISTIC_COUNT;
+  cmd.dispatch(k, gx, (groups + gx - 1) / gx, 1, &a);
+  // The selection needs every object's area: the counts come back before the mask is recorded.
+  cmd.checkpoint();
+  const auto* counted = static_cast<const uint32_t*>(gpu.constantsData(a.pixels));
+  double partialR2 = -1;
+  const std::vector<uint8_t> selected =
+      decide(ctx, std::vector<uint32_t>(counted, counted + n), nullptr, partialR2);
+  std::vector<uint32_t> bits(std::max<size_t>(n, 1), 0);
+  for (size_t o = 0; o < n; ++o) bits[o] = selected[o];
+  a.selected = gpu.constants(bits.data(), bits.size() * sizeof(uint32_t));
+  a.mask = ctx.deviceOutput(*this, Slots::heuristicMask);
+  a.mode = TD_HEURISTIC_MASK;
+  cmd.dispatch(k, gx, (groups + gx - 1) / gx, 1, &a);
 }
 
 }  // namespace tandem

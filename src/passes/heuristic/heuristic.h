@@ -167,6 +167,14 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
             effectSlot(Slots::heuristicOrder, BufferKind::List, Extent::any())};
   }
   void execute(FrameContext& ctx) override;
+  // On the GPU the per-pixel halves (each object's area by atomics, the mask); the selection
+  // between them on the host. Not with partial objects (the part's radius sorts the object's
+  // pixels by distance).
+  bool hasGpu() const override { return !(settings().partialObjects && settings().budgetMs > 0); }
+  std::string gpuCondition() const override {
+    return "unless `partial_objects` with a `budget_ms`";
+  }
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   void resetHistory() override;
 
@@ -182,11 +190,16 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
 
  private:
   void refreshBounds(const FrameContext& ctx);
+  // The frame's selection from each object's visible pixels (`ids`, for a partial object's part:
+  // null on the GPU): the effect bits per object; heuristic_order, rt_request and the counters
+  // written.
+  std::vector<uint8_t> decide(FrameContext& ctx, const std::vector<uint32_t>& pixels,
+                              const Buffer* ids, double& partialR2);
   // The nodes to choose from; with a ms budget priced in predicted CPU ms.
   std::vector<HeuristicNode> priceNodes(const Scene& scene, const std::vector<uint32_t>& pixels);
   // Chooses within budget_ (and the partial node); returns the effect bits per object.
   std::vector<uint8_t> select(const FrameContext& ctx, const std::vector<HeuristicNode>& nodes,
-                              const Buffer& ids, double& partialR2);
+                              const Buffer* ids, double& partialR2);
   void writeMask(const FrameContext& ctx, const Buffer& ids, const std::vector<uint8_t>& selected,
                  double partialR2, Buffer& mask) const;
   void updateMeasurements(const RtStats& stats);
