@@ -132,18 +132,29 @@ StereoDesc stereoFor(const Scene& s, const RenderOptions& o) {
   return fitStereoToModel(s, defaultCamera(s), st, o.ipd > 0);
 }
 
+std::shared_ptr<GpuDevice> deviceFor(const RenderOptions& o) {
+  const DeviceChoice choice = parseDeviceChoice(o.device, "command line", "--device");
+  std::shared_ptr<GpuDevice> gpu = GpuDevice::forChoice(choice, "command line: --device");
+  if (gpu)
+    std::fprintf(stderr, "tandem: device: %s (%s, Vulkan %s)\n", gpu->info().name.c_str(),
+                 gpu->info().type.c_str(), gpu->info().apiText().c_str());
+  else if (choice == DeviceChoice::Auto)
+    std::fprintf(stderr, "tandem: device: cpu (no hardware GPU with Vulkan 1.3 compute found)\n");
+  return gpu;
+}
+
 RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o) {
   RenderSettings r{.width = o.width, .height = o.height, .seed = o.seed};
   r.shutter = o.shutter;
   r.stereo = stereoFor(s, o);
-  const DeviceChoice choice = parseDeviceChoice(o.device, "command line", "--device");
-  r.gpu = GpuDevice::forChoice(choice, "command line: --device");
-  if (r.gpu)
-    std::fprintf(stderr, "tandem: device: %s (%s, Vulkan %s)\n", r.gpu->info().name.c_str(),
-                 r.gpu->info().type.c_str(), r.gpu->info().apiText().c_str());
-  else if (choice == DeviceChoice::Auto)
-    std::fprintf(stderr, "tandem: device: cpu (no hardware GPU with Vulkan 1.3 compute found)\n");
+  r.gpu = deviceFor(o);
   return r;
+}
+
+void addDeviceOption(CLI::App* app, RenderOptions& o) {
+  app->add_option("--device", o.device,
+                  "auto (a GPU when there is one, else the CPU), cpu, or gpu (also a CPU Vulkan "
+                  "such as lavapipe); passes without a GPU version run on the CPU");
 }
 
 void addLensOptions(CLI::App* app, RenderOptions& o) {
@@ -163,9 +174,7 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
                   "Extra buffers to write, comma-separated (depth,normal,object_id,...)");
   app->add_option("--frames", o.frames, "Frames to render (scene time advances 1/30 s per frame)");
   addLensOptions(app, o);
-  app->add_option("--device", o.device,
-                  "auto (a GPU when there is one, else the CPU), cpu, or gpu (also a CPU Vulkan "
-                  "such as lavapipe); passes without a GPU version run on the CPU");
+  addDeviceOption(app, o);
   app->add_option("--set", o.set,
                   "Set a pass parameter: pass.param=value (e.g. heuristic.budget_ms=40); "
                   "repeatable");

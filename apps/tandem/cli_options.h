@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "gpu/gpu_device.h"
 #include "pipeline/pipeline.h"
 #include "scene/scene.h"
 #include "scene/scene_camera.h"
@@ -38,13 +39,15 @@ struct RenderOptions {
   float shutter = 0;  // seconds the shutter stays open (motion blur)
   std::optional<float> aperture, focus;
   std::optional<int> blades;
-  std::string device = "auto";  // auto | cpu | gpu (render, bench, view)
+  std::string device = "auto";  // auto | cpu | gpu (render, bench, view, reference)
 };
 
 // Scene, size, output, seed, threads, camera overrides and lights (every rendering verb).
 void addSceneOptions(CLI::App* app, RenderOptions& o);
 // --shutter, --aperture, --focus, --blades.
 void addLensOptions(CLI::App* app, RenderOptions& o);
+// --device (auto, cpu, gpu).
+void addDeviceOption(CLI::App* app, RenderOptions& o);
 // addSceneOptions, addLensOptions, pipeline, AOVs, frames and --set.
 void addRenderOptions(CLI::App* app, RenderOptions& o);
 // Validates option values; throws InputError naming the option.
@@ -61,6 +64,8 @@ StereoDesc stereoFor(const Scene& s, const RenderOptions& o);
 // settings.
 struct RenderSettings;
 RenderSettings renderSettingsFor(const Scene& s, const RenderOptions& o);
+// The device --device asks for (null: the CPU), said on stderr.
+std::shared_ptr<GpuDevice> deviceFor(const RenderOptions& o);
 // Loads the pipeline and applies --set parameters.
 Pipeline loadPipelineFor(const RenderOptions& o);
 // The scene camera with command-line overrides applied (a default view when it has none).

@@ -76,6 +76,7 @@ struct ReferenceVerb {
         std::fprintf(stderr, "tandem: warning: %s\n", note.c_str());
     }
     job.settings.seed = opts.seed;
+    job.gpu = deviceFor(opts);
     job.settings.progress = !quiet;
     const fs::path dir = isFile ? fs::path(out).parent_path() : fs::path(out);
     const std::string stem = isFile ? fs::path(out).stem().string() : scene.name + "_reference";
@@ -133,6 +134,7 @@ VerbRunner addReferenceVerb(CLI::App& app) {
   sub->add_flag("--camera-path", v->cameraPath,
                 "Camera from the scene's camera path at --time (moving while the shutter is open)");
   addLensOptions(sub, v->opts);
+  addDeviceOption(sub, v->opts);
   sub->add_option("--cache", v->cache,
                   "Cache folder (default $TANDEM_REFERENCE_CACHE or out/reference-cache)");
   sub->add_flag("--no-cache", v->noCache, "Always render; do not read or write the cache");

@@ -1,5 +1,7 @@
 #include "gpu/gpu_commands.h"
 
+#include <string>
+
 #include <stdexcept>
 
 namespace tandem {
@@ -101,7 +103,9 @@ void GpuCommands::barrier() {
 }
 
 uint32_t GpuCommands::timestamp() {
-  if (used_ >= kMaxTimestamps) throw GpuError("GPU: more than 1024 timestamps in one recording");
+  if (used_ >= kMaxTimestamps)
+    throw GpuError("GPU: more than " + std::to_string(kMaxTimestamps) +
+                   " timestamps in one recording");
   vkCmdWriteTimestamp2(cb_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, used_);
   return used_++;
 }

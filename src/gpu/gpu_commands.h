@@ -15,7 +15,9 @@ namespace tandem {
 
 class GpuCommands {
  public:
-  static constexpr uint32_t kMaxTimestamps = 1024;
+  // Per recording; checkpoints take two each (a reference render checkpoints every batch, and on
+  // a CPU Vulkan every sample).
+  static constexpr uint32_t kMaxTimestamps = 1u << 16;
   explicit GpuCommands(GpuDevice& device);
   ~GpuCommands();
   GpuCommands(const GpuCommands&) = delete;

@@ -208,7 +208,13 @@ else
   check "--device gpu gives the CPU's image (PSNR >= 45 dB, got $psnr)" \
     "[ \"$psnr\" = inf ] || awk -v p=$psnr 'BEGIN{exit !(p >= 45)}'"
   out=$("$T" bench cornell --pipeline deferred --device gpu --width 64 --height 36 --frames 2 --warmup 0 2>/dev/null)
-  check "bench names the GPU and the moves' bytes" "grep -q 'device llvmpipe\|device .*GPU' <<<\"\$out\" && grep -q 'upload:hdr.*MiB moved' <<<\"\$out\""
+  check "bench names the GPU and the moves' bytes" "grep -q 'device llvmpipe\|device .*GPU' <<<\"\$out\" && grep -q 'download:output.*MiB moved' <<<\"\$out\""
+  # The reference on the GPU takes the CPU's Sobol samples: the same image to rounding.
+  "$T" reference --scene cornell --device gpu --width 32 --height 18 --spp 4 --no-cache --quiet --out "$D/ref_gpu.exr" >/dev/null 2>&1
+  "$T" reference --scene cornell --device cpu --width 32 --height 18 --spp 4 --no-cache --quiet --out "$D/ref_cpu.exr" >/dev/null 2>&1
+  psnr=$(awk '/^psnr/ {print $2}' <<<"$("$T" compare "$D/ref_gpu.exr" "$D/ref_cpu.exr" 2>&1)")
+  check "reference --device gpu takes the CPU's samples (PSNR >= 45 dB, got $psnr)" \
+    "[ \"$psnr\" = inf ] || awk -v p=$psnr 'BEGIN{exit !(p >= 45)}'"
 fi
 expect_error "missing scene file" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/x.png"
 expect_error "unknown builtin" "not a file and not a built-in" "$T" render --scene nosuchscene --out "$D/err/x.png"

@@ -84,6 +84,7 @@ ReferenceImage referenceImage(const ReferenceJob& job, const std::string& cacheD
   RenderSettings rs{
       .width = job.width, .height = job.height, .seed = s.seed, .shutter = job.shutter};
   rs.stereo = job.stereo;
+  rs.gpu = job.gpu;
   Renderer r(*job.scene, std::move(p), rs);
   for (auto& pass : r.pipeline().passes)
     if (auto* pt = dynamic_cast<PTReferencePass*>(pass.get())) pt->distribute(cluster);

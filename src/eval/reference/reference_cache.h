@@ -2,9 +2,11 @@
 // folder where an identical request (scene content, camera, time, shutter, resolution and
 // settings, hashed) was rendered before. Experiments and `tandem reference` share it.
 #pragma once
+#include <memory>
 #include <string>
 
 #include "core/buffer.h"
+#include "gpu/gpu_device.h"
 #include "rt/reference_render.h"
 #include "scene/scene.h"
 
@@ -17,6 +19,9 @@ struct ReferenceJob {
   int width = 640, height = 360;     // one eye in stereo
   StereoDesc stereo;                 // enabled: both eyes side by side
   ReferenceSettings settings;
+  // The device it renders on (null: the CPU). Not part of the key: both devices take the same
+  // samples of the same estimator.
+  std::shared_ptr<GpuDevice> gpu;
 };
 
 struct ReferenceImage {

@@ -4,10 +4,11 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Cam
   GpuCamera c;
 };
 
-// The camera ray through pixel centre (x + 0.5, y + 0.5) of the view; tnear: where it starts.
-void cameraRay(GpuCamera c, int x, int y, out vec3 origin, out vec3 dir, out float tnear) {
-  const float sx = (float(x) + 0.5 + c.jitter[0]) / float(c.width) * 2.0 - 1.0;
-  const float sy = 1.0 - (float(y) + 0.5 + c.jitter[1]) / float(c.height) * 2.0;
+// The camera ray through pixel position p of the view (Camera::generateRay); tnear: where it
+// starts.
+void cameraRayAt(GpuCamera c, vec2 p, out vec3 origin, out vec3 dir, out float tnear) {
+  const float sx = (p.x + c.jitter[0]) / float(c.width) * 2.0 - 1.0;
+  const float sy = 1.0 - (p.y + c.jitter[1]) / float(c.height) * 2.0;
   const vec3 forward = vec3(c.forward[0], c.forward[1], c.forward[2]);
   const vec3 right = vec3(c.right[0], c.right[1], c.right[2]);
   const vec3 up = vec3(c.up[0], c.up[1], c.up[2]);
@@ -25,4 +26,9 @@ void cameraRay(GpuCamera c, int x, int y, out vec3 origin, out vec3 dir, out flo
     dir = forward;
     tnear = c.nearPlane;
   }
+}
+
+// The camera ray through pixel centre (x + 0.5, y + 0.5).
+void cameraRay(GpuCamera c, int x, int y, out vec3 origin, out vec3 dir, out float tnear) {
+  cameraRayAt(c, vec2(float(x) + 0.5, float(y) + 0.5), origin, dir, tnear);
 }

@@ -23,8 +23,6 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Counts { uin
 #include "gbuffer.glsl"
 #include "whitted.glsl"
 
-uint culled = 0u, traced = 0u;
-
 // Listing 8a's S at s seen along wo: 1 minus each asked light's term times what blocks it.
 vec3 shadowTerm(Surface s, vec3 wo, out bool classAsked) {
   Lights lights = Lights(S.lights);
@@ -60,7 +58,7 @@ void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= view.camera.width || y >= view.camera.height) return;
   useScene(a.scene);
-  whitted = WhittedConfig(a.maxDepth, a.importanceCutoff, a.flags);
+  whitted = WhittedConfig(a.maxDepth, a.importanceCutoff, a.shadowCull, a.flags);
   const uint pixel = uint(y + a.viewY) * uint(a.frameWidth) + uint(x + a.viewX);
   const vec3 m = get3(a.mask, pixel);
   const bool wantShadow = m.x > 0.5, wantReflection = m.y > 0.5, wantRefraction = m.z > 0.5;

@@ -22,51 +22,12 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Counts { uin
 
 #include "whitted.glsl"
 
-uint culled = 0u, traced = 0u;
-
-// Lighting of a primary surface with its shadows (Whitted::shadePrimary8's shading, every
-// shadow traced): a light below shadow_cull of the surface's unshadowed light is not asked about.
-vec3 shadePrimary(Surface s, vec3 wo) {
-  Lights lights = Lights(S.lights);
-  const vec3 self = selfTerm(s);
-  float floorShare = 0.0;
-  if (a.shadowCull > 0.0) {
-    vec3 total = self;
-    for (uint i = 0u; i < S.lightCount; ++i) total += lightTerm(s, wo, lights.l[i]);
-    floorShare = a.shadowCull * luminance(total);
-  }
-  vec3 c = self;
-  for (uint i = 0u; i < S.lightCount; ++i) {
-    const GpuLight l = lights.l[i];
-    const vec3 term = lightTerm(s, wo, l);
-    const float share = luminance(term);
-    bool asked = a.shadowCull > 0.0 ? l.castsShadows != 0u && share > 0.0 && share >= floorShare
-                                    : l.castsShadows != 0u;
-    vec3 wi, radiance;
-    float dist;
-    sampleLight(l, s.position, wi, dist, radiance);
-    asked = asked && dot(s.normal, wi) > 0.0 && maxComponent(radiance) > 0.0;
-    vec3 vis = vec3(1.0);
-    if (asked) {
-      ++traced;
-      ++rays;
-      const float tfar = isinf(dist) ? kInf : dist * (1.0 - 1e-4);
-      vis = transmittance(offsetRayOrigin(s, wi), wi, tfar,
-                          (a.flags & TD_WHITTED_TEXTURED_SHADOWS) != 0u);
-    } else {
-      ++culled;
-    }
-    c += term * vis;
-  }
-  return c;
-}
-
 void main() {
   const GpuCamera cam = CameraRef(a.camera).c;
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= cam.width || y >= cam.height) return;
   useScene(a.scene);
-  whitted = WhittedConfig(a.maxDepth, a.importanceCutoff, a.flags);
+  whitted = WhittedConfig(a.maxDepth, a.importanceCutoff, a.shadowCull, a.flags);
   const uint pixel = uint(y + a.viewY) * uint(a.frameWidth) + uint(x + a.viewX);
   vec3 origin, dir;
   float tnear;

@@ -6,11 +6,12 @@
 
 struct WhittedConfig {
   int maxDepth;
-  float importanceCutoff;
+  float importanceCutoff, shadowCull;
   uint flags;  // TD_WHITTED_*
 };
 WhittedConfig whitted;
-uint rays = 0u;  // rays this invocation traced
+uint rays = 0u;                   // rays this invocation traced
+uint culled = 0u, traced = 0u;    // shadow queries shadePrimary left out and traced
 
 // Eq. 5-6 as weights: C = wm M + wr R + wc C_local.
 void effectWeights(float om, float orr, out float wm, out float wr, out float wc) {
@@ -41,6 +42,43 @@ vec3 refractionDir(Surface s, vec3 d) {
   const float k = 1.0 - eta * eta * (1.0 - cosi * cosi);
   if (k < 0.0) return safeNormalize(reflectDir(d, n));
   return safeNormalize(d * eta + n * (eta * cosi - sqrt(k)));
+}
+
+// Lighting of a primary surface with its shadows (Whitted::shadePrimary8's shading, every
+// shadow traced): a light below shadow_cull of the surface's unshadowed light is not asked about.
+vec3 shadePrimary(Surface s, vec3 wo) {
+  Lights lights = Lights(S.lights);
+  const vec3 self = selfTerm(s);
+  float floorShare = 0.0;
+  if (whitted.shadowCull > 0.0) {
+    vec3 total = self;
+    for (uint i = 0u; i < S.lightCount; ++i) total += lightTerm(s, wo, lights.l[i]);
+    floorShare = whitted.shadowCull * luminance(total);
+  }
+  vec3 c = self;
+  for (uint i = 0u; i < S.lightCount; ++i) {
+    const GpuLight l = lights.l[i];
+    const vec3 term = lightTerm(s, wo, l);
+    const float share = luminance(term);
+    bool asked = whitted.shadowCull > 0.0 ? l.castsShadows != 0u && share > 0.0 && share >= floorShare
+                                    : l.castsShadows != 0u;
+    vec3 wi, radiance;
+    float dist;
+    sampleLight(l, s.position, wi, dist, radiance);
+    asked = asked && dot(s.normal, wi) > 0.0 && maxComponent(radiance) > 0.0;
+    vec3 vis = vec3(1.0);
+    if (asked) {
+      ++traced;
+      ++rays;
+      const float tfar = isinf(dist) ? kInf : dist * (1.0 - 1e-4);
+      vis = transmittance(offsetRayOrigin(s, wi), wi, tfar,
+                          (whitted.flags & TD_WHITTED_TEXTURED_SHADOWS) != 0u);
+    } else {
+      ++culled;
+    }
+    c += term * vis;
+  }
+  return c;
 }
 
 struct Pending {  // a secondary ray and what its colour weighs in the pixel

@@ -1,6 +1,15 @@
 #include "passes/baselines/pt_reference.h"
 
+#include <cmath>
+#include <cstring>
+
+#include "core/interrupt.h"
+#include "gpu/gpu_camera.h"
+#include "gpu/shaders/reference_args.h"
+#include "gpu/shaders/reference_spv.h"
+#include "gpu/shaders/whitted_args.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 #include "rt/reference_render.h"
 
 namespace tandem {
@@ -54,6 +63,17 @@ void PTReferencePass::execute(FrameContext& ctx) {
   const auto t0 = Clock::now();
   RayTracer& rt = ctx.rayTracer();  // (re)builds the BVH: reported apart from the sampling
   ctx.passParts.push_back({"bvh", msSince(t0), 0});
+  SampleCluster single;
+  SampleCluster& cluster = cluster_ ? *cluster_ : single;
+  render(ctx, [&](const View& v, const ReferenceSettings& eye, SampleSums& sums) {
+    return renderReference(rt, *ctx.scene, v.camera, v.shutterCamera, eye, cluster, sums);
+  });
+}
+
+void PTReferencePass::render(
+    FrameContext& ctx,
+    const std::function<ReferenceResult(const View&, const ReferenceSettings&, SampleSums&)>&
+        renderView) {
   const PTReferenceSettings& s = settings();
   ReferenceSettings ref;
   ref.spp = s.spp;
@@ -63,8 +83,6 @@ void PTReferencePass::execute(FrameContext& ctx) {
   ref.whitted.maxDepth = s.whittedDepth;
   ref.progress = s.progress;
   ref.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);
-  SampleCluster single;
-  SampleCluster& cluster = cluster_ ? *cluster_ : single;
   const bool accumulate = s.accumulate;
   if (accumulate) {
     // Samples continue by index, so the frame number must not change the sequence.
@@ -90,8 +108,7 @@ void PTReferencePass::execute(FrameContext& ctx) {
     ReferenceSettings eye = ref;
     eye.seed += uint64_t(i) * 0xD1B54A32D192ED03ull;  // eyes get independent samples
     if (accumulate) eye.spp = std::min(ref.spp, sums.samples + s.frameSpp);
-    ReferenceResult r =
-        renderReference(rt, *ctx.scene, v.camera, v.shutterCamera, eye, cluster, sums);
+    ReferenceResult r = renderView(v, eye, sums);
     spp = i == 0 ? r.spp : std::min(spp, r.spp);
     seconds += r.seconds;
     ctx.passRays += double(r.rays);
@@ -109,6 +126,140 @@ void PTReferencePass::execute(FrameContext& ctx) {
   }
   ctx.report(*this, PTReferenceCounters::spp, spp);
   ctx.passParts.push_back({"sampling", seconds * 1e3, ctx.passRays});
+}
+
+bool PTReferencePass::hasGpu() const {
+  return settings().integrator != Integrator::DiffuseGI;
+}
+
+void PTReferencePass::executeGpu(FrameContext& ctx) {
+  // An open shutter (its camera or objects moving: part 2's motion blur) and processes sharing
+  // the rows stay on the CPU.
+  bool shutter = false;
+  for (const View& v : ctx.views)
+    shutter |= std::memcmp(&v.camera.desc, &v.shutterCamera.desc, sizeof(CameraDesc)) != 0;
+  for (const FrameObject& fo : ctx.frame.objects) shutter |= !fo.stepPositions.empty();
+  if (shutter || (cluster_ && cluster_->ranks() > 1)) {
+    execute(ctx);
+    return;
+  }
+  GpuFrame& gpu = *ctx.gpu;
+  GpuCommands& cmd = gpu.commands();
+  const FrameScene& fs = ctx.frame;
+  const Scene& scene = *ctx.scene;
+  const uint64_t sceneAddress = gpu.scene(fs).sceneAddress();
+  // EmitterTable's triangles: chosen in proportion to area x emitted luminance.
+  std::vector<GpuEmitter> emitters;
+  std::vector<int32_t> objectFirst(std::max<size_t>(fs.objects.size(), 1), -1);
+  std::vector<double> weights;
+  double total = 0;
+  for (size_t o = 0; o < fs.objects.size(); ++o) {
+    const Material& m = scene.materials[size_t(scene.objects[o].material)];
+    const float lum = (m.emission.x + m.emission.y + m.emission.z) * (1.0f / 3.0f);
+    if (!(lum > 0.0f)) continue;
+    const Mesh& mesh = scene.meshes[size_t(scene.objects[o].mesh)];
+    const std::vector<Vec3>& p = fs.objects[o].positions;
+    objectFirst[o] = int32_t(emitters.size());
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const Vec3 a = p[mesh.indices[3 * t]], b = p[mesh.indices[3 * t + 1]],
+                 c = p[mesh.indices[3 * t + 2]];
+      const float area = 0.5f * length(cross(b - a, c - a));
+      emitters.push_back({int32_t(o), int32_t(t), area, 0.0f});
+      weights.push_back(double(area * lum));
+      total += weights.back();
+    }
+  }
+  double cdf = 0;
+  for (size_t k = 0; k < emitters.size(); ++k) {
+    const float area = emitters[k].pdfArea;
+    cdf += weights[k];
+    emitters[k].pdfArea = area > 0.0f ? float(weights[k] / total) / area : 0.0f;
+    emitters[k].cdf = float(cdf / total);
+  }
+  std::vector<uint32_t> lightSkip(std::max<size_t>(scene.lights.size(), 1), 0);
+  for (size_t i = 0; i < scene.lights.size(); ++i) lightSkip[i] = scene.lights[i].fromEmissiveMesh;
+  const GpuEmitter none{};
+  ReferenceArgs a{};
+  a.scene = sceneAddress;
+  a.emitters = emitters.empty()
+                   ? gpu.constants(&none, sizeof none)
+                   : gpu.constants(emitters.data(), emitters.size() * sizeof(GpuEmitter));
+  a.emitterCount = uint32_t(emitters.size());
+  a.objectFirst = gpu.constants(objectFirst.data(), objectFirst.size() * sizeof(int32_t));
+  a.lightSkip = gpu.constants(lightSkip.data(), lightSkip.size() * sizeof(uint32_t));
+  const uint32_t zero = 0;
+  a.counters = gpu.constants(&zero, sizeof zero);
+  a.maxDepth = settings().maxDepth;
+  a.rouletteDepth = PathSettings{}.rouletteDepth;
+  a.integrator =
+      settings().integrator == Integrator::Whitted ? TD_REFERENCE_WHITTED : TD_REFERENCE_PATH;
+  const WhittedSettings w = [&] {
+    WhittedSettings ws;
+    ws.maxDepth = settings().whittedDepth;
+    return ws;
+  }();
+  a.whittedDepth = w.maxDepth;
+  a.importanceCutoff = w.importanceCutoff;
+  a.shadowCull = w.shadowCull;
+  a.whittedFlags = (w.texturedShadows ? TD_WHITTED_TEXTURED_SHADOWS : 0u) |
+                   (w.shadeAtMaxDepth ? TD_WHITTED_SHADE_AT_MAX_DEPTH : 0u);
+  const GpuKernel& k =
+      gpu.kernel("reference", kReferenceSpv, sizeof(kReferenceSpv) / 4, sizeof(uint64_t));
+  const auto* rays = static_cast<const uint32_t*>(gpu.constantsData(a.counters));
+  render(ctx, [&](const View& v, const ReferenceSettings& eye, SampleSums& sums) {
+    const Camera& cam = v.camera;
+    const GpuCamera gc = gpuCamera(cam, 0.0f);
+    a.camera = gpu.constants(&gc, sizeof gc);
+    a.apertureRadius = 0.5f * cam.desc.apertureDiameter;
+    a.focusDistance = cam.desc.focusDistance;
+    a.apertureRotation = radians(cam.desc.apertureRotationDeg);
+    a.apertureBlades = cam.desc.apertureBlades;
+    a.seedLo = uint32_t(eye.seed);
+    a.seedHi = uint32_t(eye.seed >> 32);
+    const size_t pixels = size_t(cam.width) * size_t(cam.height);
+    std::vector<float> cleared(pixels * 4, 0.0f);
+    a.sums = gpu.constants(cleared.data(), cleared.size() * sizeof(float));
+    const uint32_t raysBefore = *rays;
+    const auto start = Clock::now();
+    ReferenceResult result;
+    while (sums.samples < eye.spp) {
+      // As renderReference: batches double up to 64, within the time limit.
+      int batch = std::min({eye.spp - sums.samples, std::max(sums.samples, 1), 64});
+      if (eye.timeLimitS > 0 && sums.samples > 0) {
+        const double perSample = msSince(start) * 1e-3 / double(sums.samples);
+        const double left = eye.timeLimitS - msSince(start) * 1e-3;
+        batch = std::min(batch, int(std::floor(left / std::max(perSample, 1e-9))));
+      }
+      if (batch <= 0) break;
+      // One dispatch a sample (a loop over the batch inside one invocation drifted from the CPU's
+      // samples on lavapipe after 16 or so: not understood, so not relied on). On a CPU Vulkan
+      // each is submitted alone, Ctrl-C honoured between them.
+      const bool hardware = gpu.device().info().hardware;
+      for (int i = 0; i < batch; ++i) {
+        a.first = uint32_t(sums.samples + i);
+        const uint64_t args = gpu.constants(&a, sizeof a);
+        cmd.dispatch(k, uint32_t(cam.width + 7) / 8, uint32_t(cam.height + 7) / 8, 1, &args);
+        cmd.barrier();
+        if (!hardware && i + 1 < batch) {
+          cmd.checkpoint();
+          pollInterrupt();
+        }
+      }
+      cmd.checkpoint();  // the batch's sums read back: a stop keeps whole samples
+      pollInterrupt();
+      float* batchSums = static_cast<float*>(const_cast<void*>(gpu.constantsData(a.sums)));
+      for (size_t i = 0; i < pixels * 4; ++i) {
+        sums.data[i] += double(batchSums[i]);
+        batchSums[i] = 0.0f;  // the next batch's sums start at 0
+      }
+      sums.samples += batch;
+    }
+    result.seconds = msSince(start) * 1e-3;
+    result.spp = sums.samples;
+    result.rays = uint64_t(*rays - raysBefore);
+    result.relativeError = sums.relativeError();
+    return result;
+  });
 }
 
 }  // namespace tandem

@@ -8,8 +8,11 @@
 // the camera and geometry stay the same, up to `spp`, and starts over on a history reset (scene,
 // size, pipeline, lens, max_depth), a camera move or moved geometry. Stereo: one render per eye.
 #pragma once
+#include <functional>
+
 #include "pipeline/param_table.h"
 #include "rt/reference_render.h"
+#include "scene/view.h"
 
 namespace tandem {
 
@@ -44,6 +47,13 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
     return {{Slots::hdr, 3}, {Slots::variance, 1, BufferKind::Variance}};
   }
   void execute(FrameContext& ctx) override;
+  // path and whitted on the GPU (the same Sobol samples, bit for bit); diffuse-gi's light grid,
+  // an open shutter and MPI ranks on the CPU.
+  bool hasGpu() const override;
+  std::string gpuCondition() const override {
+    return "with `integrator=path` or `whitted` and a still shutter";
+  }
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   void resetHistory() override { sums_.clear(); }
   // Splits the samples over `cluster`'s processes (MPI: every rank renders its rows, the image
@@ -54,6 +64,11 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
   const ParamTable<PTReferenceSettings>& tableFor() const override;
 
  private:
+  // The frame's views rendered by renderView into sums_ (settings, seeds, accumulation and the
+  // outputs as on either device).
+  void render(FrameContext& ctx,
+              const std::function<ReferenceResult(const View&, const ReferenceSettings&,
+                                                  SampleSums&)>& renderView);
   std::vector<SampleSums> sums_;  // per view, carried across frames in accumulate mode
   uint64_t geometryVersion_ = ~0ull;
   SampleCluster* cluster_ = nullptr;

@@ -1,0 +1,357 @@
+#version 460
+// tandem reference on the GPU, one invocation a pixel and one sample a dispatch, what
+// renderReference computes (rt/reference_render.cpp) for a still shutter: the same Owen-scrambled
+// Sobol samples (rt/sampler.cpp) for the pixel position, the lens point and the path, then the
+// path tracer (rt/path_tracer.cpp: next-event estimation to punctual lights and emissive
+// triangles with MIS, Fresnel glass, mirrors, Lambert + normalised Blinn-Phong, Russian roulette)
+// or distributed ray tracing of the hybrids' shading (whitted.glsl).
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_GOOGLE_include_directive : require
+#include "bvh.h"
+#include "reference_args.h"
+#include "scene_data.h"
+#include "whitted_args.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(push_constant, scalar) uniform Push { uint64_t args; };
+layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ArgsRef {
+  ReferenceArgs a;
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Emitters {
+  GpuEmitter e[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Ints { int v[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Sums { float v[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Counts { uint v[]; };
+
+ReferenceArgs A;
+
+#include "camera.glsl"
+#include "scene.glsl"
+#include "whitted.glsl"
+
+// ---- SobolSampler (rt/sampler.cpp), bit for bit.
+uint laineKarras(uint x, uint seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+uint hashCombine(uint seed, uint v) { return seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2)); }
+uint sobolDim1(uint i) {  // direction numbers v_k = v_{k-1} ^ v_{k-1} >> 1, v_0 = 1/2
+  uint v = 1u << 31, r = 0u;
+  for (int k = 0; k < 32; ++k, v ^= v >> 1)
+    if (((i >> k) & 1u) != 0u) r ^= v;
+  return r;
+}
+uint mix64(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ul;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebul;
+  return uint((z ^ (z >> 31)) >> 16);
+}
+float toUnit(uint x) { return float(x >> 8) * (1.0 / 16777216.0); }
+
+uint samplerSeed, samplerIndex, samplerPair;
+void startSampler(uint64_t seed, uint64_t pixel, uint index) {
+  samplerSeed = mix64(seed * 0x9E3779B97F4A7C15ul ^ uint64_t(mix64(pixel + 0x632BE59BD9B4E019ul)));
+  samplerIndex = bitfieldReverse(index);
+  samplerPair = 0u;
+}
+uint nextPair(out uint pairSeed) {
+  pairSeed = hashCombine(samplerSeed, samplerPair++);
+  return laineKarras(samplerIndex, hashCombine(pairSeed, 0x68bc21ebu));
+}
+float uniform1() {
+  uint s;
+  const uint y = nextPair(s);
+  return toUnit(bitfieldReverse(laineKarras(bitfieldReverse(y), hashCombine(s, 0x02e5be93u))));
+}
+vec2 uniform2() {
+  uint s;
+  const uint y = nextPair(s);
+  const uint d1 = bitfieldReverse(sobolDim1(bitfieldReverse(y)));
+  return vec2(toUnit(bitfieldReverse(laineKarras(bitfieldReverse(y), hashCombine(s, 0x02e5be93u)))),
+              toUnit(bitfieldReverse(laineKarras(d1, hashCombine(s, 0x967a889bu)))));
+}
+
+// ---- The camera: Camera::lensPoint and generateThinLensRay.
+vec2 lensPoint(float u1, float u2) {
+  float lx = 0.0, ly = 0.0;
+  if (A.apertureBlades >= 3) {
+    const float n = float(A.apertureBlades), x = u1 * n;
+    const float k = min(floor(x), n - 1.0), su = sqrt(u2), v = x - k;
+    const float a0 = A.apertureRotation + 2.0 * kPi * k / n, a1 = a0 + 2.0 * kPi / n;
+    lx = su * ((1.0 - v) * cos(a0) + v * cos(a1));
+    ly = su * ((1.0 - v) * sin(a0) + v * sin(a1));
+  } else {
+    const float p = 2.0 * u1 - 1.0, q = 2.0 * u2 - 1.0;
+    float r = 0.0, phi = 0.0;
+    if (p != 0.0 || q != 0.0) {
+      if (abs(p) > abs(q)) {
+        r = p;
+        phi = kPi / 4.0 * (q / p);
+      } else {
+        r = q;
+        phi = kPi / 2.0 - kPi / 4.0 * (p / q);
+      }
+    }
+    lx = r * cos(phi);
+    ly = r * sin(phi);
+  }
+  return vec2(A.apertureRadius * lx, A.apertureRadius * ly);
+}
+
+void thinLensRay(GpuCamera c, vec2 p, vec2 lens, out vec3 o, out vec3 d) {
+  float tnear;
+  cameraRayAt(c, p, o, d, tnear);
+  if (A.apertureRadius <= 0.0 || c.orthographic != 0) return;
+  const vec2 l = lensPoint(lens.x, lens.y);
+  const vec3 forward = vec3(c.forward[0], c.forward[1], c.forward[2]);
+  const vec3 focus = o + d * (A.focusDistance / dot(d, forward));
+  o = vec3(c.eye[0], c.eye[1], c.eye[2]) + vec3(c.right[0], c.right[1], c.right[2]) * l.x +
+      vec3(c.up[0], c.up[1], c.up[2]) * l.y;
+  d = normalize(focus - o);
+}
+
+// ---- The path tracer (rt/path_tracer.cpp).
+float fresnelDielectric(float cosi, float eta) {
+  const float sin2t = eta * eta * (1.0 - cosi * cosi);
+  if (sin2t >= 1.0) return 1.0;
+  const float cost = sqrt(1.0 - sin2t);
+  const float rs = (eta * cosi - cost) / (eta * cosi + cost);
+  const float rp = (cosi - eta * cost) / (cosi + eta * cost);
+  return 0.5 * (rs * rs + rp * rp);
+}
+vec3 toWorld(vec3 l, vec3 n) {  // orthonormalBasis (core/math.h)
+  const float sgn = n.z >= 0.0 ? 1.0 : -1.0;
+  const float q = -1.0 / (sgn + n.z), bb = n.x * n.y * q;
+  const vec3 t = vec3(1.0 + sgn * n.x * n.x * q, sgn * bb, -sgn * n.x);
+  const vec3 b = vec3(bb, sgn + n.y * n.y * q, -n.y);
+  return t * l.x + b * l.y + n * l.z;
+}
+vec3 sampleCosine(vec3 n, float u1, float u2) {
+  const float r = sqrt(u1), phi = 2.0 * kPi * u2;
+  return toWorld(vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u1))), n);
+}
+vec3 sampleBlinnHalf(vec3 n, float e, float u1, float u2) {
+  const float cosT = pow(u1, 1.0 / (e + 1.0));
+  const float sinT = sqrt(max(0.0, 1.0 - cosT * cosT)), phi = 2.0 * kPi * u2;
+  return toWorld(vec3(sinT * cos(phi), sinT * sin(phi), cosT), n);
+}
+float average(vec3 v) { return (v.x + v.y + v.z) * (1.0 / 3.0); }
+float powerHeuristic(float p, float q) { return p * p / (p * p + q * q); }
+
+// brdfAndPdf: the BRDF and the mixture density (cosine with probability pd, else Blinn-Phong).
+vec3 brdfAndPdf(vec3 n, vec3 wo, vec3 wi, vec3 kd, vec3 ks, float pd, float e, out float pdf) {
+  const float cosI = dot(n, wi);
+  const bool glossy = maxComponent(ks) > 0.0, lobe = cosI > 0.0 && pd < 1.0;
+  vec3 h = vec3(0.0);
+  float cosPow = 0.0;
+  if (glossy || lobe) {
+    h = normalize(wo + wi);
+    cosPow = pow(max(dot(n, h), 0.0), e);
+  }
+  const vec3 f = glossy ? kd * (1.0 / kPi) + ks * ((e + 8.0) / (8.0 * kPi) * cosPow) : kd * (1.0 / kPi);
+  if (cosI <= 0.0)
+    pdf = 0.0;
+  else if (pd >= 1.0)
+    pdf = cosI / kPi;
+  else
+    pdf = pd * cosI / kPi +
+          (1.0 - pd) * ((e + 1.0) / (2.0 * kPi) * cosPow) / max(4.0 * dot(wo, h), 1e-6);
+  return f;
+}
+
+float emitterPdf(int object, int prim) {
+  if (A.emitterCount == 0u || object < 0) return 0.0;
+  const int first = Ints(A.objectFirst).v[object];
+  return first < 0 ? 0.0 : Emitters(A.emitters).e[first + prim].pdfArea;
+}
+
+bool closestHit(vec3 o, vec3 d, float tnear, float tfar, bool cullBack, out TraceHit h) {
+  ++rays;
+  return traverse(o, d, tnear, tfar, TRACE_FILTERED | (cullBack ? TRACE_CULL_BACK : 0u), h);
+}
+
+vec3 areaLight(Surface s, vec3 wo, vec3 kd, vec3 ks, float pd) {
+  const float u = uniform1();
+  const vec2 uv = uniform2();
+  // EmitterTable::sample: the first triangle whose cumulative weight reaches u.
+  Emitters em = Emitters(A.emitters);
+  int lo = 0, hi = int(A.emitterCount) - 1;
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (em.e[mid].cdf < u)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  const GpuEmitter t = em.e[lo];
+  if (!(t.pdfArea > 0.0)) return vec3(0.0);
+  const uvec3 k = triangleVertices(Objects(S.objects).o[t.object], t.prim);
+  const float su = sqrt(uv.x);
+  const vec3 x = vertexPosition(k.x) * (1.0 - su) + vertexPosition(k.y) * (su * (1.0 - uv.y)) +
+                 vertexPosition(k.z) * (su * uv.y);
+  const vec3 toL = x - s.position;
+  const float dist = length(toL);
+  if (!(dist > 0.0)) return vec3(0.0);
+  const vec3 wi = toL / dist;
+  const float cosI = dot(s.normal, wi);
+  if (cosI <= 0.0) return vec3(0.0);
+  TraceHit h;
+  const vec3 o = offsetRayOrigin(s, wi);
+  if (!closestHit(o, wi, 0.0, dist * 1.001 + 1e-4, false, h) || h.object != t.object ||
+      h.prim != t.prim)
+    return vec3(0.0);
+  const Surface e = resolveSurface(h.object, h.prim, o, wi, h.t, h.u, h.v, 0.0);
+  const float cosL = -dot(e.geoNormal, wi);
+  if (!(cosL > 1e-6)) return vec3(0.0);
+  const float pdfLight = t.pdfArea * h.t * h.t / cosL;
+  float pdf;
+  const vec3 f = brdfAndPdf(s.normal, wo, wi, kd, ks, pd, s.specularExponent, pdf);
+  return f * e.emission * (cosI * powerHeuristic(pdfLight, pdf) / pdfLight);
+}
+
+vec3 directLight(Surface s, vec3 wo, vec3 kd, vec3 ks) {
+  vec3 sum = vec3(0.0);
+  Lights lights = Lights(S.lights);
+  for (uint i = 0u; i < S.lightCount; ++i) {
+    if (Uints(A.lightSkip).v[i] != 0u) continue;
+    const GpuLight l = lights.l[i];
+    vec3 wi, radiance;
+    float dist;
+    sampleLight(l, s.position, wi, dist, radiance);
+    const float cosI = dot(s.normal, wi);
+    if (cosI <= 0.0 || maxComponent(radiance) <= 0.0) continue;
+    if (l.castsShadows != 0u) {
+      ++rays;
+      TraceHit h;
+      const float tfar = isinf(dist) ? kInf : dist * (1.0 - 1e-4);
+      if (traverse(offsetRayOrigin(s, wi), wi, 0.0, tfar, TRACE_ANY | TRACE_FILTERED, h)) continue;
+    }
+    float pdf;
+    sum += brdfAndPdf(s.normal, wo, wi, kd, ks, 1.0, s.specularExponent, pdf) * radiance * cosI;
+  }
+  return sum;
+}
+
+// PathTracer::radiance: the camera ray from its origin (no near plane), culling back faces.
+vec3 pathRadiance(vec3 o, vec3 d) {
+  vec3 L = vec3(0.0), beta = vec3(1.0);
+  float lastPdf = 0.0;
+  for (int depth = 0; depth < A.maxDepth; ++depth) {
+    TraceHit hit;
+    if (!closestHit(o, d, 0.0, 1e30, depth == 0, hit)) {
+      L += beta * skyRadiance(d);
+      break;
+    }
+    Surface s = resolveSurface(hit.object, hit.prim, o, d, hit.t, hit.u, hit.v, 0.0);
+    if (maxComponent(s.emission) > 0.0 && dot(s.geoNormal, d) < 0.0) {
+      float w = 1.0;
+      if (lastPdf > 0.0) {
+        const float cosL = -dot(s.geoNormal, d);
+        const float pdfLight =
+            cosL > 1e-6 ? emitterPdf(hit.object, hit.prim) * hit.t * hit.t / cosL : 0.0;
+        w = powerHeuristic(lastPdf, pdfLight);
+      }
+      L += beta * s.emission * w;
+    }
+    lastPdf = 0.0;
+    const float t = 1.0 - s.opacity, m = (1.0 - t) * s.reflectivity;
+    const float lobe = uniform1();
+    const vec3 facing = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;
+    if (lobe < t) {
+      const bool entering = dot(s.geoNormal, d) < 0.0;
+      const float eta = entering ? S.environmentIor / s.ior : s.ior / S.environmentIor;
+      const float cosi = -dot(d, facing);
+      const float k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+      if (uniform1() < fresnelDielectric(cosi, eta) || k < 0.0) {
+        d = reflectDir(d, facing);
+      } else {
+        d = d * eta + facing * (eta * cosi - sqrt(k));
+        beta *= v3(Materials(S.materials).m[s.material].transmissionFilter);
+      }
+      d = normalize(d);
+    } else if (lobe < t + m) {
+      d = normalize(reflectDir(d, facing));
+    } else {
+      vec3 kd = max(s.diffuse, vec3(0.0)), ks = max(s.specular, vec3(0.0));
+      const float total = maxComponent(kd + ks);
+      if (total > 1.0) kd /= total, ks /= total;
+      s.normal = facing;
+      const vec3 wo = -d;
+      L += beta * directLight(s, wo, kd, ks);
+      const float wd = average(kd), wsp = average(ks);
+      if (wd + wsp <= 0.0) break;
+      const float pd = wd / (wd + wsp), e = s.specularExponent;
+      if (A.emitterCount > 0u) L += beta * areaLight(s, wo, kd, ks, pd);
+      const float which = uniform1();
+      const vec2 u = uniform2();
+      const vec3 wi = which < pd ? sampleCosine(facing, u.x, u.y)
+                                 : reflectDir(d, sampleBlinnHalf(facing, e, u.x, u.y));
+      const float cosI = dot(facing, wi);
+      if (cosI <= 0.0) break;
+      float pdf;
+      const vec3 f = brdfAndPdf(facing, wo, wi, kd, ks, pd, e, pdf);
+      if (!(pdf > 0.0)) break;
+      beta *= f * (cosI / pdf);
+      d = normalize(wi);
+      lastPdf = pdf;
+    }
+    o = offsetRayOrigin(s, d);
+    if (depth + 1 >= A.rouletteDepth) {
+      const float q = min(maxComponent(beta), 0.95);
+      if (!(q > 0.0) || uniform1() >= q) break;
+      beta /= q;
+    }
+  }
+  return L;
+}
+
+// Distributed ray tracing of the hybrids' shading (whittedRadiance): the camera ray from the
+// near plane culling back faces, then Whitted::shadePrimary.
+vec3 whittedRadiance(GpuCamera c, vec3 o, vec3 d) {
+  const vec3 forward = vec3(c.forward[0], c.forward[1], c.forward[2]);
+  TraceHit h;
+  if (!closestHit(o, d, c.nearPlane / max(dot(d, forward), 1e-6), 1e30, true, h))
+    return skyRadiance(d);
+  const Surface s = resolveSurface(h.object, h.prim, o, d, h.t, h.u, h.v, 0.0);
+  const float om = s.reflectivity, orr = 1.0 - s.opacity;
+  float wm, wr, wc;
+  effectWeights(om, orr, wm, wr, wc);
+  vec3 color = wc * shadePrimary(s, -d);
+  if (orr > 0.0) pushRefraction(s, d, vec3(wr), 1, orr);
+  if (om > 0.0) pushReflection(s, d, vec3(wm), 1, om);
+  return color + traceStack();
+}
+
+void main() {
+  A = ArgsRef(args).a;
+  const GpuCamera cam = CameraRef(A.camera).c;
+  const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
+  if (x >= cam.width || y >= cam.height) return;
+  useScene(A.scene);
+  whitted = WhittedConfig(A.whittedDepth, A.importanceCutoff, A.shadowCull, A.whittedFlags);
+  const uint64_t seed = (uint64_t(A.seedHi) << 32) | uint64_t(A.seedLo);
+  const uint64_t pixel = uint64_t(y) * uint64_t(cam.width) + uint64_t(x);
+  // One sample a dispatch, added to the pixel's sums (no other invocation writes them).
+  startSampler(seed, pixel, A.first);
+  const vec2 jitter = uniform2(), lens = uniform2();
+  uniform1();  // the shutter time: a still shutter here, the dimension kept
+  vec3 o, d;
+  thinLensRay(cam, vec2(float(x), float(y)) + jitter, lens, o, d);
+  vec3 L = A.integrator == TD_REFERENCE_WHITTED ? whittedRadiance(cam, o, d) : pathRadiance(o, d);
+  if (any(isnan(L)) || any(isinf(L))) L = vec3(0.0);  // a degenerate pdf spoils no pixel
+  const float lum = luminance(L);
+  Sums sums = Sums(A.sums);
+  const uint at = 4u * (uint(y) * uint(cam.width) + uint(x));
+  sums.v[at] += L.x;
+  sums.v[at + 1u] += L.y;
+  sums.v[at + 2u] += L.z;
+  sums.v[at + 3u] += lum * lum;
+  atomicAdd(Counts(A.counters).v[0], rays);
+}
