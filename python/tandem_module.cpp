@@ -372,7 +372,7 @@ std::string runExperimentPy(const std::string& name, const std::string& out,
                             const std::vector<std::string>& scenes, int width, int height,
                             int warmup, int frames, int spp, const std::string& cache, bool noCache,
                             int staticFrames, int pathFrames, double budget, double budgetMs,
-                            int threads) {
+                            int threads, const std::string& device) {
   ExperimentRequest r;
   r.fromPython = true;
   r.name = name;
@@ -390,6 +390,7 @@ std::string runExperimentPy(const std::string& name, const std::string& out,
   r.budget = budget;
   r.budgetMs = budgetMs;
   r.threads = threads;
+  r.device = device;
   const std::string dir = experimentOutDir(r);
   int status = 0;
   {

@@ -63,6 +63,9 @@ VerbRunner addExperimentVerb(CLI::App& app) {
   sub->add_option("--budget", v->r.budget, "heuristic: T in cost units for hybrid-heuristic");
   sub->add_option("--budget-ms", v->r.budgetMs, "heuristic: RT budget in ms for hybrid-budget");
   sub->add_option("--threads", v->r.threads, "Worker threads (0 = all cores)");
+  sub->add_option("--device", v->r.device,
+                  "auto (a GPU when there is one, else the CPU), cpu, or gpu: where the "
+                  "experiment's renders run (passes without a GPU version on the CPU)");
   return [v] { return v->run(); };
 }
 

@@ -299,9 +299,10 @@ def _number(text):
 
 def experiment(name, out=None, scenes=None, width=0, height=0, warmup=-1, frames=0, spp=0,
                cache=None, no_cache=False, static_frames=-1, path_frames=-1, budget=-1.0,
-               budget_ms=-1.0, threads=0):
+               budget_ms=-1.0, threads=0, device="auto"):
     """Runs `tandem experiment NAME` with the same overrides; returns {"out": folder,
-    "tables": {table: [row dicts]}}, the tables it wrote as CSV, numbers as numbers."""
+    "tables": {table: [row dicts]}}, the tables it wrote as CSV, numbers as numbers. `device`:
+    where its renders run (auto, cpu or gpu), as the CLI's --device."""
     where = "experiment"
 
     def count(value, field):
@@ -317,6 +318,8 @@ def experiment(name, out=None, scenes=None, width=0, height=0, warmup=-1, frames
         _fail(where, "out", f"expected a folder, got {out!r}")
     if cache is not None and not isinstance(cache, (str, os.PathLike)):
         _fail(where, "cache", f"expected a folder, got {cache!r}")
+    if not isinstance(device, str):
+        _fail(where, "device", f"expected auto, cpu or gpu, got {device!r}")
     folder = _tandem.run_experiment(
         os.fspath(name), os.fspath(out or ""),
         [] if scenes is None else _strings(scenes, where, "scenes"), count(width, "width"),
@@ -324,7 +327,7 @@ def experiment(name, out=None, scenes=None, width=0, height=0, warmup=-1, frames
         count(spp, "spp"), os.fspath(default_cache() if cache is None else cache),
         _boolean(no_cache, where, "no_cache"), count(static_frames, "static_frames"),
         count(path_frames, "path_frames"), _real(budget, where, "budget"),
-        _real(budget_ms, where, "budget_ms"), count(threads, "threads"))
+        _real(budget_ms, where, "budget_ms"), count(threads, "threads"), device)
     tables = {}
     for entry in sorted(os.listdir(folder)):
         if entry.endswith(".csv"):

@@ -1,17 +1,40 @@
 #include "pipeline/renderer.h"
 
 #include <cstring>
+#include <mutex>
+#include <utility>
 
 #include "pipeline/gpu_frame.h"
 
 namespace tandem {
+
+namespace {
+std::mutex defaultDeviceMutex;
+std::shared_ptr<GpuDevice> defaultDevice;
+}  // namespace
+
+std::shared_ptr<GpuDevice> defaultRenderDevice() {
+  const std::lock_guard<std::mutex> lock(defaultDeviceMutex);
+  return defaultDevice;
+}
+
+ScopedRenderDevice::ScopedRenderDevice(std::shared_ptr<GpuDevice> device) {
+  const std::lock_guard<std::mutex> lock(defaultDeviceMutex);
+  previous_ = std::exchange(defaultDevice, std::move(device));
+}
+
+ScopedRenderDevice::~ScopedRenderDevice() {
+  const std::lock_guard<std::mutex> lock(defaultDeviceMutex);
+  defaultDevice = std::move(previous_);
+}
 
 Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings)
     : scene_(&scene), pipeline_(std::move(pipeline)), settings_(settings) {
   ctx_.scene = scene_;
   ctx_.seed = settings.seed;
   ctx_.textureFootprint = settings.textureFootprint;
-  if (settings.gpu) ctx_.gpu = std::make_shared<GpuFrame>(settings.gpu);
+  if (!settings_.gpu) settings_.gpu = defaultRenderDevice();
+  if (settings_.gpu) ctx_.gpu = std::make_shared<GpuFrame>(settings_.gpu);
   applySize();
   resetHistory("first frame");
 }

@@ -25,6 +25,21 @@ struct RenderSettings {
   std::shared_ptr<GpuDevice> gpu = nullptr;
 };
 
+// The device a Renderer whose settings name none renders on (null: the CPU). `tandem experiment
+// --device` sets it for the renders of an experiment, whose runners make their own settings.
+std::shared_ptr<GpuDevice> defaultRenderDevice();
+// Makes `device` the default until destroyed (the previous one back then).
+class ScopedRenderDevice {
+ public:
+  explicit ScopedRenderDevice(std::shared_ptr<GpuDevice> device);
+  ~ScopedRenderDevice();
+  ScopedRenderDevice(const ScopedRenderDevice&) = delete;
+  ScopedRenderDevice& operator=(const ScopedRenderDevice&) = delete;
+
+ private:
+  std::shared_ptr<GpuDevice> previous_;
+};
+
 class Renderer {
  public:
   Renderer(const Scene& scene, Pipeline pipeline, RenderSettings settings);

@@ -84,7 +84,7 @@ check "--set and the effect mask AOV" "[ -s $D/hb/spheres_hybrid-budget_heuristi
   --warmup 1 --static-frames 1 --path-frames 3 --out "$D/exp" >/dev/null
 check "experiment writes results.md with Tables 5 and 6" \
   "grep -q 'Table 5' $D/exp/results.md && grep -q 'Table 6' $D/exp/results.md && grep -q 'RAYT ONLY FRAME' $D/exp/results.md"
-check "experiment records machine, build and commit" "grep -q 'hardware threads; [A-Za-z]* build; commit ' $D/exp/results.md"
+check "experiment records machine, build, commit and device" "grep -q 'hardware threads; [A-Za-z]* build; commit .*; device CPU' $D/exp/results.md"
 check "experiment CSVs have a row per scene / frame" \
   "[ \$(wc -l < $D/exp/table5.csv) -eq 3 ] && [ \$(wc -l < $D/exp/table6.csv) -eq 3 ] && [ \$(wc -l < $D/exp/budget_frames.csv) -eq 7 ]"
 check "experiment writes images" \
@@ -190,6 +190,7 @@ expect_error "experiment bad frames" "--path-frames" "$T" experiment heuristic -
 # none) `gpu` exits 2 saying so and `auto` renders on the CPU; with one (lavapipe in CI) `gpu`
 # gives the CPU's image.
 expect_error "bad device" "--device: expected auto, cpu or gpu" "$T" render --device cuda --out "$D/err/x.png"
+expect_error "bad experiment device" "--device: expected auto, cpu or gpu" "$T" experiment heuristic --device cuda --out "$D/err/exp"
 out=$(VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json "$T" render --device gpu --width 32 --height 18 --out "$D/err/x.png" 2>&1); rc=$?
 check "--device gpu with no Vulkan driver: exit 2, says none was found, nothing written" \
   "[ $rc -eq 2 ] && grep -q 'no usable Vulkan device' <<<\"\$out\" && [ -z \"\$(ls -A $D/err 2>/dev/null)\" ]"
@@ -215,6 +216,10 @@ else
   psnr=$(awk '/^psnr/ {print $2}' <<<"$("$T" compare "$D/ref_gpu.exr" "$D/ref_cpu.exr" 2>&1)")
   check "reference --device gpu takes the CPU's samples (PSNR >= 45 dB, got $psnr)" \
     "[ \"$psnr\" = inf ] || awk -v p=$psnr 'BEGIN{exit !(p >= 45)}'"
+  "$T" experiment heuristic --device gpu --scenes spheres --width 32 --height 18 --warmup 0 \
+    --static-frames 1 --path-frames 2 --out "$D/exp_gpu" >/dev/null 2>&1
+  check "experiment --device gpu renders there and names the device" \
+    "grep -q 'device llvmpipe\|device .*GPU' $D/exp_gpu/results.md && [ \$(wc -l < $D/exp_gpu/table5.csv) -eq 2 ]"
 fi
 expect_error "missing scene file" "not found" "$T" render --scene /nonexistent.obj --out "$D/err/x.png"
 expect_error "unknown builtin" "not a file and not a built-in" "$T" render --scene nosuchscene --out "$D/err/x.png"

@@ -226,6 +226,13 @@ def test_experiment_returns_its_tables():
     assert "hybrid-heuristic" in tandem.pipelines()
 
 
+def test_experiment_device_is_checked():
+    for device, says in ((3, "device: expected auto, cpu or gpu"),
+                         ("cuda", "device: expected auto, cpu or gpu")):
+        with pytest.raises(tandem.Error, match=says):
+            tandem.experiment("heuristic", out=scratch("bad_device"), device=device)
+
+
 def run_example(script, *args):
     """Runs examples/SCRIPT from a scratch folder that sees the repository's scenes."""
     d = scratch("example_" + script)

@@ -1,6 +1,7 @@
 #include "eval/experiments/experiment_runner.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -11,6 +12,7 @@
 #include "eval/experiments/experiment_heuristic.h"
 #include "eval/experiments/experiment_interleaved.h"
 #include "eval/experiments/experiment_taa.h"
+#include "pipeline/renderer.h"
 
 #ifndef TANDEM_SOURCE_DIR
 #define TANDEM_SOURCE_DIR "."
@@ -225,6 +227,14 @@ int runStaged(const ExperimentRequest& r);
 // and what the output folder held before is replaced file by file, never removed.
 int runExperiment(const ExperimentRequest& r) {
   checkOverrides(r);
+  // Every render of the experiment (its runners make their own settings) on the device asked for.
+  const char* deviceField = r.fromPython ? "device" : "--device";
+  const std::string source = r.fromPython ? "experiment()" : "command line";
+  const DeviceChoice choice = parseDeviceChoice(r.device, source, deviceField);
+  const ScopedRenderDevice device(GpuDevice::forChoice(choice, source + ": " + deviceField));
+  if (const std::shared_ptr<GpuDevice> gpu = defaultRenderDevice())
+    std::fprintf(stderr, "tandem: device: %s (%s)\n", gpu->info().name.c_str(),
+                 gpu->info().type.c_str());
   fs::path out = fs::path(experimentOutDir(r)).lexically_normal();
   if (out.filename().empty()) out = out.parent_path();
   fs::path staging = out;

@@ -17,6 +17,7 @@ struct ExperimentRequest {
   ExperimentOverrides o;
   int staticFrames = -1, pathFrames = -1, threads = 0;  // -1: not given
   double budget = -1, budgetMs = -1;                    // heuristic runner; -1: not given
+  std::string device = "auto";  // where its renders run: auto, cpu or gpu (passes without one: CPU)
   // Who asks, for error messages: the CLI's options are "--width", Python's arguments "width".
   bool fromPython = false;
 };

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <thread>
 
+#include "pipeline/renderer.h"
+
 #ifndef TANDEM_SOURCE_DIR
 #define TANDEM_SOURCE_DIR "."
 #endif
@@ -47,12 +49,14 @@ MachineInfo machineInfo() {
   m.threads = std::thread::hardware_concurrency();
   m.buildType = TANDEM_BUILD_TYPE;
   m.commit = readCommit();
+  const std::shared_ptr<GpuDevice> gpu = defaultRenderDevice();
+  m.device = gpu ? gpu->info().name + " (" + gpu->info().type + ")" : "CPU";
   return m;
 }
 
 std::string MachineInfo::oneLine() const {
   return cpuModel + ", " + std::to_string(threads) + " hardware threads; " + buildType +
-         " build; commit " + commit;
+         " build; commit " + commit + "; device " + device;
 }
 
 }  // namespace tandem

@@ -1,5 +1,6 @@
-// What an experiment records about where it ran: CPU model and hardware threads, build type and
-// the source tree's commit, so a table can be traced back to its machine and code.
+// What an experiment records about where it ran: CPU model and hardware threads, build type, the
+// source tree's commit and the device its renders ran on, so a table can be traced back to its
+// machine and code.
 #pragma once
 #include <string>
 
@@ -10,6 +11,7 @@ struct MachineInfo {
   unsigned threads = 0;   // hardware threads
   std::string buildType;  // CMAKE_BUILD_TYPE of this binary
   std::string commit;     // `git describe --always --dirty` of the source tree, or "unknown"
+  std::string device;     // where the renders ran: "CPU", or the GPU's name and kind
   std::string oneLine() const;
 };
 
