@@ -16,21 +16,6 @@
 namespace tandem {
 namespace {
 
-// The share of pixels whose every channel agrees within `tol` (relative to max(1, |value|)).
-double agreement(const Buffer& a, const Buffer& b, float tol) {
-  const size_t pixels = a.pixelCount(), ch = size_t(a.channels);
-  size_t same = 0;
-  for (size_t i = 0; i < pixels; ++i) {
-    bool ok = true;
-    for (size_t k = 0; k < ch; ++k) {
-      const float x = a.data[i * ch + k], y = b.data[i * ch + k];
-      ok &= std::abs(x - y) <= tol * std::max(1.0f, std::abs(x));
-    }
-    same += ok;
-  }
-  return double(same) / double(std::max<size_t>(pixels, 1));
-}
-
 void compareFrames(const std::shared_ptr<GpuDevice>& dev, const Scene& scene, CameraDesc cam,
                    const std::string& what) {
   RenderSettings rs{.width = 160, .height = 90};

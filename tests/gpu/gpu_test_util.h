@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -71,6 +72,21 @@ inline ImageAgreement imageAgreement(const Buffer& cpu, const Buffer& gpu, const
   r.ties = double(ties) / double(std::max<size_t>(cpuIds.data.size(), 1));
   return r;
 }
+// The share of pixels whose every channel agrees within `tol` (relative to max(1, |value|)).
+inline double agreement(const Buffer& a, const Buffer& b, float tol) {
+  const size_t pixels = a.pixelCount(), ch = size_t(a.channels);
+  size_t same = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    bool ok = true;
+    for (size_t k = 0; k < ch; ++k) {
+      const float x = a.data[i * ch + k], y = b.data[i * ch + k];
+      ok &= std::abs(x - y) <= tol * std::max(1.0f, std::abs(x));
+    }
+    same += ok;
+  }
+  return double(same) / double(std::max<size_t>(pixels, 1));
+}
+
 // The bar of every deterministic GPU pass: PSNR >= 45 dB where both saw the same surface, near
 // ties on at most 0.2 % of the pixels, and every one of them on an edge.
 inline void expectAgreement(const ImageAgreement& a, const std::string& what) {

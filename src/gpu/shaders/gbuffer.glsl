@@ -109,17 +109,19 @@ vec2 screenMotion(GpuView v, vec4 now, vec4 before) {
   return a - b;
 }
 
+// Where the point p of an object was last frame (itself unless the object moved).
+vec3 previousPosition(GpuObjectMotion m, vec3 p) {
+  if (m.moved == 0u) return p;
+  const float w[12] = m.worldToPrev;
+  return vec3(w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3],
+              w[4] * p.x + w[5] * p.y + w[6] * p.z + w[7],
+              w[8] * p.x + w[9] * p.y + w[10] * p.z + w[11]);
+}
+
 vec2 motionVector(GpuView v, uint64_t motion, int object, vec3 p) {
   const GpuObjectMotion m = MotionRef(motion).m[object];
   if (m.moved == 0u && v.cameraMoved == 0) return vec2(0.0);
-  vec3 prev = p;
-  if (m.moved != 0u) {
-    const float w[12] = m.worldToPrev;
-    prev = vec3(w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3],
-                w[4] * p.x + w[5] * p.y + w[6] * p.z + w[7],
-                w[8] * p.x + w[9] * p.y + w[10] * p.z + w[11]);
-  }
-  return screenMotion(v, vec4(p, 1.0), vec4(prev, 1.0));
+  return screenMotion(v, vec4(p, 1.0), vec4(previousPosition(m, p), 1.0));
 }
 
 // motionVectorAtPixel: a point on the camera ray through view-local pixel centre `pixel` is seen
@@ -127,15 +129,9 @@ vec2 motionVector(GpuView v, uint64_t motion, int object, vec3 p) {
 vec2 motionAtPixel(GpuView v, uint64_t motion, int object, vec3 p, vec2 pixel) {
   const GpuObjectMotion m = MotionRef(motion).m[object];
   if (m.moved == 0u && v.cameraMoved == 0) return vec2(0.0);
-  vec3 prev = p;
-  if (m.moved != 0u) {
-    const float w[12] = m.worldToPrev;
-    prev = vec3(w[0] * p.x + w[1] * p.y + w[2] * p.z + w[3],
-                w[4] * p.x + w[5] * p.y + w[6] * p.z + w[7],
-                w[8] * p.x + w[9] * p.y + w[10] * p.z + w[11]);
-  }
   vec2 before;
-  if (!projectToPixel(v.prevViewProj, v.camera, vec4(prev, 1.0), before)) return vec2(0.0);
+  if (!projectToPixel(v.prevViewProj, v.camera, vec4(previousPosition(m, p), 1.0), before))
+    return vec2(0.0);
   return pixel + vec2(v.camera.jitter[0], v.camera.jitter[1]) - before;
 }
 

@@ -8,6 +8,7 @@
 #include "gpu/shaders/reference_args.h"
 #include "gpu/shaders/reference_spv.h"
 #include "gpu/shaders/whitted_args.h"
+#include "passes/common/gpu_whitted.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
 #include "rt/reference_render.h"
@@ -201,8 +202,7 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
   a.whittedDepth = w.maxDepth;
   a.importanceCutoff = w.importanceCutoff;
   a.shadowCull = w.shadowCull;
-  a.whittedFlags = (w.texturedShadows ? TD_WHITTED_TEXTURED_SHADOWS : 0u) |
-                   (w.shadeAtMaxDepth ? TD_WHITTED_SHADE_AT_MAX_DEPTH : 0u);
+  a.whittedFlags = gpuWhittedFlags(w);
   const GpuKernel& k =
       gpu.kernel("reference", kReferenceSpv, sizeof(kReferenceSpv) / 4, sizeof(uint64_t));
   const auto* rays = static_cast<const uint32_t*>(gpu.constantsData(a.counters));

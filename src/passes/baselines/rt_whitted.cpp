@@ -3,6 +3,7 @@
 #include "gpu/gpu_camera.h"
 #include "gpu/shaders/rt_whitted_spv.h"
 #include "gpu/shaders/whitted_args.h"
+#include "passes/common/gpu_whitted.h"
 #include "passes/common/whitted_settings.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
@@ -67,8 +68,7 @@ void RTWhittedPass::executeGpu(FrameContext& ctx) {
   a.maxDepth = w.maxDepth;
   a.importanceCutoff = w.importanceCutoff;
   a.shadowCull = w.shadowCull;
-  a.flags = (w.texturedShadows ? TD_WHITTED_TEXTURED_SHADOWS : 0u) |
-            (w.shadeAtMaxDepth ? TD_WHITTED_SHADE_AT_MAX_DEPTH : 0u);
+  a.flags = gpuWhittedFlags(w);
   const GpuKernel& k =
       gpu.kernel("rt_whitted", kRtWhittedSpv, sizeof(kRtWhittedSpv) / 4, sizeof(WhittedArgs));
   for (const View& v : ctx.views) {
@@ -81,14 +81,7 @@ void RTWhittedPass::executeGpu(FrameContext& ctx) {
   // The counters are read once the frame's commands completed.
   const auto* counts = static_cast<const uint32_t*>(gpu.constantsData(a.counters));
   const double pixels = double(ctx.width) * double(ctx.height);
-  gpu.afterSubmit([this, &ctx, counts, pixels] {
-    ShadowCounts c;
-    c.culled = counts[TD_COUNT_CULLED];
-    c.traced = counts[TD_COUNT_TRACED];
-    c.surfaces = counts[TD_COUNT_SURFACES];
-    reportShadows(ctx, *this, c, pixels);
-    ctx.passRays += double(counts[TD_COUNT_RAYS]);
-  });
+  gpu.afterSubmit([this, &ctx, counts, pixels] { reportGpuShadows(ctx, *this, counts, pixels); });
 }
 
 }  // namespace tandem

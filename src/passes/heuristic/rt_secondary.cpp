@@ -10,6 +10,7 @@
 #include "core/cycle_clock.h"
 #include "gpu/shaders/rt_secondary_spv.h"
 #include "gpu/shaders/secondary_args.h"
+#include "passes/common/gpu_whitted.h"
 #include "passes/common/lights_in_view.h"
 #include "passes/heuristic/ranked_tiles.h"
 #include "passes/heuristic/rt_feedback.h"
@@ -392,8 +393,7 @@ void RTSecondaryPass::executeGpu(FrameContext& ctx) {
   a.importanceCutoff = w.importanceCutoff;
   a.shadowCull = w.shadowCull;
   a.outsideShadow = settings().outsideMaskShadow;
-  a.flags = (w.texturedShadows ? TD_WHITTED_TEXTURED_SHADOWS : 0u) |
-            (w.shadeAtMaxDepth ? TD_WHITTED_SHADE_AT_MAX_DEPTH : 0u);
+  a.flags = gpuWhittedFlags(w);
   a.classLight = settings().shadowClassLight;
   const GpuKernel& k = gpu.kernel("rt_secondary", kRtSecondarySpv, sizeof(kRtSecondarySpv) / 4,
                                   sizeof(SecondaryArgs));
@@ -414,12 +414,7 @@ void RTSecondaryPass::executeGpu(FrameContext& ctx) {
   const auto* tallies = static_cast<const uint32_t*>(gpu.constantsData(a.stats));
   const double pixels = double(ctx.width) * double(ctx.height);
   gpu.afterSubmit([this, &ctx, &cmd, counts, tallies, objects, timed, pixels, t0, t1] {
-    ShadowCounts c;
-    c.culled = counts[TD_COUNT_CULLED];
-    c.traced = counts[TD_COUNT_TRACED];
-    c.surfaces = counts[TD_COUNT_SURFACES];
-    reportShadows(ctx, *this, c, pixels);
-    ctx.passRays += double(counts[TD_COUNT_RAYS]);
+    reportGpuShadows(ctx, *this, counts, pixels);
     RtStats stats;
     stats.timeEffects = timed;
     stats.ms = cmd.activeMs(t0, t1);
