@@ -133,25 +133,13 @@ bool PTReferencePass::hasGpu() const {
   return settings().integrator != Integrator::DiffuseGI;
 }
 
-void PTReferencePass::executeGpu(FrameContext& ctx) {
-  // An open shutter (its camera or objects moving: part 2's motion blur) and processes sharing
-  // the rows stay on the CPU.
-  bool shutter = false;
-  for (const View& v : ctx.views)
-    shutter |= std::memcmp(&v.camera.desc, &v.shutterCamera.desc, sizeof(CameraDesc)) != 0;
-  for (const FrameObject& fo : ctx.frame.objects) shutter |= !fo.stepPositions.empty();
-  if (shutter || (cluster_ && cluster_->ranks() > 1)) {
-    execute(ctx);
-    return;
-  }
-  GpuFrame& gpu = *ctx.gpu;
-  GpuCommands& cmd = gpu.commands();
-  const FrameScene& fs = ctx.frame;
-  const Scene& scene = *ctx.scene;
-  const uint64_t sceneAddress = gpu.scene(fs).sceneAddress();
-  // EmitterTable's triangles: chosen in proportion to area x emitted luminance.
+namespace {
+// EmitterTable's triangles as the GPU samples them (chosen in proportion to area x emitted
+// luminance), and each object's first one in `objectFirst` (-1: not emissive).
+std::vector<GpuEmitter> gpuEmitters(const FrameScene& fs, std::vector<int32_t>& objectFirst) {
+  const Scene& scene = *fs.scene;
   std::vector<GpuEmitter> emitters;
-  std::vector<int32_t> objectFirst(std::max<size_t>(fs.objects.size(), 1), -1);
+  objectFirst.assign(std::max<size_t>(fs.objects.size(), 1), -1);
   std::vector<double> weights;
   double total = 0;
   for (size_t o = 0; o < fs.objects.size(); ++o) {
@@ -177,6 +165,28 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
     emitters[k].pdfArea = area > 0.0f ? float(weights[k] / total) / area : 0.0f;
     emitters[k].cdf = float(cdf / total);
   }
+  return emitters;
+}
+}  // namespace
+
+void PTReferencePass::executeGpu(FrameContext& ctx) {
+  // An open shutter (its camera or objects moving: part 2's motion blur) and processes sharing
+  // the rows stay on the CPU.
+  bool shutter = false;
+  for (const View& v : ctx.views)
+    shutter |= std::memcmp(&v.camera.desc, &v.shutterCamera.desc, sizeof(CameraDesc)) != 0;
+  for (const FrameObject& fo : ctx.frame.objects) shutter |= !fo.stepPositions.empty();
+  if (shutter || (cluster_ && cluster_->ranks() > 1)) {
+    execute(ctx);
+    return;
+  }
+  GpuFrame& gpu = *ctx.gpu;
+  GpuCommands& cmd = gpu.commands();
+  const FrameScene& fs = ctx.frame;
+  const Scene& scene = *ctx.scene;
+  const uint64_t sceneAddress = gpu.scene(fs).sceneAddress();
+  std::vector<int32_t> objectFirst;
+  const std::vector<GpuEmitter> emitters = gpuEmitters(fs, objectFirst);
   std::vector<uint32_t> lightSkip(std::max<size_t>(scene.lights.size(), 1), 0);
   for (size_t i = 0; i < scene.lights.size(); ++i) lightSkip[i] = scene.lights[i].fromEmissiveMesh;
   const GpuEmitter none{};
