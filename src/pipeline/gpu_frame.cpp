@@ -79,6 +79,26 @@ const GpuBuffer& GpuFrame::scratch(const std::string& key, size_t bytes) {
   return b;
 }
 
+uint64_t GpuFrame::residentScratch(const std::string& key, uint64_t version, size_t bytes,
+                                   const std::function<void(void*, uint64_t)>& fill,
+                                   size_t* moved) {
+  if (moved) *moved = 0;
+  auto held = versions_.find(key);
+  const GpuBuffer* existing = scratch_.count(key) ? &scratch_[key] : nullptr;
+  if (held != versions_.end() && held->second == version && existing && existing->size >= bytes)
+    return existing->address;
+  const GpuBuffer& b = scratch(key, bytes);
+  versions_.erase(key);  // (stale until the copy below completes)
+  GpuBuffer& s = staging(bytes);
+  fill(s.mapped, b.address);
+  uploads_.begin();
+  uploads_.copy(s, b, bytes);
+  uploads_.submit();
+  versions_[key] = version;
+  if (moved) *moved = bytes;
+  return b.address;
+}
+
 void GpuFrame::beginSubmission() {
   constantsArena_ = 0;
   constantsUsed_ = 0;
@@ -194,6 +214,7 @@ void GpuFrame::forget() {
   copies_.clear();
   for (auto& [key, b] : scratch_) memory_.release(b);
   scratch_.clear();
+  versions_.clear();
 }
 
 }  // namespace tandem

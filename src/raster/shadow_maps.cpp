@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "raster/visibility_buffer.h"
@@ -13,6 +14,11 @@ namespace {
 
 Vec3 anyUp(Vec3 dir) {
   return std::abs(dir.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+}
+
+uint64_t nextVersion() {
+  static std::atomic<uint64_t> next{1};
+  return next++;
 }
 
 std::vector<float> lightKey(const Scene& s) {
@@ -56,6 +62,7 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
     if (staticStale && !isWanted(i)) faces_[i].clear();
   }
   if (!staticStale && fresh.empty() && !geometryMoved) return;
+  version_ = nextVersion();
   sweep_ = fs.motionBlur();
   geometryVersion_ = fs.geometryVersion;
   staticVersion_ = fs.staticVersion;
@@ -251,6 +258,15 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
     face.moving = {};  // the maps hold no moving caster now
     markOpaque(face, {0, 0, face.map.width, face.map.height});
   });
+}
+
+std::vector<ShadowMaps::FaceView> ShadowMaps::faceViews(size_t i) const {
+  std::vector<FaceView> out;
+  if (i >= faces_.size()) return out;
+  for (const Face& f : faces_[i])
+    out.push_back({&f.camera, f.map.width, f.map.height, f.texelPerDistance, f.map.depth.data(),
+                   f.near.texels.data(), f.opaqueDepth.data()});
+  return out;
 }
 
 const ShadowMaps::Face* ShadowMaps::faceFor(size_t i, Vec3 p) const {

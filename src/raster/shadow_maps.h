@@ -61,6 +61,22 @@ class ShadowMaps {
   // count with want[k].
   void classify(size_t i, int count, const Vec3* p, const Vec3* n, const int* self,
                 const bool* want, ShadowClass* out) const;
+  // What a device copy of light i's maps needs (none when it has none): each face's camera and
+  // texels as classify and visibility read them.
+  struct FaceView {
+    const Camera* camera;
+    int width, height;
+    float texelPerDistance;
+    const float* depth;                    // the map (reversed-Z)
+    const ConservativeDepth::Texel* near;  // the conservative map
+    const float* opaqueDepth;              // depth where an opaque static caster drew it, else 0
+  };
+  std::vector<FaceView> faceViews(size_t i) const;
+  bool castsShadows(size_t i) const { return i < casts_.size() && casts_[i] != 0; }
+  size_t lights() const { return faces_.size(); }
+  // Changes whenever update() draws anything (unique across ShadowMaps objects): a device copy
+  // made at one version is current while the version stays.
+  uint64_t version() const { return version_; }
   int redraws() const { return redraws_; }              // full (static) redraws
   int movingRedraws() const { return movingRedraws_; }  // animated casters drawn again
 
@@ -106,6 +122,7 @@ class ShadowMaps {
   bool sweep_ = false;          // the shutter was open when the conservative maps were drawn
   std::vector<uint8_t> casts_;  // per light: it casts shadows
   int resolution_ = 0, redraws_ = 0, movingRedraws_ = 0, mapped_ = 0;
+  uint64_t version_ = 0;
   Rasterizer raster_;
 };
 

@@ -1,7 +1,8 @@
 // Walewski et al. 2019's hybrid with its passes on the GPU against the CPU: rt_secondary's
 // shadow, reflection and refraction buffers and traced mask, and the composited image, of
-// `hybrid-all` (every reflective and transparent object and every shadow ray traced) on the
-// built-in scenes and the feature scene, over three frames of a moving camera.
+// `hybrid-all` (every reflective and transparent object traced; shadows classified by the shadow
+// maps, traced, or looked up in the maps) on the built-in scenes and the feature scene, over three
+// frames of a moving camera; and classified shadows on the GPU against its shadow rays.
 #include <gtest/gtest.h>
 
 #include "gpu/feature_scene.h"
@@ -13,13 +14,14 @@
 namespace tandem {
 namespace {
 
+// `shadows`: rt_secondary's shadow mode (classified, rays, maps).
 void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pipeline,
-                   const Scene& scene, CameraDesc cam, const std::string& what) {
+                   const Scene& scene, CameraDesc cam, const std::string& what,
+                   const std::string& shadows = "classified") {
   RenderSettings rs{.width = 160, .height = 90};
-  // Every shadow traced: rt_secondary's GPU version (classified shadows need the shadow maps).
   const auto load = [&] {
     Pipeline p = Pipeline::load(pipeline);
-    p.setParam("rt_secondary.shadows=rays", "test");
+    p.setParam("rt_secondary.shadows=" + shadows, "test");
     return p;
   };
   Renderer cpu(scene, load(), rs);
@@ -32,16 +34,20 @@ void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     bool onGpu = false;  // a GPU pass has a row of its host time
     for (const PassTiming& t : ft.passes) onGpu |= t.name == "rt_secondary/host";
     EXPECT_TRUE(onGpu);
-    const std::string at = pipeline + ", " + what + ", frame " + std::to_string(f);
+    const std::string at =
+        pipeline + ", " + what + ", shadows " + shadows + ", frame " + std::to_string(f);
     const FrameContext &c = cpu.context(), &g = gpu.context();
     const Buffer &cIds = c.input("object_id"), &gIds = g.input("object_id");
     for (const char* name : {"shadow", "reflection", "refraction", "traced_mask", "composite"})
       expectAgreement(imageAgreement(c.input(name), g.input(name), cIds, gIds), at + ": " + name);
     expectAgreement(imageAgreement(cpu.output(), gpu.output(), cIds, gIds), at + ": output");
-    // The same work: rays within 1 % (near-ties of which light a pixel asks about).
-    const double cpuRays = c.counter("rt_secondary/shadow_traced", -1),
-                 gpuRays = g.counter("rt_secondary/shadow_traced", -2);
-    EXPECT_NEAR(gpuRays, cpuRays, 0.01 * cpuRays + 1) << at;
+    // The same work: each share of the light-surface pairs (traced, and decided by the maps)
+    // within 1 % (near-ties of which light a pixel asks about, or of a texel's depth test).
+    for (const char* q : {"shadow_traced", "shadow_lit", "shadow_shadowed"}) {
+      const std::string name = std::string("rt_secondary/") + q;
+      const double cpuShare = c.counter(name, -1), gpuShare = g.counter(name, -2);
+      EXPECT_NEAR(gpuShare, cpuShare, 0.01 * cpuShare + 1e-3) << at << ": " << q;
+    }
     cam.position = cam.position + step;
   }
 }
@@ -53,6 +59,35 @@ TEST(GpuHybrid, SecondaryEffectsMatchTheCpu) {
     compareHybrid(dev, "hybrid-all", scene, defaultCamera(scene), name);
   }
   compareHybrid(dev, "hybrid-all", featureScene(), featureCamera(), "features");
+  const Scene atrium = loadScene("atrium");
+  compareHybrid(dev, "hybrid-all", atrium, defaultCamera(atrium), "atrium", "rays");
+  compareHybrid(dev, "hybrid-all", atrium, defaultCamera(atrium), "atrium", "maps");
+  expectNoValidationMessages(*dev);
+}
+
+// The check of classified shadows: on the GPU they give the image its shadow rays give
+// (the maps decide only where they are certain), while deciding a share of the pairs.
+TEST(GpuHybrid, ClassifiedShadowsEqualShadowRays) {
+  REQUIRE_GPU(dev);
+  for (const char* name : {"cornell", "atrium"}) {
+    const Scene scene = loadScene(name);
+    RenderSettings rs{.width = 160, .height = 90, .gpu = dev};
+    Pipeline classified = Pipeline::load("hybrid-all"), rays = Pipeline::load("hybrid-all");
+    classified.setParam("rt_secondary.shadows=classified", "test");
+    rays.setParam("rt_secondary.shadows=rays", "test");
+    Renderer c(scene, std::move(classified), rs), r(scene, std::move(rays), rs);
+    c.renderFrame(0, defaultCamera(scene));
+    r.renderFrame(0, defaultCamera(scene));
+    const FrameContext &cc = c.context(), &rc = r.context();
+    EXPECT_GE(psnr(cc.input("shadow"), rc.input("shadow"), 1.0), 45.0) << name;
+    EXPECT_GE(psnr(c.output(), r.output(), 1.0), 45.0) << name;
+    const double decided =
+        cc.counter("rt_secondary/shadow_lit", 0) + cc.counter("rt_secondary/shadow_shadowed", 0);
+    EXPECT_GT(decided, 0.05) << name << ": the maps decided almost nothing";
+    EXPECT_LT(cc.counter("rt_secondary/shadow_traced", 1),
+              rc.counter("rt_secondary/shadow_traced", 0))
+        << name;
+  }
   expectNoValidationMessages(*dev);
 }
 

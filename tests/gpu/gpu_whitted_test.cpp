@@ -92,24 +92,19 @@ TEST(GpuWhitted, MatchesTheCpuOnEveryMaterialFeature) {
   expectNoValidationMessages(*dev);
 }
 
-// Classified and map shadows need shadow maps, which the GPU does not draw yet: the pass stays on
-// the CPU there, and says so by its timing rows (no GPU row, no moves).
-TEST(GpuWhitted, ClassifiedShadowsStayOnTheCpu) {
+// Classified and map shadows: the frame's shadow maps (drawn on the CPU, copied to the device)
+// decide on the GPU what they decide on the CPU, the rest traced.
+TEST(GpuWhitted, ShadowMapShadowsMatchTheCpu) {
   REQUIRE_GPU(dev);
-  const Scene scene = loadScene("cornell");
-  RenderSettings rs{.width = 64, .height = 36};
-  rs.gpu = dev;
-  Pipeline p = Pipeline::load("rt-only");
-  p.setParam("rt_whitted.shadows=classified", "test");
-  Renderer r(scene, std::move(p), rs);
-  const FrameTimings ft = r.renderFrame(0, defaultCamera(scene));
-  bool hostRow = false, whittedRow = false;
-  for (const PassTiming& t : ft.passes) {
-    hostRow |= t.name == "rt_whitted/host";
-    whittedRow |= t.name == "rt_whitted";
+  for (const char* name : {"cornell", "atrium"}) {
+    const Scene scene = loadScene(name);
+    for (const char* mode : {"classified", "maps"}) {
+      const std::string what = std::string(name) + ", shadows " + mode;
+      expectAgreement(compareRtOnly(dev, scene, defaultCamera(scene),
+                                    std::string("rt_whitted.shadows=") + mode),
+                      what);
+    }
   }
-  EXPECT_TRUE(whittedRow);
-  EXPECT_FALSE(hostRow);  // GPU passes have a host row beside their GPU time
   expectNoValidationMessages(*dev);
 }
 

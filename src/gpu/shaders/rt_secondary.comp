@@ -1,8 +1,8 @@
 #version 460
-// rt_secondary on the GPU, one invocation a pixel, what RTSecondaryPass::execute computes with
-// every shadow traced (Walewski et al. 2019 Listing 8a from the G-buffer): for the effects the
-// heuristic mask selects, S = 1 - the light the occluders block (the lights whose share of the
-// surface's light reaches shadow_cull asked, as classifiedShadowTile asks them), and the primary
+// rt_secondary on the GPU, one invocation a pixel, what RTSecondaryPass::execute computes
+// (Walewski et al. 2019 Listing 8a from the G-buffer): for the effects the heuristic mask
+// selects, S = 1 - the light the occluders block (shadow_term.glsl: shadow rays, classified
+// shadows or shadow maps, as classifiedShadowTile decides them), and the primary
 // reflection and refraction with their recursion (whitted.glsl). Each object's pixels and rays
 // per effect are tallied for rt_stats.
 #extension GL_EXT_buffer_reference : require
@@ -13,6 +13,7 @@
 #include "gbuffer_args.h"
 #include "scene_data.h"
 #include "secondary_args.h"
+#include "shadow_maps_data.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(push_constant, scalar) uniform Push { SecondaryArgs a; };
@@ -21,43 +22,16 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Counts { uin
 #include "camera.glsl"
 #include "scene.glsl"
 #include "gbuffer.glsl"
+#include "shadow_maps.glsl"
 #include "whitted.glsl"
-
-// Listing 8a's S at s seen along wo: 1 minus each asked light's term times what blocks it.
-vec3 shadowTerm(Surface s, vec3 wo, out bool classAsked) {
-  Lights lights = Lights(S.lights);
-  vec3 total = selfTerm(s);
-  for (uint i = 0u; i < S.lightCount; ++i) total += lightTerm(s, wo, lights.l[i]);
-  const float floorShare = a.shadowCull * luminance(total);
-  vec3 blocked = vec3(0.0);
-  classAsked = false;
-  for (uint i = 0u; i < S.lightCount; ++i) {
-    const GpuLight l = lights.l[i];
-    const vec3 term = lightTerm(s, wo, l);
-    const float share = luminance(term);
-    if (!(l.castsShadows != 0u && share > 0.0 && share >= floorShare)) {
-      ++culled;
-      continue;
-    }
-    ++traced;
-    ++rays;
-    if (a.classLight < 0 || uint(a.classLight) == i) classAsked = true;
-    vec3 wi, radiance;
-    float dist;
-    sampleLight(l, s.position, wi, dist, radiance);
-    const float tfar = isinf(dist) ? kInf : dist * (1.0 - 1e-4);
-    const vec3 vis = transmittance(offsetRayOrigin(s, wi), wi, tfar,
-                                   (a.flags & TD_WHITTED_TEXTURED_SHADOWS) != 0u);
-    blocked += term * (vec3(1.0) - vis);
-  }
-  return vec3(1.0) - blocked;
-}
+#include "shadow_term.glsl"
 
 void main() {
   const GpuView view = ViewRef(a.view).v;
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= view.camera.width || y >= view.camera.height) return;
   useScene(a.scene);
+  if (a.shadowMaps != 0ul) useShadowMaps(a.shadowMaps);
   whitted = WhittedConfig(a.maxDepth, a.importanceCutoff, a.shadowCull, a.flags);
   const uint pixel = uint(y + a.viewY) * uint(a.frameWidth) + uint(x + a.viewX);
   const vec3 m = get3(a.mask, pixel);
@@ -77,10 +51,8 @@ void main() {
       const vec3 eye = vec3(view.camera.eye[0], view.camera.eye[1], view.camera.eye[2]);
       const vec3 forward =
           vec3(view.camera.forward[0], view.camera.forward[1], view.camera.forward[2]);
-      bool asked;
       shadow = shadowTerm(s, view.perspective != 0 ? safeNormalize(eye - s.position) : -forward,
-                          asked);
-      shadowClass = vec3(asked ? 1.0 : 0.0, 0.0, 0.0);  // every asked light is traced
+                          a.classLight, shadowClass);
       tally[0] = 1u;
       tally[3] = rays;
     }
@@ -110,12 +82,13 @@ void main() {
   if (hit && wantShadow) {
     atomicAdd(counts.v[TD_COUNT_CULLED], culled);
     atomicAdd(counts.v[TD_COUNT_TRACED], traced);
+    if (shadowLit > 0u) atomicAdd(counts.v[TD_COUNT_LIT], shadowLit);
+    if (shadowShadowed > 0u) atomicAdd(counts.v[TD_COUNT_SHADOWED], shadowShadowed);
     atomicAdd(counts.v[TD_COUNT_SURFACES], 1u);
   }
   if (hit) {
-    Counts stats = Counts(a.stats);
-    const uint at = uint(s.object) * uint(TD_STATS_PER_OBJECT);
+    const uint at = uint(TD_COUNT_N) + uint(s.object) * uint(TD_STATS_PER_OBJECT);
     for (int k = 0; k < TD_STATS_PER_OBJECT; ++k)
-      if (tally[k] != 0u) atomicAdd(stats.v[at + uint(k)], tally[k]);
+      if (tally[k] != 0u) atomicAdd(counts.v[at + uint(k)], tally[k]);
   }
 }

@@ -1,8 +1,9 @@
 #version 460
-// rt_whitted on the GPU, one invocation a pixel, what RTWhittedPass::execute computes with every
-// shadow traced: the camera ray (back faces of single-sided materials culled), the surface
-// resolved at the pixel cone's texture level, shadow rays to the lights whose share of the
-// surface's light reaches shadow_cull (Listing 8b's attenuation), and the reflection and
+// rt_whitted on the GPU, one invocation a pixel, what RTWhittedPass::execute computes: the camera
+// ray (back faces of single-sided materials culled), the surface resolved at the pixel cone's
+// texture level, shadows of the lights whose share of the surface's light reaches shadow_cull
+// (Listing 8b's attenuation; traced, classified by the frame's shadow maps, or looked up in them),
+// and the reflection and
 // refraction rays of Listings 8c/8d (whitted.glsl).
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
@@ -10,6 +11,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bvh.h"
 #include "scene_data.h"
+#include "shadow_maps_data.h"
 #include "whitted_args.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -19,7 +21,7 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Counts { uin
 
 #include "camera.glsl"
 #include "scene.glsl"
-
+#include "shadow_maps.glsl"
 #include "whitted.glsl"
 
 void main() {
@@ -27,6 +29,7 @@ void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= cam.width || y >= cam.height) return;
   useScene(a.scene);
+  if (a.shadowMaps != 0ul) useShadowMaps(a.shadowMaps);
   whitted = WhittedConfig(a.maxDepth, a.importanceCutoff, a.shadowCull, a.flags);
   const uint pixel = uint(y + a.viewY) * uint(a.frameWidth) + uint(x + a.viewX);
   vec3 origin, dir;
@@ -58,6 +61,8 @@ void main() {
   if (found) {
     atomicAdd(counts.v[TD_COUNT_CULLED], culled);
     atomicAdd(counts.v[TD_COUNT_TRACED], traced);
+    if (shadowLit > 0u) atomicAdd(counts.v[TD_COUNT_LIT], shadowLit);
+    if (shadowShadowed > 0u) atomicAdd(counts.v[TD_COUNT_SHADOWED], shadowShadowed);
     atomicAdd(counts.v[TD_COUNT_SURFACES], 1u);
   }
 }

@@ -10,7 +10,9 @@
 struct SecondaryArgs {
   TD_ADDR scene, view, sources, mask;  // sources: GBufferTargets (the sample slots)
   TD_ADDR shadow, reflection, refraction, traced, shadowClass;  // shadowClass 0: not read
-  TD_ADDR counters, stats;  // TD_COUNT_N uints; TD_STATS_PER_OBJECT uints per object
+  // TD_COUNT_N uints, then per object TD_STATS_PER_OBJECT uints
+  TD_ADDR counters;
+  TD_ADDR shadowMaps;  // GpuShadowMapsHeader (TD_WHITTED_CLASSIFIED, _MAPS), else 0
   TD_INT viewX, viewY, frameWidth, maxDepth;
   TD_FLOAT importanceCutoff, shadowCull, outsideShadow;
   TD_UINT flags;  // TD_WHITTED_*

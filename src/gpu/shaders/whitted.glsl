@@ -12,6 +12,7 @@ struct WhittedConfig {
 WhittedConfig whitted;
 uint rays = 0u;                   // rays this invocation traced
 uint culled = 0u, traced = 0u;    // shadow queries shadePrimary left out and traced
+uint shadowLit = 0u, shadowShadowed = 0u;  // ... and the shadow maps decided
 
 // Eq. 5-6 as weights: C = wm M + wr R + wc C_local.
 void effectWeights(float om, float orr, out float wm, out float wr, out float wc) {
@@ -44,13 +45,23 @@ vec3 refractionDir(Surface s, vec3 d) {
   return safeNormalize(d * eta + n * (eta * cosi - sqrt(k)));
 }
 
-// Lighting of a primary surface with its shadows (Whitted::shadePrimary8's shading, every
-// shadow traced): a light below shadow_cull of the surface's unshadowed light is not asked about.
+// Lighting of a primary surface with its shadows (Whitted::shadePrimary8's shading): a light
+// below shadow_cull of the surface's unshadowed light is not asked about; one that is, by a
+// shadow ray, or (a kernel that includes shadow_maps.glsl, with TD_WHITTED_CLASSIFIED or _MAPS)
+// by the frame's shadow maps first.
 vec3 shadePrimary(Surface s, vec3 wo) {
   Lights lights = Lights(S.lights);
   const vec3 self = selfTerm(s);
+#ifdef TD_SHADOW_TRACED
+  const bool classified = (whitted.flags & TD_WHITTED_CLASSIFIED) != 0u;
+  const bool mapsOnly = (whitted.flags & TD_WHITTED_MAPS) != 0u;
+#else
+  const bool classified = false, mapsOnly = false;
+#endif
+  // Shares decide what is asked with a cull floor, and always with the maps (Whitted's `shares`).
+  const bool shares = whitted.shadowCull > 0.0 || classified || mapsOnly;
   float floorShare = 0.0;
-  if (whitted.shadowCull > 0.0) {
+  if (shares) {
     vec3 total = self;
     for (uint i = 0u; i < S.lightCount; ++i) total += lightTerm(s, wo, lights.l[i]);
     floorShare = whitted.shadowCull * luminance(total);
@@ -60,22 +71,34 @@ vec3 shadePrimary(Surface s, vec3 wo) {
     const GpuLight l = lights.l[i];
     const vec3 term = lightTerm(s, wo, l);
     const float share = luminance(term);
-    bool asked = whitted.shadowCull > 0.0 ? l.castsShadows != 0u && share > 0.0 && share >= floorShare
-                                    : l.castsShadows != 0u;
+    const bool asked = shares ? l.castsShadows != 0u && share > 0.0 && share >= floorShare
+                              : l.castsShadows != 0u;
+    // 0 culled, 1 lit, 2 shadowed, 3 traced (ShadowClass)
+    int cls = asked ? 3 : 0;
+    vec3 vis = vec3(1.0);
+#ifdef TD_SHADOW_TRACED
+    if (asked && classified) cls = shadowClassify(i, s.position, s.geoNormal, s.object);
+    if (asked && mapsOnly) {
+      const float v = shadowVisibility(i, s.position, s.geoNormal);
+      vis = vec3(v);
+      cls = v > 0.5 ? 1 : 2;
+    }
+#endif
+    if (cls == 2 && !mapsOnly) vis = vec3(0.0);
     vec3 wi, radiance;
     float dist;
     sampleLight(l, s.position, wi, dist, radiance);
-    asked = asked && dot(s.normal, wi) > 0.0 && maxComponent(radiance) > 0.0;
-    vec3 vis = vec3(1.0);
-    if (asked) {
-      ++traced;
+    if (cls == 3 && !(dot(s.normal, wi) > 0.0 && maxComponent(radiance) > 0.0)) cls = 0;
+    if (cls == 3) {
       ++rays;
       const float tfar = isinf(dist) ? kInf : dist * (1.0 - 1e-4);
       vis = transmittance(offsetRayOrigin(s, wi), wi, tfar,
                           (whitted.flags & TD_WHITTED_TEXTURED_SHADOWS) != 0u);
-    } else {
-      ++culled;
     }
+    culled += cls == 0 ? 1u : 0u;
+    shadowLit += cls == 1 ? 1u : 0u;
+    shadowShadowed += cls == 2 ? 1u : 0u;
+    traced += cls == 3 ? 1u : 0u;
     c += term * vis;
   }
   return c;

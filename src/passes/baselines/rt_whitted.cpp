@@ -3,6 +3,7 @@
 #include "gpu/gpu_camera.h"
 #include "gpu/shaders/rt_whitted_spv.h"
 #include "gpu/shaders/whitted_args.h"
+#include "passes/common/gpu_shadow_maps.h"
 #include "passes/common/gpu_whitted.h"
 #include "passes/common/whitted_settings.h"
 #include "pipeline/frame_context.h"
@@ -68,7 +69,11 @@ void RTWhittedPass::executeGpu(FrameContext& ctx) {
   a.maxDepth = w.maxDepth;
   a.importanceCutoff = w.importanceCutoff;
   a.shadowCull = w.shadowCull;
-  a.flags = gpuWhittedFlags(w);
+  // Classified and shadow-map shadows: the frame's maps (every light that casts shadows) copied
+  // to the device when redrawn.
+  const ShadowMaps* maps = shadowMapsFor(ctx, *this, settings().whitted, nullptr);
+  a.shadowMaps = maps ? gpuShadowMaps(ctx, *maps) : 0;
+  a.flags = gpuWhittedFlags(w, maps != nullptr);
   const GpuKernel& k =
       gpu.kernel("rt_whitted", kRtWhittedSpv, sizeof(kRtWhittedSpv) / 4, sizeof(WhittedArgs));
   for (const View& v : ctx.views) {

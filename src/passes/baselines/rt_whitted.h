@@ -26,9 +26,7 @@ class RTWhittedPass : public SettingsPass<RTWhittedSettings> {
     return {{Slots::hdr, 3}, {Slots::objectId, 1, BufferKind::Id}};
   }
   void execute(FrameContext& ctx) override;
-  // On the GPU with every shadow traced (classified and map shadows stay on the CPU).
-  bool hasGpu() const override { return settings().whitted.shadows == ShadowMode::Rays; }
-  std::string gpuCondition() const override { return "`shadows=rays` (the default)"; }
+  bool hasGpu() const override { return true; }  // shaders/rt_whitted.comp
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override { return whittedCounters(*this); }
 

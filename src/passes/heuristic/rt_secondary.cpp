@@ -10,6 +10,7 @@
 #include "core/cycle_clock.h"
 #include "gpu/shaders/rt_secondary_spv.h"
 #include "gpu/shaders/secondary_args.h"
+#include "passes/common/gpu_shadow_maps.h"
 #include "passes/common/gpu_whitted.h"
 #include "passes/common/lights_in_view.h"
 #include "passes/heuristic/ranked_tiles.h"
@@ -384,16 +385,19 @@ void RTSecondaryPass::executeGpu(FrameContext& ctx) {
   a.refraction = ctx.deviceOutput(*this, Slots::refraction);
   a.traced = ctx.deviceOutput(*this, Slots::tracedMask);
   a.shadowClass = ctx.deviceOutputIfConsumed(*this, Slots::shadowClass);
-  const uint32_t zero[TD_COUNT_N] = {};
-  a.counters = gpu.constants(zero, sizeof zero);
-  const std::vector<uint32_t> noStats(std::max<size_t>(objects, 1) * TD_STATS_PER_OBJECT, 0);
-  a.stats = gpu.constants(noStats.data(), noStats.size() * sizeof(uint32_t));
+  // Counters, then rt_stats' tallies per object.
+  const std::vector<uint32_t> zero(TD_COUNT_N + objects * TD_STATS_PER_OBJECT, 0);
+  a.counters = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
+  // Classified and shadow-map shadows: the frame's maps (for every light that casts shadows: the
+  // G-buffer that tells which lights are in view stays on the device) copied there when redrawn.
+  const ShadowMaps* maps = shadowMapsFor(ctx, *this, settings().whitted, nullptr);
+  a.shadowMaps = maps ? gpuShadowMaps(ctx, *maps) : 0;
   a.frameWidth = ctx.width;
   a.maxDepth = w.maxDepth;
   a.importanceCutoff = w.importanceCutoff;
   a.shadowCull = w.shadowCull;
   a.outsideShadow = settings().outsideMaskShadow;
-  a.flags = gpuWhittedFlags(w);
+  a.flags = gpuWhittedFlags(w, maps != nullptr);
   a.classLight = settings().shadowClassLight;
   const GpuKernel& k = gpu.kernel("rt_secondary", kRtSecondarySpv, sizeof(kRtSecondarySpv) / 4,
                                   sizeof(SecondaryArgs));
@@ -411,7 +415,7 @@ void RTSecondaryPass::executeGpu(FrameContext& ctx) {
   if (request && request->deadlineMs > 0) ctx.report(*this, RTSecondaryCounters::itemsCut, 0.0);
   // Counters and tallies are read once the frame's commands completed.
   const auto* counts = static_cast<const uint32_t*>(gpu.constantsData(a.counters));
-  const auto* tallies = static_cast<const uint32_t*>(gpu.constantsData(a.stats));
+  const uint32_t* tallies = counts + TD_COUNT_N;
   const double pixels = double(ctx.width) * double(ctx.height);
   gpu.afterSubmit([this, &ctx, &cmd, counts, tallies, objects, timed, pixels, t0, t1] {
     reportGpuShadows(ctx, *this, counts, pixels);

@@ -53,8 +53,7 @@ class RTSecondaryPass : public SettingsPass<RTSecondarySettings> {
   void execute(FrameContext& ctx) override;
   // On the GPU every masked pixel is traced: a deadline (rt_request) cuts nothing there, and
   // rt_stats' times are the pass's GPU time shared by each object's rays.
-  bool hasGpu() const override { return settings().whitted.shadows == ShadowMode::Rays; }
-  std::string gpuCondition() const override { return "`shadows=rays` (the default)"; }
+  bool hasGpu() const override { return true; }  // shaders/rt_secondary.comp
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   void resetHistory() override { tailMs_ = 0; }
