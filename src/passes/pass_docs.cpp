@@ -159,7 +159,7 @@ std::string passesMarkdown() {
       // Where it runs with --device gpu (the others stay on the CPU).
       if (p->hasGpu() || !p->gpuCondition().empty())
         o << " Runs on the GPU too (`--device gpu`)"
-          << (p->gpuCondition().empty() ? "" : " with " + p->gpuCondition()) << ".";
+          << (p->gpuCondition().empty() ? "" : " " + p->gpuCondition()) << ".";
       o << "\n\n";
       slots(o, *p);
       params(o, *p);

@@ -58,7 +58,8 @@ class Pass {
   // records its kernels into ctx.gpu's commands (FrameContext::deviceInput / deviceOutput); the
   // pipeline submits them and times them with GPU timestamps.
   virtual bool hasGpu() const { return false; }
-  // When hasGpu() depends on the settings: the condition, in the pass's parameter names (docs).
+  // When hasGpu() depends on the settings: the condition, in the pass's parameter names, as a
+  // phrase ("with ...", "unless ...") completing "runs on the GPU too" (docs).
   virtual std::string gpuCondition() const { return ""; }
   virtual void executeGpu(FrameContext& ctx) { execute(ctx); }
   // Asks for what the next frame needs (default: nothing).

@@ -45,6 +45,12 @@ class LightGrid {
   float probability(Vec3 p, int light) const;
 
   int cells(int axis) const { return dims_[axis]; }
+  // What pick() reads, for a device copy: the candidates, the grid's box and inverse cell size,
+  // and per cell (x fastest) the cumulative distribution over the candidates.
+  const std::vector<int>& candidates() const { return candidates_; }
+  const Bounds3& bounds() const { return bounds_; }
+  Vec3 invCell() const { return invCell_; }
+  const std::vector<float>& cdf() const { return cdf_; }
   size_t candidateCount() const { return candidates_.size(); }
   // Probe rays traced while building (0 without a visibility probe).
   size_t probeRays() const { return probeRays_; }

@@ -14,14 +14,16 @@
 namespace tandem {
 namespace {
 
-// `shadows`: rt_secondary's shadow mode (classified, rays, maps).
+// `shadows`: rt_secondary's shadow mode (classified, rays, maps); `params`: more settings.
 void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pipeline,
                    const Scene& scene, CameraDesc cam, const std::string& what,
-                   const std::string& shadows = "classified") {
+                   const std::string& shadows = "classified",
+                   const std::vector<std::string>& params = {}) {
   RenderSettings rs{.width = 160, .height = 90};
   const auto load = [&] {
     Pipeline p = Pipeline::load(pipeline);
     p.setParam("rt_secondary.shadows=" + shadows, "test");
+    for (const std::string& q : params) p.setParam(q, "test");
     return p;
   };
   Renderer cpu(scene, load(), rs);
@@ -31,15 +33,31 @@ void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
   for (int f = 0; f < 3; ++f) {
     cpu.renderFrame(f, cam);
     const FrameTimings ft = gpu.renderFrame(f, cam);
-    bool onGpu = false;  // a GPU pass has a row of its host time
-    for (const PassTiming& t : ft.passes) onGpu |= t.name == "rt_secondary/host";
-    EXPECT_TRUE(onGpu);
+    // A GPU pass has a row of its host time; every pass of these pipelines has a GPU version.
+    int onGpu = 0, passes = 0;
+    for (const PassTiming& t : ft.passes) onGpu += t.name.ends_with("/host") ? 1 : 0;
+    for (const PassTiming& t : ft.passes)
+      passes += t.name.find(':') == std::string::npos && t.name.find('/') == std::string::npos &&
+                        t.name != "frame" && t.name != "history" && t.name != "scene_update"
+                    ? 1
+                    : 0;
+    EXPECT_EQ(onGpu, passes) << what << ": a pass ran on the CPU";
     const std::string at =
         pipeline + ", " + what + ", shadows " + shadows + ", frame " + std::to_string(f);
     const FrameContext &c = cpu.context(), &g = gpu.context();
     const Buffer &cIds = c.input("object_id"), &gIds = g.input("object_id");
     for (const char* name : {"shadow", "reflection", "refraction", "traced_mask", "composite"})
       expectAgreement(imageAgreement(c.input(name), g.input(name), cIds, gIds), at + ": " + name);
+    if (c.buffers.count("fallback")) {
+      const Buffer &cf = c.input("fallback"), &gf = g.input("fallback");
+      expectAgreement(imageAgreement(cf, gf, cIds, gIds), at + ": fallback");
+      double covered = 0;  // pixels the fallback stood in for: effects, shadows
+      for (size_t i = 0; i < cf.pixelCount(); ++i)
+        covered += cf.data[i * size_t(cf.channels) + 9] + cf.data[i * size_t(cf.channels) + 10];
+      EXPECT_GT(covered, 0) << at << ": the fallback covered nothing";
+      EXPECT_EQ(c.counter("ss_fallback/probes_drawn", 0), g.counter("ss_fallback/probes_drawn", 0))
+          << at;
+    }
     expectAgreement(imageAgreement(cpu.output(), gpu.output(), cIds, gIds), at + ": output");
     // The same work: each share of the light-surface pairs (traced, and decided by the maps)
     // within 1 % (near-ties of which light a pixel asks about, or of a texel's depth test).
@@ -91,13 +109,19 @@ TEST(GpuHybrid, ClassifiedShadowsEqualShadowRays) {
   expectNoValidationMessages(*dev);
 }
 
-// The heuristic's selection with ss_fallback standing in for what it leaves out: blend reads the
-// fallback buffer on the GPU.
+// The heuristic's selection with ss_fallback standing in for what it leaves out (a budget small
+// enough that it does): reflection probes, the screen-space march and the sky for reflections
+// and refractions, shadow maps for shadows.
 TEST(GpuHybrid, HeuristicHybridMatchesTheCpu) {
   REQUIRE_GPU(dev);
   const Scene spheres = loadScene("spheres");
-  compareHybrid(dev, "hybrid-heuristic", spheres, defaultCamera(spheres), "spheres");
-  compareHybrid(dev, "hybrid-heuristic", featureScene(), featureCamera(), "features");
+  const std::string small = "heuristic.budget=20000";
+  for (const char* mode : {"probe", "screen_space", "environment"})
+    compareHybrid(dev, "hybrid-heuristic", spheres, defaultCamera(spheres),
+                  std::string("spheres, fallback ") + mode, "classified",
+                  {small, std::string("ss_fallback.mode=") + mode});
+  compareHybrid(dev, "hybrid-heuristic", featureScene(), featureCamera(), "features", "classified",
+                {small});
   expectNoValidationMessages(*dev);
 }
 

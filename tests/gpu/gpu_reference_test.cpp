@@ -1,13 +1,16 @@
 // `tandem reference` on the GPU against the CPU: the path tracer (cornell, its emissive lamp
 // sampled as an area light) at 256 spp, and distributed Whitted ray tracing through a thin lens
-// (spheres) at 64 spp. Both devices take the same Sobol samples, so the GPU image must lie at
-// least as near the CPU's as a CPU image with another seed does (within 1.5x its RMSE).
+// (spheres) at 64 spp, and the foveated pipelines' diffuse global illumination (lights picked by
+// the light grid; cornell and the feature scene's every light type) at 256 spp. Both devices take
+// the same Sobol samples, so the GPU image must lie at least as near the CPU's as a CPU image with
+// another seed does (within 1.5x its RMSE).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "eval/metrics/metrics.h"
 #include "eval/reference/reference_cache.h"
+#include "gpu/feature_scene.h"
 #include "gpu/gpu_test_util.h"
 #include "scene/loaders.h"
 #include "scene/scene_camera.h"
@@ -64,6 +67,16 @@ TEST(GpuReference, WhittedThroughAThinLensConvergesToTheCpus) {
   cam.focusDistance = length(cam.lookAt - cam.position);
   cam.apertureBlades = 6;
   expectConverges(dev, spheres, cam, Integrator::Whitted, 64, "spheres, whitted, thin lens");
+  expectNoValidationMessages(*dev);
+}
+
+TEST(GpuReference, DiffuseGIConvergesToTheCpus) {
+  REQUIRE_GPU(dev);
+  const Scene cornell = loadScene("cornell");
+  expectConverges(dev, cornell, defaultCamera(cornell), Integrator::DiffuseGI, 256,
+                  "cornell, diffuse-gi");
+  expectConverges(dev, featureScene(), featureCamera(), Integrator::DiffuseGI, 256,
+                  "features, diffuse-gi");
   expectNoValidationMessages(*dev);
 }
 

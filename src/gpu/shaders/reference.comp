@@ -4,7 +4,8 @@
 // Sobol samples (rt/sampler.cpp) for the pixel position, the lens point and the path, then the
 // path tracer (rt/path_tracer.cpp: next-event estimation to punctual lights and emissive
 // triangles with MIS, Fresnel glass, mirrors, Lambert + normalised Blinn-Phong, Russian roulette)
-// or distributed ray tracing of the hybrids' shading (whitted.glsl).
+// or distributed ray tracing of the hybrids' shading (whitted.glsl), or Peres 2022's diffuse global
+// illumination (rt/diffuse_gi.cpp: a light picked by the LightGrid, one cosine bounce).
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -329,6 +330,100 @@ vec3 whittedRadiance(GpuCamera c, vec3 o, vec3 d) {
   return color + traceStack();
 }
 
+// ---- DiffuseGI (rt/diffuse_gi.cpp) with its LightGrid, operation for operation.
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer GridFloats { float v[]; };
+
+// LightGrid::pick at p with u: the light (-1: none) and its probability.
+int gridPick(vec3 p, float u, out float pdf) {
+  pdf = 0.0;
+  const int n = A.gridCount;
+  Ints candidates = Ints(A.gridCandidates);
+  if (n == 0) return -1;
+  pdf = 1.0;
+  if (n == 1) return candidates.v[0];
+  u = clamp(u, 0.0, uintBitsToFloat(0x3f7fffffu));
+  const vec3 f = (p - v3(A.gridLo)) * v3(A.gridInvCell);
+  int cell = 0, stride = 1;
+  for (int k = 0; k < 3; ++k) {
+    const int c = clamp(int(floor(clamp(f[k], -1.0, 1e6))), 0, A.gridDims[k] - 1);
+    cell += c * stride;
+    stride *= A.gridDims[k];
+  }
+  GridFloats cdf = GridFloats(A.gridCdf);
+  const uint base = uint(cell) * uint(n);
+  if (cdf.v[base + uint(n - 1)] <= 0.0) {
+    const int i = min(int(u * float(n)), n - 1);
+    pdf = 1.0 / float(n);
+    return candidates.v[i];
+  }
+  // std::upper_bound: the first entry greater than u.
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (cdf.v[base + uint(mid)] <= u)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  const int i = min(lo, n - 1);
+  pdf = cdf.v[base + uint(i)] - (i > 0 ? cdf.v[base + uint(i - 1)] : 0.0);
+  return candidates.v[i];
+}
+
+vec3 giAlbedo(Surface s) { return clamp(s.diffuse, vec3(0.0), vec3(1.0)); }
+vec3 giEmitted(Surface s, vec3 wo) { return dot(s.geoNormal, wo) > 0.0 ? s.emission : vec3(0.0); }
+
+// DiffuseGI::oneLight: irradiance / pi from one light the grid picks, over its probability.
+vec3 giOneLight(Surface s, vec3 n, float u) {
+  float pdf;
+  const int i = gridPick(s.position, u, pdf);
+  if (i < 0 || !(pdf > 0.0)) return vec3(0.0);
+  const GpuLight l = Lights(S.lights).l[i];
+  vec3 wi, radiance;
+  float dist;
+  sampleLight(l, s.position, wi, dist, radiance);
+  const float cosI = dot(n, wi);
+  if (cosI <= 0.0 || maxComponent(radiance) <= 0.0) return vec3(0.0);
+  if (l.castsShadows != 0u) {
+    ++rays;
+    TraceHit h;
+    const float tfar = isinf(dist) ? kInf : dist * (1.0 - 1e-4);
+    if (traverse(offsetRayOrigin(s, wi), wi, 0.0, tfar, TRACE_ANY | TRACE_FILTERED, h))
+      return vec3(0.0);
+  }
+  return radiance * (cosI / (pdf * kPi));
+}
+
+// DiffuseGI::radiance of the surface a pinhole ray through the pixel centre meets (the foveated
+// path tracer's G-buffer surface), seen along wo.
+vec3 diffuseGIRadiance(GpuCamera c, int x, int y) {
+  vec3 o, d;
+  float tnear;
+  cameraRay(c, x, y, o, d, tnear);
+  TraceHit h;
+  if (!closestHit(o, d, tnear, 1e30, true, h)) return skyRadiance(d);
+  const Surface s = resolveSurface(h.object, h.prim, o, d, h.t, h.u, h.v, A.pixelSpread);
+  const vec3 wo = -d;
+  const vec3 n = dot(s.normal, wo) < 0.0 ? -s.normal : s.normal;
+  const vec2 u0 = uniform2(), u1 = uniform2(), u2 = uniform2();
+  vec3 sum = giOneLight(s, n, u0.x);
+  // Cosine-weighted bounce: Lambert's cos / pi cancels the density.
+  const vec3 dir = safeNormalize(sampleCosine(n, u1.x, u1.y));
+  if (!(dot(dir, s.geoNormal) * dot(n, s.geoNormal) <= 0.0)) {
+    const vec3 origin = offsetRayOrigin(s, dir);
+    TraceHit g;
+    if (!closestHit(origin, dir, 0.0, 1e30, false, g)) {
+      sum += skyRadiance(dir);
+    } else {
+      const Surface hs = resolveSurface(g.object, g.prim, origin, dir, g.t, g.u, g.v, 0.0);
+      const vec3 wh = -dir;
+      const vec3 nh = dot(hs.normal, wh) < 0.0 ? -hs.normal : hs.normal;
+      sum += giEmitted(hs, wh) + giAlbedo(hs) * giOneLight(hs, nh, u2.x);
+    }
+  }
+  return giEmitted(s, wo) + giAlbedo(s) * sum;
+}
+
 void main() {
   A = ArgsRef(args).a;
   const GpuCamera cam = CameraRef(A.camera).c;
@@ -342,9 +437,14 @@ void main() {
   startSampler(seed, pixel, A.first);
   const vec2 jitter = uniform2(), lens = uniform2();
   uniform1();  // the shutter time: a still shutter here, the dimension kept
-  vec3 o, d;
-  thinLensRay(cam, vec2(float(x), float(y)) + jitter, lens, o, d);
-  vec3 L = A.integrator == TD_REFERENCE_WHITTED ? whittedRadiance(cam, o, d) : pathRadiance(o, d);
+  vec3 L;
+  if (A.integrator == TD_REFERENCE_DIFFUSE_GI) {
+    L = diffuseGIRadiance(cam, x, y);
+  } else {
+    vec3 o, d;
+    thinLensRay(cam, vec2(float(x), float(y)) + jitter, lens, o, d);
+    L = A.integrator == TD_REFERENCE_WHITTED ? whittedRadiance(cam, o, d) : pathRadiance(o, d);
+  }
   if (any(isnan(L)) || any(isinf(L))) L = vec3(0.0);  // a degenerate pdf spoils no pixel
   const float lum = luminance(L);
   Sums sums = Sums(A.sums);

@@ -6,6 +6,7 @@
 
 #define TD_REFERENCE_PATH 0u
 #define TD_REFERENCE_WHITTED 1u
+#define TD_REFERENCE_DIFFUSE_GI 2u
 
 // An emissive triangle as an area light (rt/path_tracer.h EmitterTable).
 struct GpuEmitter {
@@ -29,5 +30,12 @@ struct ReferenceArgs {
   TD_INT whittedDepth;
   TD_FLOAT importanceCutoff, shadowCull;
   TD_UINT whittedFlags;  // TD_WHITTED_*
+  TD_UINT pad2;
+  // diffuse-gi: the LightGrid that picks lights (rt/light_grid.h): per cell (x fastest) the
+  // cumulative distribution over the candidate lights, and the candidates.
+  TD_ADDR gridCdf, gridCandidates;
+  TD_INT gridDims[3], gridCount;    // gridCount: candidates
+  TD_FLOAT gridLo[3], pixelSpread;  // pixelSpread: the primary hit's texture filtering
+  TD_FLOAT gridInvCell[3], pad3;
 };
 #endif

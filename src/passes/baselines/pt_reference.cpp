@@ -12,6 +12,7 @@
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
 #include "rt/reference_render.h"
+#include "shading/surface_resolve.h"
 
 namespace tandem {
 
@@ -130,7 +131,7 @@ void PTReferencePass::render(
 }
 
 bool PTReferencePass::hasGpu() const {
-  return settings().integrator != Integrator::DiffuseGI;
+  return true;  // shaders/reference.comp (an open shutter and MPI ranks: executeGpu runs execute)
 }
 
 namespace {
@@ -202,8 +203,28 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
   a.counters = gpu.constants(&zero, sizeof zero);
   a.maxDepth = settings().maxDepth;
   a.rouletteDepth = PathSettings{}.rouletteDepth;
-  a.integrator =
-      settings().integrator == Integrator::Whitted ? TD_REFERENCE_WHITTED : TD_REFERENCE_PATH;
+  a.integrator = settings().integrator == Integrator::Whitted     ? TD_REFERENCE_WHITTED
+                 : settings().integrator == Integrator::DiffuseGI ? TD_REFERENCE_DIFFUSE_GI
+                                                                  : TD_REFERENCE_PATH;
+  // diffuse-gi picks its lights by the grid renderReference builds (on the host: its visibility
+  // probes are the CPU's rays, once a render), copied to the device.
+  std::vector<float> gridCdf(1, 0.0f);
+  std::vector<int32_t> gridCandidates(1, -1);
+  if (a.integrator == TD_REFERENCE_DIFFUSE_GI) {
+    const ShadingContext shading = ShadingContext::from(scene);
+    const LightGrid grid = DiffuseGI::buildGrid(scene, shading, &ctx.rayTracer());
+    if (!grid.cdf().empty()) gridCdf = grid.cdf();
+    if (!grid.candidates().empty())
+      gridCandidates.assign(grid.candidates().begin(), grid.candidates().end());
+    a.gridCount = int32_t(grid.candidates().size());
+    for (int k = 0; k < 3; ++k) {
+      a.gridDims[k] = grid.cells(k);
+      a.gridLo[k] = grid.bounds().lo[k];
+      a.gridInvCell[k] = grid.invCell()[k];
+    }
+  }
+  a.gridCdf = gpu.constants(gridCdf.data(), gridCdf.size() * sizeof(float));
+  a.gridCandidates = gpu.constants(gridCandidates.data(), gridCandidates.size() * sizeof(int32_t));
   const WhittedSettings w = [&] {
     WhittedSettings ws;
     ws.maxDepth = settings().whittedDepth;
@@ -220,6 +241,7 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
     const Camera& cam = v.camera;
     const GpuCamera gc = gpuCamera(cam, 0.0f);
     a.camera = gpu.constants(&gc, sizeof gc);
+    a.pixelSpread = pixelSpreadAngle(cam);
     a.apertureRadius = 0.5f * cam.desc.apertureDiameter;
     a.focusDistance = cam.desc.focusDistance;
     a.apertureRotation = radians(cam.desc.apertureRotationDeg);

@@ -51,7 +51,7 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
   // an open shutter and MPI ranks on the CPU.
   bool hasGpu() const override;
   std::string gpuCondition() const override {
-    return "with `integrator=path` or `whitted` and a still shutter";
+    return "with a still shutter (an open one renders on the CPU)";
   }
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;

@@ -1,6 +1,7 @@
 #include "passes/heuristic/reflection_probes.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/parallel.h"
@@ -23,7 +24,18 @@ std::vector<float> lightKey(const Scene& s) {
   return k;
 }
 
+uint64_t nextVersion() {
+  static std::atomic<uint64_t> next{1};
+  return next++;
+}
+
 }  // namespace
+
+ReflectionProbes::ProbeView ReflectionProbes::probe(size_t o) const {
+  if (o >= probes_.size() || probes_[o].size == 0) return {};
+  const Probe& p = probes_[o];
+  return {p.size, p.centre, p.radius, p.cameras.data(), p.faces.data()};
+}
 
 int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading,
                              const std::vector<uint8_t>& wanted, int size, int refresh,
@@ -33,6 +45,7 @@ int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading
   if (key != lightKey_ || probes_.size() != scene.objects.size()) {
     probes_.assign(scene.objects.size(), Probe{});
     lightKey_ = std::move(key);
+    version_ = nextVersion();
   }
   ++updates_;
   int drawn = 0;
@@ -60,7 +73,9 @@ int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading
     std::sort(held.begin(), held.end(),
               [&](size_t a, size_t b) { return probes_[a].wanted < probes_[b].wanted; });
     for (size_t k = 0; k < held.size() - capacity; ++k) probes_[held[k]] = Probe{};
+    version_ = nextVersion();
   }
+  if (drawn > 0) version_ = nextVersion();
   return drawn;
 }
 

@@ -38,6 +38,19 @@ class ReflectionProbes {
   // `exit` receives the point it leaves from.
   Vec3 exitDirection(int object, Vec3 p, Vec3 t, float eta, Vec3& exit) const;
 
+  // What a device copy of object o's probe needs (size 0: it has none).
+  struct ProbeView {
+    int size = 0;
+    Vec3 centre;
+    float radius = 0;
+    const Camera* cameras = nullptr;  // the six faces'
+    const Buffer* faces = nullptr;    // six, size x size RGB
+  };
+  ProbeView probe(size_t o) const;
+  size_t objects() const { return probes_.size(); }
+  // Changes whenever update() draws or frees a probe (unique across ReflectionProbes objects).
+  uint64_t version() const { return version_; }
+
  private:
   struct Probe {
     uint64_t version = ~0ull;        // geometry version drawn for
@@ -58,7 +71,7 @@ class ReflectionProbes {
   static bool outdated(const FrameScene& fs, const Probe& p);
 
   std::vector<Probe> probes_;  // per object
-  uint64_t updates_ = 0;
+  uint64_t updates_ = 0, version_ = 0;
   std::vector<float> lightKey_;
   Rasterizer raster_;
   VisibilityBuffer vis_;

@@ -3,12 +3,19 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 
+#include "gpu/shaders/fallback_args.h"
+#include "gpu/shaders/fallback_spv.h"
+#include "passes/common/gpu_shadow_maps.h"
 #include "passes/common/lights_in_view.h"
 #include "passes/heuristic/rt_feedback.h"
 #include "passes/heuristic/shadow_tile.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gbuffer_io.h"
+#include "pipeline/gpu_frame.h"
+#include "pipeline/gpu_gbuffer.h"
 #include "pipeline/view_tiles.h"
 #include "rt/whitted.h"
 #include "shading/gbuffer_layout.h"
@@ -147,6 +154,12 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
   std::vector<uint32_t> area(scene.objects.size(), 0);
   for (const std::vector<uint32_t>& local : areas)
     for (size_t o = 0; o < area.size(); ++o) area[o] += local[o];
+  updateProbes(ctx, shading, area);
+  ctx.passParts.push_back({"probes", msSince(t0), 0});
+}
+
+void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingContext& shading,
+                                           const std::vector<uint32_t>& area) {
   std::vector<uint32_t> order;
   for (size_t o = 0; o < area.size(); ++o)
     if (area[o] > 0) order.push_back(uint32_t(o));
@@ -154,12 +167,11 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
   const size_t keep = std::min(order.size(), size_t(s.maxProbes));
   std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
                     [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
-  std::vector<uint8_t> wanted(scene.objects.size(), 0);
+  std::vector<uint8_t> wanted(area.size(), 0);
   for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
   ctx.report(*this, FallbackCounters::probesDrawn,
              probes_.update(ctx.frame, shading, wanted, s.probeSize, s.probeRefresh,
                             2 * size_t(s.maxProbes)));
-  ctx.passParts.push_back({"probes", msSince(t0), 0});
 }
 
 namespace {
@@ -302,6 +314,119 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
     }
   });
   if (shadowMaps) ctx.report(*this, FallbackCounters::shadowMapRedraws, shadowMaps->redraws());
+}
+
+namespace {
+
+// The probes as fallback.comp reads them: a GpuProbe per object, then the faces.
+uint64_t gpuProbes(FrameContext& ctx, const ReflectionProbes& probes) {
+  const size_t n = std::max<size_t>(probes.objects(), 1);
+  size_t bytes = n * sizeof(GpuProbe);
+  std::vector<size_t> at(probes.objects(), 0);
+  for (size_t o = 0; o < probes.objects(); ++o) {
+    const ReflectionProbes::ProbeView p = probes.probe(o);
+    at[o] = bytes;
+    bytes += 6 * size_t(p.size) * size_t(p.size) * 3 * sizeof(float);
+  }
+  const auto t0 = Clock::now();
+  size_t moved = 0;
+  const uint64_t address = ctx.gpu->residentScratch(
+      "probes:" + std::to_string(uintptr_t(&probes)), probes.version(), bytes,
+      [&](void* image, uint64_t base) {
+        auto* out = static_cast<char*>(image);
+        std::memset(out, 0, n * sizeof(GpuProbe));
+        for (size_t o = 0; o < probes.objects(); ++o) {
+          const ReflectionProbes::ProbeView p = probes.probe(o);
+          GpuProbe g{};
+          g.size = p.size;
+          if (p.size > 0) {
+            for (int f = 0; f < 6; ++f)
+              std::memcpy(g.viewProj[f], &p.cameras[f].viewProj.m[0][0], sizeof g.viewProj[f]);
+            g.centre[0] = p.centre.x, g.centre[1] = p.centre.y, g.centre[2] = p.centre.z;
+            g.radius = p.radius;
+            g.faces = base + at[o];
+            const size_t face = size_t(p.size) * size_t(p.size) * 3;
+            for (size_t f = 0; f < 6; ++f)
+              std::memcpy(out + at[o] + f * face * sizeof(float), p.faces[f].data.data(),
+                          face * sizeof(float));
+          }
+          std::memcpy(out + o * sizeof(GpuProbe), &g, sizeof g);
+        }
+      },
+      &moved);
+  if (moved) ctx.passParts.push_back({"probes_upload", msSince(t0), 0, double(moved)});
+  return address;
+}
+
+}  // namespace
+
+void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
+  GpuFrame& gpu = *ctx.gpu;
+  GpuCommands& cmd = gpu.commands();
+  const FallbackSettings& s = settings();
+  const Scene& scene = *ctx.scene;
+  const bool shadows = s.shadows == FallbackSettings::Shadows::ShadowMap;
+  FallbackArgs a{};
+  // (Both off: the kernel writes zeros, as the CPU pass clears its output.)
+  a.result = ctx.deviceOutput(*this, Slots::fallback);
+  a.scene = gpu.scene(ctx.frame).sceneAddress();
+  a.sources = gbufferDeviceSources(ctx, *this);
+  a.hdr = ctx.deviceInput(*this, Slots::hdr);
+  a.mask = ctx.deviceInput(*this, Slots::heuristicMask);
+  a.frameWidth = ctx.width;
+  a.mode = int(s.mode);
+  a.steps = s.steps;
+  a.thickness = s.thickness;
+  a.shadowCull = s.shadowCull;
+  a.objectCount = uint32_t(scene.objects.size());
+  const ShadingContext shading = ShadingContext::from(scene);
+  if (shadows) {
+    // Maps for every light that casts shadows: which lights reach a surface in view would need
+    // the G-buffer, which stays on the device.
+    const auto t0 = Clock::now();
+    const ShadowMaps& maps = ctx.shadowMaps(s.shadowMapSize, nullptr);
+    ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+    a.shadowMaps = gpuShadowMaps(ctx, maps);
+    ctx.report(*this, FallbackCounters::shadowMapRedraws, maps.redraws());
+  }
+  const GpuKernel& k =
+      gpu.kernel("fallback", kFallbackSpv, sizeof(kFallbackSpv) / 4, sizeof(FallbackArgs));
+  const Bounds3 b = scene.bounds(ctx.frame.time);
+  std::vector<uint64_t> views, marches;
+  for (const View& v : ctx.views) {
+    views.push_back(gpuViewConstants(ctx, v));
+    FallbackView fv{};
+    std::memcpy(fv.viewProj, &v.jitteredCamera.viewProj.m[0][0], sizeof fv.viewProj);
+    fv.boundsLo[0] = b.lo.x, fv.boundsLo[1] = b.lo.y, fv.boundsLo[2] = b.lo.z;
+    fv.boundsHi[0] = b.hi.x, fv.boundsHi[1] = b.hi.y, fv.boundsHi[2] = b.hi.z;
+    fv.reach = std::max(length(b.hi - b.lo), 0.1f);
+    fv.growth = std::pow(fv.reach / 0.01f, 1.0f / float(std::max(s.steps - 1, 1)));
+    marches.push_back(gpu.constants(&fv, sizeof fv));
+  }
+  auto run = [&](int phase) {
+    a.phase = phase;
+    for (size_t i = 0; i < ctx.views.size(); ++i) {
+      const View& v = ctx.views[i];
+      a.view = views[i];
+      a.march = marches[i];
+      a.viewX = v.x;
+      a.viewY = v.y;
+      cmd.dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
+    }
+  };
+  if (s.mode == FallbackMode::Probe) {
+    // Each object's untraced pixels come back before the probes are chosen and drawn.
+    const std::vector<uint32_t> zero(std::max<size_t>(scene.objects.size(), 1), 0);
+    a.areas = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
+    run(TD_FALLBACK_COUNT);
+    cmd.checkpoint();
+    const auto t0 = Clock::now();
+    const auto* counted = static_cast<const uint32_t*>(gpu.constantsData(a.areas));
+    updateProbes(ctx, shading, std::vector<uint32_t>(counted, counted + scene.objects.size()));
+    ctx.passParts.push_back({"probes", msSince(t0), 0});
+    a.probes = gpuProbes(ctx, probes_);
+  }
+  run(TD_FALLBACK_WRITE);
 }
 
 }  // namespace tandem

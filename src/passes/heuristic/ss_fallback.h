@@ -62,6 +62,8 @@ class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override { return {fallback::slot()}; }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/fallback.comp
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   void resetHistory() override { probes_ = {}; }
 
@@ -71,6 +73,9 @@ class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
  private:
   // Brings the probes of the objects that show an untraced reflection or refraction up to date.
   void updateProbes(FrameContext& ctx, const ShadingContext& shading);
+  // The same given each object's pixels that show one (the largest get probes).
+  void updateProbes(FrameContext& ctx, const ShadingContext& shading,
+                    const std::vector<uint32_t>& area);
   ReflectionProbes probes_;
 };
 
