@@ -48,6 +48,13 @@ void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     const Buffer &cIds = c.input("object_id"), &gIds = g.input("object_id");
     for (const char* name : {"shadow", "reflection", "refraction", "traced_mask", "composite"})
       expectAgreement(imageAgreement(c.input(name), g.input(name), cIds, gIds), at + ": " + name);
+    // Maps only for the lights in view: the device finds them over smaller tiles than the CPU,
+    // so never more of them.
+    if (shadows != "rays") {
+      const double mapped = g.counter("shadow_maps/mapped_lights", -1);
+      EXPECT_GT(mapped, 0) << at;
+      EXPECT_LE(mapped, c.counter("shadow_maps/mapped_lights", -1)) << at;
+    }
     if (c.buffers.count("fallback")) {
       const Buffer &cf = c.input("fallback"), &gf = g.input("fallback");
       expectAgreement(imageAgreement(cf, gf, cIds, gIds), at + ": fallback");

@@ -3,9 +3,11 @@
 #include <cstring>
 
 #include "core/profiler.h"
+#include "gpu/shaders/lights_in_view_spv.h"
 #include "gpu/shaders/shadow_maps_data.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
+#include "pipeline/gpu_gbuffer.h"
 
 namespace tandem {
 
@@ -89,6 +91,32 @@ uint64_t gpuShadowMaps(FrameContext& ctx, const ShadowMaps& maps) {
       &moved);
   if (moved) ctx.passParts.push_back({"shadow_maps_upload", msSince(t0), 0, double(moved)});
   return address;
+}
+
+const uint32_t* recordLightsInView(FrameContext& ctx, const Pass& pass) {
+  GpuFrame& gpu = *ctx.gpu;
+  struct Push {  // lights_in_view.comp's push constants
+    uint64_t scene, sources, flags;
+    int32_t viewX, viewY, viewWidth, viewHeight, frameWidth, pad;
+  } a{};
+  const std::vector<uint32_t> zero(std::max<size_t>(ctx.scene->lights.size(), 1), 0);
+  a.scene = gpu.scene(ctx.frame).sceneAddress();
+  a.sources = gbufferDeviceSources(ctx, pass);
+  a.flags = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
+  a.frameWidth = ctx.width;
+  const GpuKernel& k =
+      gpu.kernel("lights_in_view", kLightsInViewSpv, sizeof(kLightsInViewSpv) / 4, sizeof(Push));
+  for (const View& v : ctx.views) {
+    a.viewX = v.x, a.viewY = v.y, a.viewWidth = v.width(), a.viewHeight = v.height();
+    gpu.commands().dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
+  }
+  return static_cast<const uint32_t*>(gpu.constantsData(a.flags));
+}
+
+std::vector<uint8_t> wantedLights(const uint32_t* flags, size_t lights) {
+  std::vector<uint8_t> wanted(lights, 0);
+  for (size_t i = 0; i < lights; ++i) wanted[i] = flags[i] != 0 ? 1 : 0;
+  return wanted;
 }
 
 }  // namespace tandem

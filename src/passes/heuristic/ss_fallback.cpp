@@ -380,15 +380,6 @@ void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
   a.shadowCull = s.shadowCull;
   a.objectCount = uint32_t(scene.objects.size());
   const ShadingContext shading = ShadingContext::from(scene);
-  if (shadows) {
-    // Maps for every light that casts shadows: which lights reach a surface in view would need
-    // the G-buffer, which stays on the device.
-    const auto t0 = Clock::now();
-    const ShadowMaps& maps = ctx.shadowMaps(s.shadowMapSize, nullptr);
-    ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
-    a.shadowMaps = gpuShadowMaps(ctx, maps);
-    ctx.report(*this, FallbackCounters::shadowMapRedraws, maps.redraws());
-  }
   const GpuKernel& k =
       gpu.kernel("fallback", kFallbackSpv, sizeof(kFallbackSpv) / 4, sizeof(FallbackArgs));
   const Bounds3 b = scene.bounds(ctx.frame.time);
@@ -414,12 +405,24 @@ void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
       cmd.dispatch(k, uint32_t(v.width() + 7) / 8, uint32_t(v.height() + 7) / 8, 1, &a);
     }
   };
+  // What the host needs before the maps and probes are drawn, back after one checkpoint: the
+  // lights that reach a surface in view, each object's untraced pixels.
+  const uint32_t* lightFlags = shadows ? recordLightsInView(ctx, *this) : nullptr;
   if (s.mode == FallbackMode::Probe) {
-    // Each object's untraced pixels come back before the probes are chosen and drawn.
     const std::vector<uint32_t> zero(std::max<size_t>(scene.objects.size(), 1), 0);
     a.areas = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
     run(TD_FALLBACK_COUNT);
-    cmd.checkpoint();
+  }
+  if (shadows || s.mode == FallbackMode::Probe) cmd.checkpoint();
+  if (shadows) {
+    const auto t0 = Clock::now();
+    const std::vector<uint8_t> inView = wantedLights(lightFlags, scene.lights.size());
+    const ShadowMaps& maps = ctx.shadowMaps(s.shadowMapSize, &inView);
+    ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+    a.shadowMaps = gpuShadowMaps(ctx, maps);
+    ctx.report(*this, FallbackCounters::shadowMapRedraws, maps.redraws());
+  }
+  if (s.mode == FallbackMode::Probe) {
     const auto t0 = Clock::now();
     const auto* counted = static_cast<const uint32_t*>(gpu.constantsData(a.areas));
     updateProbes(ctx, shading, std::vector<uint32_t>(counted, counted + scene.objects.size()));
