@@ -5,6 +5,8 @@
 // frames of a moving camera; and classified shadows on the GPU against its shadow rays.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "gpu/feature_scene.h"
 #include "gpu/gpu_test_util.h"
 #include "pipeline/renderer.h"
@@ -14,11 +16,25 @@
 namespace tandem {
 namespace {
 
+// expectAgreement, where secondary rays may also tie: a reflected ray that grazes a silhouette
+// within rounding takes another surface on one device (the primary object ids cannot tell). Such
+// a buffer passes when all but 0.05 % of its pixels agree to 1e-3 (a few pixels at 160x90).
+void expectSecondaryAgreement(const Buffer& cpu, const Buffer& gpu, const Buffer& cpuIds,
+                              const Buffer& gpuIds, const std::string& what) {
+  const ImageAgreement a = imageAgreement(cpu, gpu, cpuIds, gpuIds);
+  if (a.psnr < 45.0 && agreement(cpu, gpu, 1e-3f) >= 0.9995) {
+    EXPECT_LE(a.ties, 0.002) << what;
+    EXPECT_EQ(a.tiesOffEdges, 0) << what;
+    return;
+  }
+  expectAgreement(a, what);
+}
+
 // `shadows`: rt_secondary's shadow mode (classified, rays, maps); `params`: more settings.
 void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pipeline,
                    const Scene& scene, CameraDesc cam, const std::string& what,
                    const std::string& shadows = "classified",
-                   const std::vector<std::string>& params = {}) {
+                   const std::vector<std::string>& params = {}, int frames = 3) {
   RenderSettings rs{.width = 160, .height = 90};
   const auto load = [&] {
     Pipeline p = Pipeline::load(pipeline);
@@ -30,7 +46,7 @@ void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
   rs.gpu = dev;
   Renderer gpu(scene, load(), rs);
   const Vec3 step = (cam.lookAt - cam.position) * 0.02f + Vec3(0.05f, 0.0f, 0.0f);
-  for (int f = 0; f < 3; ++f) {
+  for (int f = 0; f < frames; ++f) {
     cpu.renderFrame(f, cam);
     const FrameTimings ft = gpu.renderFrame(f, cam);
     // A GPU pass has a row of its host time; every pass of these pipelines has a GPU version.
@@ -47,7 +63,8 @@ void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     const FrameContext &c = cpu.context(), &g = gpu.context();
     const Buffer &cIds = c.input("object_id"), &gIds = g.input("object_id");
     for (const char* name : {"shadow", "reflection", "refraction", "traced_mask", "composite"})
-      expectAgreement(imageAgreement(c.input(name), g.input(name), cIds, gIds), at + ": " + name);
+      if (c.buffers.count(name))
+        expectSecondaryAgreement(c.input(name), g.input(name), cIds, gIds, at + ": " + name);
     // Maps only for the lights in view: the device finds them over smaller tiles than the CPU,
     // so never more of them.
     if (shadows != "rays") {
@@ -57,7 +74,7 @@ void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     }
     if (c.buffers.count("fallback")) {
       const Buffer &cf = c.input("fallback"), &gf = g.input("fallback");
-      expectAgreement(imageAgreement(cf, gf, cIds, gIds), at + ": fallback");
+      expectSecondaryAgreement(cf, gf, cIds, gIds, at + ": fallback");
       double covered = 0;  // pixels the fallback stood in for: effects, shadows
       for (size_t i = 0; i < cf.pixelCount(); ++i)
         covered += cf.data[i * size_t(cf.channels) + 9] + cf.data[i * size_t(cf.channels) + 10];
@@ -65,7 +82,7 @@ void compareHybrid(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
       EXPECT_EQ(c.counter("ss_fallback/probes_drawn", 0), g.counter("ss_fallback/probes_drawn", 0))
           << at;
     }
-    expectAgreement(imageAgreement(cpu.output(), gpu.output(), cIds, gIds), at + ": output");
+    expectSecondaryAgreement(cpu.output(), gpu.output(), cIds, gIds, at + ": output");
     // The same work: each share of the light-surface pairs (traced, and decided by the maps)
     // within 1 % (near-ties of which light a pixel asks about, or of a texel's depth test).
     for (const char* q : {"shadow_traced", "shadow_lit", "shadow_shadowed"}) {
@@ -87,6 +104,32 @@ TEST(GpuHybrid, SecondaryEffectsMatchTheCpu) {
   const Scene atrium = loadScene("atrium");
   compareHybrid(dev, "hybrid-all", atrium, defaultCamera(atrium), "atrium", "rays");
   compareHybrid(dev, "hybrid-all", atrium, defaultCamera(atrium), "atrium", "maps");
+  expectNoValidationMessages(*dev);
+}
+
+// TAA over 8 frames of a moving camera after the hybrid, all on the GPU (its history kept there).
+TEST(GpuHybrid, HeuristicHybridWithTaaMatchesTheCpuOverEightFrames) {
+  REQUIRE_GPU(dev);
+  const Scene spheres = loadScene("spheres");
+  compareHybrid(dev, "hybrid-heuristic-taa", spheres, defaultCamera(spheres), "spheres",
+                "classified", {"heuristic.budget=20000"}, 8);
+  expectNoValidationMessages(*dev);
+}
+
+// hybrid-budget's budget is calibrated from the device's own ray-tracing time, so its selection
+// is the device's: it runs there whole and gives a finite image, not the CPU's.
+TEST(GpuHybrid, BudgetHybridRunsOnTheGpuWhole) {
+  REQUIRE_GPU(dev);
+  const Scene spheres = loadScene("spheres");
+  RenderSettings rs{.width = 160, .height = 90, .gpu = dev};
+  Renderer r(spheres, Pipeline::load("hybrid-budget"), rs);
+  for (int f = 0; f < 3; ++f) {
+    const FrameTimings ft = r.renderFrame(f, defaultCamera(spheres));
+    int hosts = 0;
+    for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
+    EXPECT_EQ(hosts, 7) << "frame " << f << ": every one of its 7 passes on the GPU";
+  }
+  for (float v : r.output().data) ASSERT_TRUE(std::isfinite(v));
   expectNoValidationMessages(*dev);
 }
 
