@@ -54,6 +54,12 @@ struct ShadowLimit {
   float a, b;
 };
 bool limitMet(ShadowLimit l, float d) { return d * l.a > l.b; }
+// The limit of casters more than `gap` nearer the light than a point `along` the face's axis.
+ShadowLimit shadowLimit(GpuShadowFace f, float along, float gap) {
+  const float z = along - gap;
+  if (f.perspective != 0) return z > f.nearPlane ? ShadowLimit(z, f.nearPlane) : ShadowLimit(0.0, 1.0);
+  return ShadowLimit(f.farPlane - f.nearPlane, f.farPlane - z);
+}
 
 // ShadowMaps::classify of light i at p (geometric normal n) on object `self`: TD_SHADOW_LIT,
 // _SHADOWED or _TRACED.
@@ -82,19 +88,10 @@ int shadowClassify(uint i, vec3 p, vec3 n, int self) {
   const float sy = (0.5 - faceRow(f, 1, p) * iw * 0.5) * float(f.height);
   if (!(sx >= 1.0 && sy >= 1.0 && sx < float(f.width - 1) && sy < float(f.height - 1)))
     return TD_SHADOW_TRACED;
-  ShadowLimit own, other, shadow;
-  const float gaps[3] = float[](slope, 1e-4 * (1.0 + maxComponent(max(p, -p))), slope + 2.0 * texel);
-  ShadowLimit limits[3];
-  for (int k = 0; k < 3; ++k) {
-    const float z = along - gaps[k];
-    if (perspective)
-      limits[k] = z > f.nearPlane ? ShadowLimit(z, f.nearPlane) : ShadowLimit(0.0, 1.0);
-    else
-      limits[k] = ShadowLimit(f.farPlane - f.nearPlane, f.farPlane - z);
-  }
-  own = limits[0];
-  other = limits[1];
-  shadow = limits[2];
+  const ShadowLimit own = shadowLimit(f, along, slope);
+  // Another object counts from the shadow ray's own start offset on (offsetRayOrigin).
+  const ShadowLimit other = shadowLimit(f, along, 1e-4 * (1.0 + maxComponent(max(p, -p))));
+  const ShadowLimit shadow = shadowLimit(f, along, slope + 2.0 * texel);
   // Lit: no caster touching the texels the shadow ray projects onto is nearer than p, beyond the
   // receiver's own slope.
   const float e = 0.02;
