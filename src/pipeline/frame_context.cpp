@@ -27,6 +27,12 @@ ShadowMaps& FrameContext::shadowMaps(int resolution, const std::vector<uint8_t>*
   return *m;
 }
 
+ShadowMaps& FrameContext::deviceShadowMaps(int resolution) {
+  std::unique_ptr<ShadowMaps>& m = deviceShadowMaps_[resolution];
+  if (!m) m = std::make_unique<ShadowMaps>();
+  return *m;
+}
+
 namespace {
 
 enum class Access { Input, History, Output };

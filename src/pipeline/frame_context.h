@@ -73,6 +73,9 @@ struct FrameContext {
   // only for what changed (shadow_maps.h). Every pass of a pipeline that asks for the same
   // resolution shares one set. `wanted`: the lights that need maps (ShadowMaps::update).
   ShadowMaps& shadowMaps(int resolution, const std::vector<uint8_t>* wanted = nullptr);
+  // The device's maps at `resolution`, shared the same way, as they are (the GPU passes draw them
+  // there: passes/common/gpu_shadow_maps.h).
+  ShadowMaps& deviceShadowMaps(int resolution);
 
   // The buffer bound to `pass`'s output slot, created or reshaped to the slot's extent, kind and
   // channels (contents kept when the shape matches). Extent Any: `width` x `height` given here.
@@ -135,7 +138,7 @@ struct FrameContext {
     return r;
   }
   std::unique_ptr<RayTracer> rt_;
-  std::map<int, std::unique_ptr<ShadowMaps>> shadowMaps_;
+  std::map<int, std::unique_ptr<ShadowMaps>> shadowMaps_, deviceShadowMaps_;
 };
 
 }  // namespace tandem

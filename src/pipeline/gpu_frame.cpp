@@ -215,6 +215,17 @@ void GpuFrame::forget() {
   for (auto& [key, b] : scratch_) memory_.release(b);
   scratch_.clear();
   versions_.clear();
+  ++generation_;
+}
+
+void GpuFrame::readBack(const GpuBuffer& b, size_t bytes, void* out) {
+  if (bytes > b.size) throw std::logic_error("GPU: read back beyond a buffer's end");
+  if (!bytes) return;
+  GpuBuffer& s = staging(bytes);
+  commands_.begin();
+  commands_.copy(b, s, bytes);
+  commands_.submit();
+  std::memcpy(out, s.mapped, bytes);
 }
 
 }  // namespace tandem

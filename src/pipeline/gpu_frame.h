@@ -65,6 +65,11 @@ class GpuFrame {
                            const std::function<void(void* image, uint64_t address)>& fill,
                            size_t* moved = nullptr);
 
+  // Changes with forget(): scratch a pass filled in an earlier generation is gone.
+  uint64_t generation() const { return generation_; }
+  // The first `bytes` of device buffer `b` into `out` (its own submission, between frames).
+  void readBack(const GpuBuffer& b, size_t bytes, void* out);
+
   // Whether the device holds a newer value of `name` than the host.
   bool deviceNewer(const std::string& name) const;
   // Whether the device holds `name`'s current value (uploaded, or written there).
@@ -101,6 +106,7 @@ class GpuFrame {
   GpuBuffer staging_;
   std::vector<GpuBuffer> constants_;  // arenas, filled in turn each submission
   size_t constantsArena_ = 0, constantsUsed_ = 0;
+  uint64_t generation_ = 0;
   std::vector<std::function<void()>> after_;
   std::map<std::string, Copy> copies_;
   std::map<std::string, GpuBuffer> scratch_;

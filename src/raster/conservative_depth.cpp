@@ -34,10 +34,11 @@ void drawTriangle(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t object,
   const float lo = std::min({a.x, b.x, c.x}), hi = std::max({a.x, b.x, c.x});
   const float bot = std::min({a.y, b.y, c.y}), top = std::max({a.y, b.y, c.y});
   if (!(hi >= 0 && top >= 0 && lo < float(out.width) && bot < float(out.height))) return;
-  const int x0 = std::max(int(std::floor(lo)), 0),
-            x1 = std::min(int(std::floor(hi)), out.width - 1);
-  const int y0 = std::max(int(std::floor(bot)), 0),
-            y1 = std::min(int(std::floor(top)), out.height - 1);
+  // Clamped as floats first: a corner projected far off the map (beyond an int) stays in range.
+  const int x0 = int(std::max(std::floor(lo), 0.0f)),
+            x1 = int(std::min(std::floor(hi), float(out.width - 1)));
+  const int y0 = int(std::max(std::floor(bot), 0.0f)),
+            y1 = int(std::min(std::floor(top), float(out.height - 1)));
   const float dMax = std::max({a.z, b.z, c.z});
   const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
   // Edge functions E = A x + B y + C, >= 0 inside; a texel overlaps the half-plane when its
@@ -119,19 +120,21 @@ void drawWorldTriangle(const Projector& pr, const Vec3& a, const Vec3& b, const 
   for (int k = 1; k + 1 < n; ++k) drawTriangle(s[0], s[k], s[k + 1], object, out);
 }
 
-void drawBox(const Projector& pr, const Bounds3& b, uint32_t object, ConservativeDepth& out) {
+}  // namespace
+
+std::array<std::array<Vec3, 3>, 12> boxTriangles(const Bounds3& b) {
   Vec3 v[8];
   for (int k = 0; k < 8; ++k)
     v[k] = {k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y, k & 4 ? b.hi.z : b.lo.z};
   static const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4},
                                   {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
-  for (const auto& f : faces) {
-    drawWorldTriangle(pr, v[f[0]], v[f[1]], v[f[2]], object, out);
-    drawWorldTriangle(pr, v[f[0]], v[f[2]], v[f[3]], object, out);
+  std::array<std::array<Vec3, 3>, 12> out;
+  for (int f = 0; f < 6; ++f) {
+    out[size_t(2 * f)] = {v[faces[f][0]], v[faces[f][1]], v[faces[f][2]]};
+    out[size_t(2 * f + 1)] = {v[faces[f][0]], v[faces[f][2]], v[faces[f][3]]};
   }
+  return out;
 }
-
-}  // namespace
 
 void drawConservativeDepth(const FrameScene& fs, const Camera& cam,
                            const std::vector<uint8_t>* objects, bool keep, bool sweep,
@@ -149,7 +152,8 @@ void drawConservativeDepth(const FrameScene& fs, const Camera& cam,
     if (objects && !(*objects)[o]) continue;
     const FrameObject& fo = fs.objects[o];
     if (sweep && !fo.stepPositions.empty()) {
-      drawBox(pr, fo.bounds, uint32_t(o), out);
+      for (const auto& t : boxTriangles(fo.bounds))
+        drawWorldTriangle(pr, t[0], t[1], t[2], uint32_t(o), out);
       continue;
     }
     const std::vector<uint32_t>& idx = scene.meshes[size_t(scene.objects[o].mesh)].indices;

@@ -3,6 +3,7 @@
 // and which object it was. A caster thinner than a texel therefore never vanishes from the map, so
 // "nothing nearer in this texel" is a certainty a shadow ray need not check.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +21,10 @@ struct ConservativeDepth {
   int width = 0, height = 0;
   std::vector<Texel> texels;
 };
+
+// The 12 triangles of a box's faces (corner k at lo or hi by its bits x, y, z), as a swept object
+// is drawn.
+std::array<std::array<Vec3, 3>, 12> boxTriangles(const Bounds3& b);
 
 // Draws the objects with non-zero `objects[o]` (null: all) seen by `cam` (its width x height)
 // into `out`, over its contents when `keep`, else into a cleared map. Both faces are drawn.

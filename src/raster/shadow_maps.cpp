@@ -87,10 +87,15 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
                        (!sweep_ || fs.objects[o].stepPositions.empty());
   }
   if (staticStale) ++redraws_;
-  if (!fresh.empty()) drawStatic(fs, still, anyMoving, fresh);
+  std::vector<ShadowMapDevice::Job> jobs;
+  std::vector<ShadowMapDevice::Job>* deviceJobs = device_ ? &jobs : nullptr;
+  if (!fresh.empty()) drawStatic(fs, still, anyMoving, fresh, deviceJobs);
   mapped_ = 0;
   for (const std::vector<Face>& faces : faces_) mapped_ += faces.empty() ? 0 : 1;
-  if (!anyMoving) return;
+  if (!anyMoving) {
+    if (device_) device_->draw(fs, jobs, false, sweep_, opaqueCaster_);
+    return;
+  }
   ++movingRedraws_;
   // Only where the moving casters are now or were last time: the rest of each map is the
   // static casters' as drawn once. A face neither sees is left alone. Without new geometry
@@ -105,18 +110,30 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
   }
   std::vector<Face*> all;
   for (const size_t i : lights)
-    for (Face& face : faces_[i]) {
+    for (size_t k = 0; k < faces_[i].size(); ++k) {
+      Face& face = faces_[i][k];
       const TexelRect now = footprint(face, boxes);
       const TexelRect dirty = now.unite(face.moving);
       if (dirty.empty()) continue;
+      face.moving = now;
+      if (device_) {
+        ShadowMapDevice::Job job{i,        k,        face.camera, {},   dirty.x0,
+                                 dirty.y0, dirty.x1, dirty.y1,    false};
+        if (!now.empty()) job.casters = moving;
+        jobs.push_back(std::move(job));
+        continue;
+      }
       restoreStatic(face, dirty);
       if (!now.empty())
         raster_.render(fs, face.camera, face.map,
                        Rasterizer::Subset{&moving, /*keep=*/true, /*bothFaces=*/true});
       face.dirty = dirty;
-      face.moving = now;
       all.push_back(&face);
     }
+  if (device_) {
+    device_->draw(fs, jobs, true, sweep_, opaqueCaster_);
+    return;
+  }
   tbb::parallel_for(size_t(0), all.size(), [&](size_t k) {
     Face& face = *all[k];
     if (!face.moving.empty())
@@ -128,7 +145,8 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
 ShadowMaps::TexelRect ShadowMaps::footprint(const Face& f, const std::vector<Bounds3>& boxes) {
   const Camera& c = f.camera;
   const bool perspective = c.desc.projection == Projection::Perspective;
-  const TexelRect whole{0, 0, f.map.width, f.map.height};
+  const int width = c.width, height = c.height;
+  const TexelRect whole{0, 0, width, height};
   TexelRect r;
   float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
   for (const Bounds3& b : boxes)
@@ -137,17 +155,17 @@ ShadowMaps::TexelRect ShadowMaps::footprint(const Face& f, const std::vector<Bou
       if (perspective && dot(p - c.desc.position, c.forward) <= c.desc.nearPlane)
         return whole;  // around or behind the light: the whole face, to be safe
       const Vec4 q = c.viewProj * Vec4(p, 1.0f);
-      const float sx = (q.x / q.w * 0.5f + 0.5f) * float(f.map.width);
-      const float sy = (0.5f - q.y / q.w * 0.5f) * float(f.map.height);
+      const float sx = (q.x / q.w * 0.5f + 0.5f) * float(width);
+      const float sy = (0.5f - q.y / q.w * 0.5f) * float(height);
       lo[0] = std::min(lo[0], sx), hi[0] = std::max(hi[0], sx);
       lo[1] = std::min(lo[1], sy), hi[1] = std::max(hi[1], sy);
     }
   if (!(hi[0] >= lo[0])) return r;  // no boxes
   // Two texels of margin: conservative drawing touches partly covered texels.
-  r.x0 = std::clamp(int(std::floor(lo[0])) - 2, 0, f.map.width);
-  r.y0 = std::clamp(int(std::floor(lo[1])) - 2, 0, f.map.height);
-  r.x1 = std::clamp(int(std::ceil(hi[0])) + 2, 0, f.map.width);
-  r.y1 = std::clamp(int(std::ceil(hi[1])) + 2, 0, f.map.height);
+  r.x0 = std::clamp(int(std::floor(lo[0])) - 2, 0, width);
+  r.y0 = std::clamp(int(std::floor(lo[1])) - 2, 0, height);
+  r.x1 = std::clamp(int(std::ceil(hi[0])) + 2, 0, width);
+  r.y1 = std::clamp(int(std::ceil(hi[1])) + 2, 0, height);
   return r;
 }
 
@@ -163,8 +181,20 @@ void ShadowMaps::restoreStatic(Face& f, const TexelRect& r) {
   }
 }
 
+void ShadowMaps::drawOn(std::unique_ptr<ShadowMapDevice> device) {
+  device_ = std::move(device);
+  invalidate();
+}
+
+void ShadowMaps::invalidate() {
+  staticVersion_ = ~0ull;
+  geometryVersion_ = ~0ull;
+  for (std::vector<Face>& faces : faces_) faces.clear();
+}
+
 void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still, bool keepCopy,
-                            const std::vector<size_t>& lights) {
+                            const std::vector<size_t>& lights,
+                            std::vector<ShadowMapDevice::Job>* jobs) {
   const Scene& scene = *fs.scene;
   // The directional maps cover the scene's bounds as they are now (a moving caster that
   // leaves them later casts no fallback shadow outside).
@@ -226,6 +256,11 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
       face.texelPerDistance = face.camera.desc.projection == Projection::Perspective
                                   ? 2.0f * face.camera.tanHalfFov / float(size)
                                   : face.camera.desc.orthoHeight / float(size);
+      face.moving = {};  // the maps hold no moving caster now
+      if (jobs) {
+        jobs->push_back({i, k, face.camera, *casters, 0, 0, size, size, true});
+        continue;
+      }
       raster_.render(fs, face.camera, face.map,
                      Rasterizer::Subset{casters, /*keep=*/false, /*bothFaces=*/true});
       const Camera& c = face.camera;
@@ -255,7 +290,6 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
     Face& face = *all[k];
     drawConservativeDepth(fs, face.camera, drawn[k], /*keep=*/false, sweep_, face.near);
     if (keepCopy) face.staticNear = face.near;
-    face.moving = {};  // the maps hold no moving caster now
     markOpaque(face, {0, 0, face.map.width, face.map.height});
   });
 }
@@ -264,8 +298,10 @@ std::vector<ShadowMaps::FaceView> ShadowMaps::faceViews(size_t i) const {
   std::vector<FaceView> out;
   if (i >= faces_.size()) return out;
   for (const Face& f : faces_[i])
-    out.push_back({&f.camera, f.map.width, f.map.height, f.texelPerDistance, f.map.depth.data(),
-                   f.near.texels.data(), f.opaqueDepth.data()});
+    out.push_back({&f.camera, f.camera.width, f.camera.height, f.texelPerDistance,
+                   f.map.depth.empty() ? nullptr : f.map.depth.data(),
+                   f.near.texels.empty() ? nullptr : f.near.texels.data(),
+                   f.opaqueDepth.empty() ? nullptr : f.opaqueDepth.data()});
   return out;
 }
 

@@ -7,6 +7,7 @@
 // that depth whenever they moved. A moving camera reuses the maps as they are.
 #pragma once
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "raster/conservative_depth.h"
@@ -30,8 +31,36 @@ constexpr double kMaxShadowTexels = 128.0 * 1024 * 1024;
 // asked, or smaller (a multiple of 32, at least 32) when the faces would exceed kMaxShadowTexels.
 int budgetedShadowMapSize(const Scene& scene, int requested);
 
+// A device that draws and keeps the maps in place of the CPU (the GPU's compute rasterizer:
+// passes/common/gpu_shadow_maps.h). ShadowMaps plans what to draw as it does for its own maps; the
+// device draws it and answers the lookups (ShadowMaps' own classify and visibility are for maps
+// the CPU drew).
+class ShadowMapDevice {
+ public:
+  struct Job {
+    size_t light = 0, face = 0;
+    Camera camera;
+    std::vector<uint8_t> casters;        // per object: drawn (empty: none)
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the texels made anew, [x0, x1) x [y0, y1)
+    // Fresh: the face cleared and its static casters drawn (a copy kept when keepStatic).
+    // Otherwise the static copy restored in the rectangle and the casters drawn over it.
+    bool fresh = false;
+  };
+  virtual ~ShadowMapDevice() = default;
+  // Records the jobs in order, then the texels of each job's rectangle that hold an opaque caster
+  // (`opaqueCasters`, per object). `sweep`: objects moving while the shutter is open are drawn into
+  // the conservative maps as their box over the shutter.
+  virtual void draw(const FrameScene& fs, const std::vector<Job>& jobs, bool keepStatic, bool sweep,
+                    const std::vector<uint8_t>& opaqueCasters) = 0;
+};
+
 class ShadowMaps {
  public:
+  // Maps drawn and kept by `device` from now on (everything drawn anew at the next update).
+  void drawOn(std::unique_ptr<ShadowMapDevice> device);
+  ShadowMapDevice* device() const { return device_.get(); }
+  // Everything drawn anew at the next update (a device lost what it held).
+  void invalidate();
   // Redraws what changed: everything for new lights, resolution or static geometry; the
   // animated casters over the static depth when only they moved. `resolution` as
   // budgetedShadowMapSize gives it. `wanted` (optional, per light): only these lights need maps
@@ -61,8 +90,8 @@ class ShadowMaps {
   // count with want[k].
   void classify(size_t i, int count, const Vec3* p, const Vec3* n, const int* self,
                 const bool* want, ShadowClass* out) const;
-  // What a device copy of light i's maps needs (none when it has none): each face's camera and
-  // texels as classify and visibility read them.
+  // Light i's map faces (none when it has none): each face's camera and, for maps the CPU drew,
+  // its texels as classify and visibility read them (null for a device's maps).
   struct FaceView {
     const Camera* camera;
     int width, height;
@@ -101,9 +130,10 @@ class ShadowMaps {
     ShadowFace lookup{};      // what the batch kernel reads (depth: map's, at lookup)
     float texelPerDistance = 0;  // a texel's world width per unit distance (ortho: the width)
   };
-  // Draws the static casters into the maps of `lights` (their faces made anew).
+  // Makes the faces of `lights` anew and draws their static casters (on the device: adds the
+  // jobs).
   void drawStatic(const FrameScene& fs, const std::vector<uint8_t>& still, bool keepCopy,
-                  const std::vector<size_t>& lights);
+                  const std::vector<size_t>& lights, std::vector<ShadowMapDevice::Job>* jobs);
   // The face of light i that sees p: the cube face of p's major axis, else the one map.
   const Face* faceFor(size_t i, Vec3 p) const;
   void markOpaque(Face& face, const TexelRect& r) const;
@@ -124,6 +154,7 @@ class ShadowMaps {
   int resolution_ = 0, redraws_ = 0, movingRedraws_ = 0, mapped_ = 0;
   uint64_t version_ = 0;
   Rasterizer raster_;
+  std::unique_ptr<ShadowMapDevice> device_;
 };
 
 }  // namespace tandem

@@ -15,20 +15,6 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer RasterCounte
 
 const int kRasterTile = 64;  // the CPU's tile: its depth is evaluated from each tile's left edge
 
-// The object whose triangles include `triangle` (an index over all objects' triangles): the last
-// one starting at or before it.
-int objectOfTriangle(uint triangle, uint objectCount) {
-  int lo = 0, hi = int(objectCount) - 1;
-  while (lo < hi) {
-    const int mid = (lo + hi + 1) / 2;
-    if (Objects(S.objects).o[mid].firstIndex / 3u <= triangle)
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return lo;
-}
-
 // Whether the centre of pixel (px, py) lies inside t (triangleBox's edge functions at one pixel).
 bool coversPixel(RasterTriangle t, int px, int py) {
   const int64_t sx = (int64_t(px) << 8) + 128, sy = (int64_t(py) << 8) + 128;

@@ -143,6 +143,20 @@ uvec3 triangleVertices(GpuObject ob, int prim) {
   return uvec3(idx.v[i], idx.v[i + 1u], idx.v[i + 2u]) + uvec3(ob.firstVertex);
 }
 
+// The object whose triangles include `triangle` (an index over all objects' triangles): the last
+// one starting at or before it.
+int objectOfTriangle(uint triangle, uint objectCount) {
+  int lo = 0, hi = int(objectCount) - 1;
+  while (lo < hi) {
+    const int mid = (lo + hi + 1) / 2;
+    if (Objects(S.objects).o[mid].firstIndex / 3u <= triangle)
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return lo;
+}
+
 bool hasTexture(GpuMaterial m) {
   return m.diffuseTexture >= 0 || m.emissionTexture >= 0 || m.specularTexture >= 0 ||
          m.metallicRoughnessTexture >= 0 || m.normalTexture >= 0 || m.occlusionTexture >= 0;

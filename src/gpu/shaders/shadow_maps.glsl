@@ -20,8 +20,8 @@ layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer Sha
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer ShadowTexelsRef {
   float v[];
 };
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer ShadowNearRef {
-  uvec2 v[];  // (depth bits, object)
+layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ShadowKeysRef {
+  uvec2 v[];  // a uint64 key's (low, high) words: (the complement of an index, depth bits)
 };
 
 GpuShadowMapsHeader shadowMaps;
@@ -96,12 +96,12 @@ int shadowClassify(uint i, vec3 p, vec3 n, int self) {
   // receiver's own slope.
   const float e = 0.02;
   const int tx0 = int(sx - e), tx1 = int(sx + e), ty0 = int(sy - e), ty1 = int(sy + e);
-  ShadowNearRef near = ShadowNearRef(f.near);
+  ShadowKeysRef near = ShadowKeysRef(f.near);
   bool blocked = false;
   for (int y = ty0; y <= ty1; ++y)
     for (int x = tx0; x <= tx1; ++x) {
       const uvec2 t = near.v[uint(y) * uint(f.width) + uint(x)];
-      blocked = blocked || limitMet(int(t.y) == self ? own : other, uintBitsToFloat(t.x));
+      blocked = blocked || limitMet(int(~t.x) == self ? own : other, uintBitsToFloat(t.y));
     }
   if (!blocked) return TD_SHADOW_LIT;
   // Shadowed: every texel centre around p holds an opaque static caster well in front of it.
@@ -144,11 +144,13 @@ float shadowVisibility(uint i, vec3 p, vec3 n) {
     threshold = (f.farPlane + bias - dq) / (f.farPlane - f.nearPlane);
   const int x0 = clamp(cx, 0, f.width - 1), x1 = clamp(cx + 1, 0, f.width - 1);
   const int y0 = clamp(cy, 0, f.height - 1), y1 = clamp(cy + 1, 0, f.height - 1);
-  ShadowTexelsRef depth = ShadowTexelsRef(f.depth);
+  ShadowKeysRef depth = ShadowKeysRef(f.depth);
   const uint w0 = uint(f.width);
   int lit = 0;
-  const float taps[4] = float[](depth.v[uint(y0) * w0 + uint(x0)], depth.v[uint(y0) * w0 + uint(x1)],
-                                depth.v[uint(y1) * w0 + uint(x0)], depth.v[uint(y1) * w0 + uint(x1)]);
+  const float taps[4] = float[](uintBitsToFloat(depth.v[uint(y0) * w0 + uint(x0)].y),
+                                uintBitsToFloat(depth.v[uint(y0) * w0 + uint(x1)].y),
+                                uintBitsToFloat(depth.v[uint(y1) * w0 + uint(x0)].y),
+                                uintBitsToFloat(depth.v[uint(y1) * w0 + uint(x1)].y));
   for (int k = 0; k < 4; ++k) lit += taps[k] <= 0.0 || taps[k] <= threshold ? 1 : 0;
   return float(lit) * 0.25;
 }

@@ -1,6 +1,6 @@
-// The frame's raster shadow maps on the GPU (C++ and GLSL): one buffer holding a header, a record
-// per light and per map face, then each face's texels (raster/shadow_maps.h, read by
-// shadow_maps.glsl as ShadowMaps::classify and visibility read them).
+// The frame's raster shadow maps on the GPU (C++ and GLSL): a header, a record per light and per
+// map face, each face's texels (raster/shadow_maps.h; drawn by shadow_map_draw.comp and the
+// compute rasterizer, read by shadow_maps.glsl as ShadowMaps::classify and visibility read them).
 #ifndef TANDEM_GPU_SHADOW_MAPS_DATA_H
 #define TANDEM_GPU_SHADOW_MAPS_DATA_H
 #include "shared.h"
@@ -21,8 +21,10 @@ struct GpuShadowFace {
   TD_FLOAT forward[3], nearPlane;
   TD_FLOAT farPlane;
   TD_INT width, height, perspective;
-  TD_ADDR depth;   // width x height floats, reversed-Z
-  TD_ADDR near;    // width x height (depth float, object uint): the conservative map
+  // width x height uint64 each, a depth's bits (reversed Z) over a complement: as the compute
+  // rasterizer draws them (raster_args.h), so one atomicMax keeps the nearest.
+  TD_ADDR depth;   // the map: over the drawn triangle's index
+  TD_ADDR near;    // the conservative map: over the object's index (0: nothing touched)
   TD_ADDR opaque;  // width x height floats: depth of opaque static casters, else 0
 };
 #endif

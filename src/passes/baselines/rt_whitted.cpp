@@ -69,9 +69,9 @@ void RTWhittedPass::executeGpu(FrameContext& ctx) {
   a.maxDepth = w.maxDepth;
   a.importanceCutoff = w.importanceCutoff;
   a.shadowCull = w.shadowCull;
-  // Classified and shadow-map shadows: the frame's maps (every light that casts shadows) copied
-  // to the device when redrawn.
-  const ShadowMaps* maps = shadowMapsFor(ctx, *this, settings().whitted, nullptr);
+  // Classified and shadow-map shadows: the frame's maps (every light that casts shadows), drawn
+  // on the device where they changed.
+  const ShadowMaps* maps = shadowMapsFor(ctx, *this, settings().whitted, nullptr, true);
   a.shadowMaps = maps ? gpuShadowMaps(ctx, *maps) : 0;
   a.flags = gpuWhittedFlags(w, maps != nullptr);
   const GpuKernel& k =

@@ -23,6 +23,31 @@ constexpr size_t kQueueCapacity = size_t(1) << 18;  // large triangles; the rest
 constexpr size_t kQueueHeader = 16;                 // the count, padded
 }  // namespace
 
+RasterQueue rasterQueue(GpuFrame& gpu, const std::string& key, size_t triangles) {
+  const size_t capacity = std::min(std::max<size_t>(triangles, 1024), kQueueCapacity);
+  return {&gpu.scratch(key, kQueueHeader + capacity * sizeof(RasterTriangle)), uint32_t(capacity)};
+}
+
+void recordRasterizer(GpuFrame& gpu, const RasterQueue& queue, uint64_t args, size_t triangles) {
+  const GpuKernel& setup = gpu.device().info().float64
+                               ? gpu.kernel("raster_triangles", kRasterTrianglesSpv,
+                                            sizeof(kRasterTrianglesSpv) / 4, sizeof(uint64_t))
+                               : gpu.kernel("raster_triangles_f32", kRasterTrianglesF32Spv,
+                                            sizeof(kRasterTrianglesF32Spv) / 4, sizeof(uint64_t));
+  const GpuKernel& large =
+      gpu.kernel("raster_queue", kRasterQueueSpv, sizeof(kRasterQueueSpv) / 4, sizeof(uint64_t));
+  GpuCommands& cmd = gpu.commands();
+  cmd.fill(*queue.buffer, 0, kQueueHeader, 0);
+  cmd.barrier();
+  if (triangles == 0) return;
+  const uint32_t groups = uint32_t((triangles + 63) / 64);
+  const uint32_t gx = std::min<uint32_t>(groups, 4096);
+  cmd.dispatch(setup, gx, (groups + gx - 1) / gx, 1, &args);
+  cmd.barrier();
+  cmd.dispatch(large, kQueueGroups, 1, 1, &args);
+  cmd.barrier();
+}
+
 void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t targets, uint64_t hdr,
                                 const char* resolvePart) {
   GpuFrame& gpu = *ctx.gpu;
@@ -30,14 +55,6 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
   const FrameScene& fs = ctx.frame;
   const Scene& scene = *fs.scene;
   const uint64_t sceneAddress = gpu.scene(fs).sceneAddress();
-  const GpuKernel& triangles =
-      gpu.device().info().float64
-          ? gpu.kernel("raster_triangles", kRasterTrianglesSpv, sizeof(kRasterTrianglesSpv) / 4,
-                       sizeof(uint64_t))
-          : gpu.kernel("raster_triangles_f32", kRasterTrianglesF32Spv,
-                       sizeof(kRasterTrianglesF32Spv) / 4, sizeof(uint64_t));
-  const GpuKernel& queue =
-      gpu.kernel("raster_queue", kRasterQueueSpv, sizeof(kRasterQueueSpv) / 4, sizeof(uint64_t));
   const GpuKernel& resolve = gpu.kernel("raster_resolve", kRasterResolveSpv,
                                         sizeof(kRasterResolveSpv) / 4, sizeof(RasterResolveArgs));
 
@@ -47,10 +64,8 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
     firstTriangle[o] = uint32_t(triangleCount);
     triangleCount += scene.meshes[size_t(scene.objects[o].mesh)].triangleCount();
   }
-  const size_t capacity = std::min(std::max<size_t>(triangleCount, 1024), kQueueCapacity);
   const std::string key = "raster:" + pass.name() + ":";
-  const GpuBuffer& queueBuffer =
-      gpu.scratch(key + "queue", kQueueHeader + capacity * sizeof(RasterTriangle));
+  const RasterQueue queueBuffer = rasterQueue(gpu, key + "queue", triangleCount);
   const uint64_t motion = gpuObjectMotionConstants(ctx);
 
   // Counted on the host, as the CPU counts them: every triangle in, those of objects outside
@@ -76,28 +91,19 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
     a.scene = sceneAddress;
     a.draw = gpu.constants(draw.data(), draw.size() * sizeof(uint32_t));
     a.visibility = vis.address;
-    a.queue = queueBuffer.address;
+    a.queue = queueBuffer.buffer->address;
     a.counters = gpu.constants(zero, sizeof zero);
     std::memcpy(a.viewProj, &cam.viewProj.m[0][0], sizeof a.viewProj);
     a.camera = gpuCamera(cam, ctx.pixelSpread(v));
     a.triangles = uint32_t(triangleCount);
     a.objectCount = uint32_t(fs.objects.size());
-    a.queueCapacity = uint32_t(capacity);
+    a.queueCapacity = queueBuffer.capacity;
     a.bothFaces = 0;
     counters.push_back(a.counters);
     const uint64_t args = gpu.constants(&a, sizeof a);
 
     cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
-    cmd.fill(queueBuffer, 0, kQueueHeader, 0);
-    cmd.barrier();
-    if (triangleCount > 0) {
-      const uint32_t groups = uint32_t((triangleCount + 63) / 64);
-      const uint32_t gx = std::min<uint32_t>(groups, 4096);
-      cmd.dispatch(triangles, gx, (groups + gx - 1) / gx, 1, &args);
-      cmd.barrier();
-      cmd.dispatch(queue, kQueueGroups, 1, 1, &args);
-      cmd.barrier();
-    }
+    recordRasterizer(gpu, queueBuffer, args, triangleCount);
     RasterResolveArgs r{};
     r.scene = sceneAddress;
     r.view = gpuViewConstants(ctx, v);

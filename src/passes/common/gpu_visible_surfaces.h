@@ -11,6 +11,20 @@
 
 namespace tandem {
 
+class GpuFrame;
+struct GpuBuffer;
+
+// The compute rasterizer's queue of large triangles, kept as scratch `key` for up to `triangles`.
+struct RasterQueue {
+  const GpuBuffer* buffer;
+  uint32_t capacity;
+};
+RasterQueue rasterQueue(GpuFrame& gpu, const std::string& key, size_t triangles);
+// Records the compute rasterizer's set-up and large-triangle kernels for one view's RasterArgs
+// (at `args`, in this submission's constants, whose queue is `queue`) over `triangles` triangles:
+// the visibility buffer, cleared by the caller, holds the nearest key a pixel after it.
+void recordRasterizer(GpuFrame& gpu, const RasterQueue& queue, uint64_t args, size_t triangles);
+
 class GpuVisibleSurfaces {
  public:
   // Records, view by view, the rasterization and the resolve into `targets` (the address of a

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "passes/common/gpu_shadow_maps.h"
+
 namespace tandem {
 
 const ParamTable<WhittedParams>& whittedTable() {
@@ -86,15 +88,24 @@ std::vector<CounterDesc> whittedCounters(const Pass& pass) {
 }
 
 const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w,
-                                const std::vector<uint8_t>* wanted) {
+                                const std::vector<uint8_t>* wanted, bool device) {
   if (w.shadows == ShadowMode::Rays) return nullptr;
-  const auto t0 = Clock::now();
-  const ShadowMaps* maps = &ctx.shadowMaps(w.shadowMapSize, wanted);
-  ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
-  ctx.report(pass, ShadowMapCounters::staticRedraws, maps->redraws());
-  ctx.report(pass, ShadowMapCounters::movingRedraws, maps->movingRedraws());
-  ctx.report(pass, ShadowMapCounters::mappedLights, maps->mappedLights());
+  const ShadowMaps* maps = nullptr;
+  if (device) {
+    maps = &deviceShadowMaps(ctx, pass, w.shadowMapSize, wanted);  // its part: the GPU's time
+  } else {
+    const auto t0 = Clock::now();
+    maps = &ctx.shadowMaps(w.shadowMapSize, wanted);
+    ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+  }
+  reportShadowMaps(ctx, pass, *maps);
   return maps;
+}
+
+void reportShadowMaps(FrameContext& ctx, const Pass& pass, const ShadowMaps& maps) {
+  ctx.report(pass, ShadowMapCounters::staticRedraws, maps.redraws());
+  ctx.report(pass, ShadowMapCounters::movingRedraws, maps.movingRedraws());
+  ctx.report(pass, ShadowMapCounters::mappedLights, maps.mappedLights());
 }
 
 WhittedFrame::WhittedFrame(FrameContext& ctx, const Pass& pass, const WhittedParams& p)

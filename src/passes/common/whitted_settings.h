@@ -38,9 +38,12 @@ std::vector<CounterDesc> whittedCounters(const Pass& pass);
 
 // The frame's shadow maps when `w` uses them (drawn or brought up to date here; a pass part
 // "shadow_maps" times that, `pass` reports their counters), else null. `wanted`: the lights
-// that need maps (lightsInView; null: all).
+// that need maps (lightsInView; null: all). `device`: the GPU's maps, their drawing recorded
+// into the current submission (gpu_shadow_maps.h).
 const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const WhittedParams& w,
-                                const std::vector<uint8_t>* wanted = nullptr);
+                                const std::vector<uint8_t>* wanted = nullptr, bool device = false);
+// The counters of the maps `pass` used this frame.
+void reportShadowMaps(FrameContext& ctx, const Pass& pass, const ShadowMaps& maps);
 
 // One frame of a pass that shades with Whitted rays: the shading context, the tracer with the
 // pass's settings and the frame's shadow maps, and the tally of its shadow queries. finish()

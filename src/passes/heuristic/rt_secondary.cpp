@@ -389,14 +389,14 @@ void RTSecondaryPass::executeGpu(FrameContext& ctx) {
   const std::vector<uint32_t> zero(TD_COUNT_N + objects * TD_STATS_PER_OBJECT, 0);
   a.counters = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
   // Classified and shadow-map shadows: the frame's maps, for the lights that reach a surface in
-  // view (found on the device, back after a checkpoint), copied there when redrawn.
+  // view (found on the device, back after a checkpoint), drawn there where they changed.
   std::vector<uint8_t> inView;
   if (settings().whitted.shadows != ShadowMode::Rays) {
     const uint32_t* flags = recordLightsInView(ctx, *this);
     gpu.commands().checkpoint();
     inView = wantedLights(flags, ctx.scene->lights.size());
   }
-  const ShadowMaps* maps = shadowMapsFor(ctx, *this, settings().whitted, &inView);
+  const ShadowMaps* maps = shadowMapsFor(ctx, *this, settings().whitted, &inView, true);
   a.shadowMaps = maps ? gpuShadowMaps(ctx, *maps) : 0;
   a.frameWidth = ctx.width;
   a.maxDepth = w.maxDepth;

@@ -415,10 +415,8 @@ void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
   }
   if (shadows || s.mode == FallbackMode::Probe) cmd.checkpoint();
   if (shadows) {
-    const auto t0 = Clock::now();
     const std::vector<uint8_t> inView = wantedLights(lightFlags, scene.lights.size());
-    const ShadowMaps& maps = ctx.shadowMaps(s.shadowMapSize, &inView);
-    ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+    const ShadowMaps& maps = deviceShadowMaps(ctx, *this, s.shadowMapSize, &inView);
     a.shadowMaps = gpuShadowMaps(ctx, maps);
     ctx.report(*this, FallbackCounters::shadowMapRedraws, maps.redraws());
   }
