@@ -33,6 +33,12 @@ ShadowMaps& FrameContext::deviceShadowMaps(int resolution) {
   return *m;
 }
 
+const ShadowMaps* FrameContext::heldShadowMaps(int resolution, bool device) const {
+  const auto& held = device ? deviceShadowMaps_ : shadowMaps_;
+  auto it = held.find(resolution);
+  return it == held.end() ? nullptr : it->second.get();
+}
+
 namespace {
 
 enum class Access { Input, History, Output };

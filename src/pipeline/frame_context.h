@@ -76,6 +76,8 @@ struct FrameContext {
   // The device's maps at `resolution`, shared the same way, as they are (the GPU passes draw them
   // there: passes/common/gpu_shadow_maps.h).
   ShadowMaps& deviceShadowMaps(int resolution);
+  // The maps held at `resolution` (the device's or the CPU's), as they are; null when none.
+  const ShadowMaps* heldShadowMaps(int resolution, bool device) const;
 
   // The buffer bound to `pass`'s output slot, created or reshaped to the slot's extent, kind and
   // channels (contents kept when the shape matches). Extent Any: `width` x `height` given here.
