@@ -72,31 +72,18 @@ void GpuFrame::dispatchInterruptibly(const GpuKernel& kernel, uint32_t x, uint32
   }
 }
 
+void GpuFrame::dropScratch(const std::string& key) {
+  auto it = scratch_.find(key);
+  if (it == scratch_.end()) return;
+  memory_.release(it->second);
+  scratch_.erase(it);
+}
+
 const GpuBuffer& GpuFrame::scratch(const std::string& key, size_t bytes) {
   GpuBuffer& b = scratch_[key];
   if (b && b.size < bytes) memory_.release(b);
   if (!b) b = memory_.allocate(std::max<size_t>(bytes, 4), false);
   return b;
-}
-
-uint64_t GpuFrame::residentScratch(const std::string& key, uint64_t version, size_t bytes,
-                                   const std::function<void(void*, uint64_t)>& fill,
-                                   size_t* moved) {
-  if (moved) *moved = 0;
-  auto held = versions_.find(key);
-  const GpuBuffer* existing = scratch_.count(key) ? &scratch_[key] : nullptr;
-  if (held != versions_.end() && held->second == version && existing && existing->size >= bytes)
-    return existing->address;
-  const GpuBuffer& b = scratch(key, bytes);
-  versions_.erase(key);  // (stale until the copy below completes)
-  GpuBuffer& s = staging(bytes);
-  fill(s.mapped, b.address);
-  uploads_.begin();
-  uploads_.copy(s, b, bytes);
-  uploads_.submit();
-  versions_[key] = version;
-  if (moved) *moved = bytes;
-  return b.address;
 }
 
 void GpuFrame::beginSubmission() {
@@ -214,7 +201,6 @@ void GpuFrame::forget() {
   copies_.clear();
   for (auto& [key, b] : scratch_) memory_.release(b);
   scratch_.clear();
-  versions_.clear();
   ++generation_;
 }
 

@@ -57,14 +57,8 @@ class GpuFrame {
   // A device buffer of at least `bytes` kept under `key` across frames for one pass's own use (a
   // visibility buffer, a queue): never moved, its contents whatever the pass left there.
   const GpuBuffer& scratch(const std::string& key, size_t bytes);
-  // Scratch buffer `key` of `bytes` holding what `fill` writes into a host image of it (given the
-  // buffer's device address, for records that point into it): filled and uploaded only when
-  // `version` differs from the one it holds (its own submission, before the commands being
-  // recorded run). Its address; `moved` (optional) gets the bytes uploaded now.
-  uint64_t residentScratch(const std::string& key, uint64_t version, size_t bytes,
-                           const std::function<void(void* image, uint64_t address)>& fill,
-                           size_t* moved = nullptr);
-
+  // Scratch `key` freed at once: nothing recorded and not yet run may read it.
+  void dropScratch(const std::string& key);
   // Changes with forget(): scratch a pass filled in an earlier generation is gone.
   uint64_t generation() const { return generation_; }
   // The first `bytes` of device buffer `b` into `out` (its own submission, between frames).
@@ -110,7 +104,6 @@ class GpuFrame {
   std::vector<std::function<void()>> after_;
   std::map<std::string, Copy> copies_;
   std::map<std::string, GpuBuffer> scratch_;
-  std::map<std::string, uint64_t> versions_;  // residentScratch: the version each holds
   std::map<std::string, std::unique_ptr<GpuKernel>> kernels_;
 };
 

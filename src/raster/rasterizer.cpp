@@ -91,9 +91,9 @@ int clipPolygon(Vec4* poly, int n, unsigned mask) {
 
 }  // namespace
 
-bool boundsOutsideFrustum(const Mat4& vp, const Bounds3& b) {
+bool boundsOutsideFrustum(const Mat4& vp, const Bounds3& b, unsigned planes) {
   if (!(b.lo.x <= b.hi.x)) return true;  // empty object
-  unsigned andCode = 0x3f;
+  unsigned andCode = planes;
   for (int k = 0; k < 8; ++k) {
     Vec3 p{k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y, k & 4 ? b.hi.z : b.lo.z};
     Vec4 c = vp * Vec4(p, 1.0f);

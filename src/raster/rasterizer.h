@@ -21,7 +21,8 @@ constexpr int kRasterSubBits = 8;
 
 // True when the world box lies entirely outside one plane of the view frustum of `vp` (the real
 // one, not the clipper's guard band): none of its triangles can cover a pixel.
-bool boundsOutsideFrustum(const Mat4& vp, const Bounds3& b);
+// `planes`: the planes tested (bits: near, far, left, right, bottom, top), all by default.
+bool boundsOutsideFrustum(const Mat4& vp, const Bounds3& b, unsigned planes = 0x3f);
 
 struct RasterStats {
   size_t trianglesIn = 0, trianglesCulled = 0, trianglesClipped = 0, trianglesBinned = 0;

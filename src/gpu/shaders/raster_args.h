@@ -41,5 +41,8 @@ struct RasterResolveArgs {
   TD_ADDR scene, view, targets, motion, visibility, hdr;
   TD_INT viewX, viewY, frameWidth;
   TD_UINT objectCount;
+  // Non-zero: shaded towards the camera ray's reverse (ReflectionProbes::draw), else towards the
+  // eye (vbuffer_shading).
+  TD_INT probe, pad;
 };
 #endif

@@ -4,7 +4,8 @@
 // the pixel's camera ray, the surface at the pixel cone's texture level, the rasterizer's depth,
 // motion from the pixel centre; the background cleared. Into the G-buffer targets that are
 // non-zero (raster_gbuffer: all) and, when `hdr` is, shaded there as vbuffer_shading shades it
-// (Listing 5, no shadows; the sky along the camera ray).
+// (Listing 5, no shadows; the sky along the camera ray). A reflection probe's faces are resolved
+// and shaded the same way (ReflectionProbes::draw).
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -61,7 +62,9 @@ void main() {
     const vec3 eye = vec3(view.camera.eye[0], view.camera.eye[1], view.camera.eye[2]);
     const vec3 forward =
         vec3(view.camera.forward[0], view.camera.forward[1], view.camera.forward[2]);
-    put3(a.hdr, pixel, shadeUnshadowed(s, view.perspective != 0 ? safeNormalize(eye - s.position)
-                                                                 : -forward));
+    const vec3 wo = a.probe != 0          ? -dir
+                    : view.perspective != 0 ? safeNormalize(eye - s.position)
+                                            : -forward;
+    put3(a.hdr, pixel, shadeUnshadowed(s, wo));
   }
 }

@@ -18,6 +18,7 @@
 #include "pipeline/gpu_frame.h"
 #include "pipeline/gpu_gbuffer.h"
 #include "pipeline/pass.h"
+#include "raster/rasterizer.h"
 
 namespace tandem {
 
@@ -125,9 +126,11 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
   GpuCommands& cmd = g.commands();
   const Camera& cam = job.camera;
   const size_t objects = fs.objects.size();
-  // The depth map: the casters' triangles, both faces, through the compute rasterizer.
+  // The depth map: the casters' triangles, both faces, through the compute rasterizer (objects
+  // outside the face's frustum left out on the host, as the CPU's rasterizer leaves them).
   std::vector<uint32_t> draw(std::max<size_t>(objects, 1), 0);
-  for (size_t o = 0; o < objects; ++o) draw[o] = job.casters[o] ? 1 : 0;
+  for (size_t o = 0; o < objects; ++o)
+    draw[o] = job.casters[o] && !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 1 : 0;
   const uint32_t zero[TD_RASTER_COUNT_N] = {};
   const RasterQueue queue = rasterQueue(g, "shadow_maps:raster_queue", triangles_);
   RasterArgs r{};
@@ -145,9 +148,15 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
   recordRasterizer(g, queue, g.constants(&r, sizeof r), triangles_);
 
   // The conservative map: the same casters, those moving over an open shutter as their box.
+  // Objects beyond the far plane stay (a perspective map stores them at a depth near 0, as the
+  // CPU does); the other planes leave out what could touch no texel.
+  constexpr unsigned kAllButFar = 0x3f & ~2u;
   std::vector<ConservativeWorldTriangle> boxes;
   for (size_t o = 0; o < objects; ++o) {
-    if (!job.casters[o] || !sweep || fs.objects[o].stepPositions.empty()) continue;
+    draw[o] =
+        job.casters[o] && !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds, kAllButFar) ? 1
+                                                                                                : 0;
+    if (!draw[o] || !sweep || fs.objects[o].stepPositions.empty()) continue;
     draw[o] = 0;
     for (const auto& t : boxTriangles(fs.objects[o].bounds)) {
       ConservativeWorldTriangle w{};

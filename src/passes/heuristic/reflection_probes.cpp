@@ -34,7 +34,12 @@ uint64_t nextVersion() {
 ReflectionProbes::ProbeView ReflectionProbes::probe(size_t o) const {
   if (o >= probes_.size() || probes_[o].size == 0) return {};
   const Probe& p = probes_[o];
-  return {p.size, p.centre, p.radius, p.cameras.data(), p.faces.data()};
+  return {p.size, p.centre, p.radius, p.cameras.data(), p.faces.empty() ? nullptr : p.faces.data()};
+}
+
+void ReflectionProbes::drawOn(std::unique_ptr<ProbeDevice> device) {
+  device_ = std::move(device);
+  invalidate();
 }
 
 int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading,
@@ -72,7 +77,10 @@ int ReflectionProbes::update(const FrameScene& fs, const ShadingContext& shading
   if (held.size() > capacity) {
     std::sort(held.begin(), held.end(),
               [&](size_t a, size_t b) { return probes_[a].wanted < probes_[b].wanted; });
-    for (size_t k = 0; k < held.size() - capacity; ++k) probes_[held[k]] = Probe{};
+    for (size_t k = 0; k < held.size() - capacity; ++k) {
+      probes_[held[k]] = Probe{};
+      if (device_) device_->release(int(held[k]));
+    }
     version_ = nextVersion();
   }
   if (drawn > 0) version_ = nextVersion();
@@ -108,7 +116,10 @@ void ReflectionProbes::draw(const FrameScene& fs, const ShadingContext& shading,
     r2 = std::max(r2, dot(v - p.centre, v - p.centre));
   p.radius = std::max(std::sqrt(r2), 1e-4f);
   p.cameras.resize(6);
-  p.faces.assign(6, Buffer(size, size, 3));
+  if (device_)
+    p.faces.clear();
+  else
+    p.faces.assign(6, Buffer(size, size, 3));
   // The object does not see itself. Mirrors and clear glass are left out too: drawn by the one
   // shading function they would be near-black discs, where the ray would see what lies behind
   // or around them; without them the probe shows that.
@@ -129,8 +140,14 @@ void ReflectionProbes::draw(const FrameScene& fs, const ShadingContext& shading,
     d.up = std::abs(kAxes[f].y) > 0.5f ? Vec3(0, 0, 1) : Vec3(0, 1, 0);
     d.vfovDeg = 90.0f;
     d.nearPlane = 1e-3f * p.radius;
-    const Camera cam = Camera::make(d, size, size);
-    p.cameras[size_t(f)] = cam;
+    p.cameras[size_t(f)] = Camera::make(d, size, size);
+  }
+  if (device_) {
+    device_->draw(fs, object, p.cameras.data(), size, others);
+    return;
+  }
+  for (int f = 0; f < 6; ++f) {
+    const Camera& cam = p.cameras[size_t(f)];
     raster_.render(fs, cam, vis_, Rasterizer::Subset{&others, false});
     Buffer& face = p.faces[size_t(f)];
     parallelRange(

@@ -7,6 +7,7 @@
 // lights change, an object that is not animated changes, or an animated object the probe shows
 // has moved by half a texel as seen from the probe's centre since it was drawn.
 #pragma once
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -17,8 +18,26 @@
 
 namespace tandem {
 
+// A device that draws and keeps probes in place of the CPU (the GPU's compute rasterizer and
+// resolve: gpu_reflection_probes.h). ReflectionProbes chooses what to draw as for its own probes;
+// the device draws it, and the lookups happen there.
+class ProbeDevice {
+ public:
+  virtual ~ProbeDevice() = default;
+  // Draws object `object`'s probe: six size x size faces seen by `cameras`, of the objects
+  // `others` marks, shaded as ReflectionProbes::draw shades them.
+  virtual void draw(const FrameScene& fs, int object, const Camera* cameras, int size,
+                    const std::vector<uint8_t>& others) = 0;
+  virtual void release(int object) = 0;  // its probe freed
+};
+
 class ReflectionProbes {
  public:
+  // Probes drawn and kept by `device` from now on (everything drawn anew at the next update).
+  void drawOn(std::unique_ptr<ProbeDevice> device);
+  ProbeDevice* device() const { return device_.get(); }
+  // Every probe drawn anew when next wanted (a device lost what it held).
+  void invalidate() { probes_.clear(); }
   // Makes sure every object with wanted[o] != 0 has a probe of `size`^2 faces: missing ones are
   // drawn now; ones whose geometry changed since (animated scenes) are redrawn, oldest first,
   // at most `refresh` a frame (what games do: probes trail moving objects by a few frames).
@@ -38,7 +57,7 @@ class ReflectionProbes {
   // `exit` receives the point it leaves from.
   Vec3 exitDirection(int object, Vec3 p, Vec3 t, float eta, Vec3& exit) const;
 
-  // What a device copy of object o's probe needs (size 0: it has none).
+  // Object o's probe (size 0: it has none); faces null for a device's probes.
   struct ProbeView {
     int size = 0;
     Vec3 centre;
@@ -75,6 +94,7 @@ class ReflectionProbes {
   std::vector<float> lightKey_;
   Rasterizer raster_;
   VisibilityBuffer vis_;
+  std::unique_ptr<ProbeDevice> device_;
 };
 
 }  // namespace tandem

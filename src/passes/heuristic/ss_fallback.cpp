@@ -10,6 +10,7 @@
 #include "gpu/shaders/fallback_spv.h"
 #include "passes/common/gpu_shadow_maps.h"
 #include "passes/common/lights_in_view.h"
+#include "passes/heuristic/gpu_reflection_probes.h"
 #include "passes/heuristic/rt_feedback.h"
 #include "passes/heuristic/shadow_tile.h"
 #include "pipeline/frame_context.h"
@@ -154,12 +155,13 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
   std::vector<uint32_t> area(scene.objects.size(), 0);
   for (const std::vector<uint32_t>& local : areas)
     for (size_t o = 0; o < area.size(); ++o) area[o] += local[o];
-  updateProbes(ctx, shading, area);
+  updateProbes(ctx, shading, area, probes_);
   ctx.passParts.push_back({"probes", msSince(t0), 0});
 }
 
 void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingContext& shading,
-                                           const std::vector<uint32_t>& area) {
+                                           const std::vector<uint32_t>& area,
+                                           ReflectionProbes& probes) {
   std::vector<uint32_t> order;
   for (size_t o = 0; o < area.size(); ++o)
     if (area[o] > 0) order.push_back(uint32_t(o));
@@ -170,8 +172,8 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
   std::vector<uint8_t> wanted(area.size(), 0);
   for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
   ctx.report(*this, FallbackCounters::probesDrawn,
-             probes_.update(ctx.frame, shading, wanted, s.probeSize, s.probeRefresh,
-                            2 * size_t(s.maxProbes)));
+             probes.update(ctx.frame, shading, wanted, s.probeSize, s.probeRefresh,
+                           2 * size_t(s.maxProbes)));
 }
 
 namespace {
@@ -316,50 +318,6 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   if (shadowMaps) ctx.report(*this, FallbackCounters::shadowMapRedraws, shadowMaps->redraws());
 }
 
-namespace {
-
-// The probes as fallback.comp reads them: a GpuProbe per object, then the faces.
-uint64_t gpuProbes(FrameContext& ctx, const ReflectionProbes& probes) {
-  const size_t n = std::max<size_t>(probes.objects(), 1);
-  size_t bytes = n * sizeof(GpuProbe);
-  std::vector<size_t> at(probes.objects(), 0);
-  for (size_t o = 0; o < probes.objects(); ++o) {
-    const ReflectionProbes::ProbeView p = probes.probe(o);
-    at[o] = bytes;
-    bytes += 6 * size_t(p.size) * size_t(p.size) * 3 * sizeof(float);
-  }
-  const auto t0 = Clock::now();
-  size_t moved = 0;
-  const uint64_t address = ctx.gpu->residentScratch(
-      "probes:" + std::to_string(uintptr_t(&probes)), probes.version(), bytes,
-      [&](void* image, uint64_t base) {
-        auto* out = static_cast<char*>(image);
-        std::memset(out, 0, n * sizeof(GpuProbe));
-        for (size_t o = 0; o < probes.objects(); ++o) {
-          const ReflectionProbes::ProbeView p = probes.probe(o);
-          GpuProbe g{};
-          g.size = p.size;
-          if (p.size > 0) {
-            for (int f = 0; f < 6; ++f)
-              std::memcpy(g.viewProj[f], &p.cameras[f].viewProj.m[0][0], sizeof g.viewProj[f]);
-            g.centre[0] = p.centre.x, g.centre[1] = p.centre.y, g.centre[2] = p.centre.z;
-            g.radius = p.radius;
-            g.faces = base + at[o];
-            const size_t face = size_t(p.size) * size_t(p.size) * 3;
-            for (size_t f = 0; f < 6; ++f)
-              std::memcpy(out + at[o] + f * face * sizeof(float), p.faces[f].data.data(),
-                          face * sizeof(float));
-          }
-          std::memcpy(out + o * sizeof(GpuProbe), &g, sizeof g);
-        }
-      },
-      &moved);
-  if (moved) ctx.passParts.push_back({"probes_upload", msSince(t0), 0, double(moved)});
-  return address;
-}
-
-}  // namespace
-
 void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
   GpuFrame& gpu = *ctx.gpu;
   GpuCommands& cmd = gpu.commands();
@@ -421,11 +379,16 @@ void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
     ctx.report(*this, FallbackCounters::shadowMapRedraws, maps.redraws());
   }
   if (s.mode == FallbackMode::Probe) {
-    const auto t0 = Clock::now();
     const auto* counted = static_cast<const uint32_t*>(gpu.constantsData(a.areas));
-    updateProbes(ctx, shading, std::vector<uint32_t>(counted, counted + scene.objects.size()));
-    ctx.passParts.push_back({"probes", msSince(t0), 0});
-    a.probes = gpuProbes(ctx, probes_);
+    drawProbesOnDevice(ctx, deviceProbes_);
+    const uint32_t t0 = cmd.timestamp();
+    updateProbes(ctx, shading, std::vector<uint32_t>(counted, counted + scene.objects.size()),
+                 deviceProbes_);
+    const uint32_t t1 = cmd.timestamp();
+    gpu.afterSubmit([&ctx, &cmd, t0, t1] {
+      ctx.passParts.push_back({"probes", cmd.activeMs(t0, t1), 0});
+    });
+    a.probes = gpuProbes(ctx, deviceProbes_);
   }
   run(TD_FALLBACK_WRITE);
 }

@@ -65,7 +65,10 @@ class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
   bool hasGpu() const override { return true; }  // shaders/fallback.comp
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
-  void resetHistory() override { probes_ = {}; }
+  void resetHistory() override {
+    probes_ = {};
+    deviceProbes_ = {};
+  }
 
  protected:
   const ParamTable<FallbackSettings>& tableFor() const override;
@@ -73,10 +76,10 @@ class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
  private:
   // Brings the probes of the objects that show an untraced reflection or refraction up to date.
   void updateProbes(FrameContext& ctx, const ShadingContext& shading);
-  // The same given each object's pixels that show one (the largest get probes).
+  // The same given each object's pixels that show one (the largest get probes in `probes`).
   void updateProbes(FrameContext& ctx, const ShadingContext& shading,
-                    const std::vector<uint32_t>& area);
-  ReflectionProbes probes_;
+                    const std::vector<uint32_t>& area, ReflectionProbes& probes);
+  ReflectionProbes probes_, deviceProbes_;  // the CPU's, the GPU's
 };
 
 }  // namespace tandem
