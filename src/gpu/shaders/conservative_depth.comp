@@ -11,6 +11,7 @@
 #extension GL_EXT_shader_atomic_int64 : require
 #extension GL_GOOGLE_include_directive : require
 #include "bvh.h"
+#include "raster_args.h"
 #include "scene_data.h"
 #include "shadow_map_draw_args.h"
 
@@ -18,6 +19,7 @@ layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { uint64_t args; };
 
 #include "scene.glsl"
+#include "spans.glsl"
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ArgsRef {
   ConservativeArgs a;
@@ -191,10 +193,10 @@ void setUpTriangle(uint i) {
     drawWorld(v3(t.a), v3(t.b), v3(t.c), t.object);
     return;
   }
-  const int object = objectOfTriangle(i, A.objectCount);
-  if (Uints(A.draw).v[object] == 0u) return;
+  int object;
+  const uint triangle = spanTriangle(A.spans, A.spanCount, i, object);
   const GpuObject ob = Objects(S.objects).o[object];
-  const uvec3 k = triangleVertices(ob, int(i - ob.firstIndex / 3u));
+  const uvec3 k = triangleVertices(ob, int(triangle - ob.firstIndex / 3u));
   drawWorld(vertexPosition(k.x), vertexPosition(k.y), vertexPosition(k.z), uint(object));
 }
 

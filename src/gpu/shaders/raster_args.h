@@ -12,18 +12,25 @@
 #define TD_RASTER_QUEUED 3
 #define TD_RASTER_COUNT_N 4
 
+// A drawn object's triangles: the kernels run over the drawn objects' triangles only, numbered
+// one after another (`first`: the object's first), and find each one's object by a binary search.
+struct RasterSpan {
+  TD_UINT first, object;
+};
+
 // One view's draw. The visibility buffer holds a uint64 a pixel: the depth's bits (reversed Z,
 // greater is nearer) above the complement of the triangle's index over all objects, so one
 // atomicMax keeps the nearest and, between equal depths, the triangle drawn first on the CPU.
 struct RasterArgs {
   TD_ADDR scene;          // SceneArgs
-  TD_ADDR draw;           // uint per object: 0 when outside the frustum or not drawn
+  TD_ADDR spans;          // RasterSpan[spanCount]: the objects drawn
   TD_ADDR visibility;     // uint64 per view pixel, cleared to 0 (nothing drawn)
   TD_ADDR queue;          // uint count, 3 uints padding, then queueCapacity RasterTriangles
   TD_ADDR counters;       // TD_RASTER_COUNT_N uints
   TD_FLOAT viewProj[16];  // the jittered camera's, row-major
   GpuCamera camera;       // the pixel rays of alpha-tested texels
-  TD_UINT triangles, objectCount, queueCapacity, bothFaces;
+  TD_UINT triangles;      // the drawn objects' together
+  TD_UINT objectCount, queueCapacity, bothFaces, spanCount, pad;
 };
 
 // A set-up triangle (Rasterizer::SetupTriangle) whose pixel box is large: drawn by a workgroup.

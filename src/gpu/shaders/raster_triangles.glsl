@@ -23,6 +23,7 @@ layout(push_constant, scalar) uniform Push { uint64_t args; };
 
 #include "camera.glsl"
 #include "scene.glsl"
+#include "spans.glsl"
 #include "raster.glsl"
 
 const float kGuardBand = 4.0;
@@ -130,9 +131,7 @@ void drawBox(RasterTriangle t, RasterArgs a) {
     for (int px = t.px0; px <= t.px1; ++px) drawPixel(t, a, px, py);
 }
 
-void rasterize(uint triangle, RasterArgs a) {
-  const int object = objectOfTriangle(triangle, a.objectCount);
-  if (Uints(a.draw).v[object] == 0u) return;
+void rasterize(uint triangle, int object, RasterArgs a) {
   const GpuObject ob = Objects(S.objects).o[object];
   const GpuMaterial m = Materials(S.materials).m[ob.material];
   const int prim = int(triangle - ob.firstIndex / 3u);
@@ -195,8 +194,12 @@ void main() {
   const RasterArgs a = RasterArgsRef(args).a;
   useScene(a.scene);
   const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-  const uint triangle = group * 64u + gl_LocalInvocationIndex;
-  if (triangle < a.triangles) rasterize(triangle, a);
+  const uint i = group * 64u + gl_LocalInvocationIndex;
+  if (i < a.triangles) {
+    int object;
+    const uint triangle = spanTriangle(a.spans, a.spanCount, i, object);
+    rasterize(triangle, object, a);
+  }
   barrier();
   if (gl_LocalInvocationIndex < TD_RASTER_COUNT_N && groupCounts[gl_LocalInvocationIndex] != 0u)
     atomicAdd(RasterCounters(a.counters).c[gl_LocalInvocationIndex],

@@ -9,11 +9,11 @@
 #define TD_CONSERVATIVE_SETUP 0  // a thread a triangle: small ones drawn, large ones queued
 #define TD_CONSERVATIVE_QUEUE 1  // a workgroup a queued triangle
 
-// One face's conservative map: the triangles of the objects `draw` marks, then `boxTriangles`
-// world-space triangles (the boxes of objects swept over an open shutter).
+// One face's conservative map: the triangles of the objects the spans name (raster_args.h), then
+// `boxTriangles` world-space triangles (the boxes of objects swept over an open shutter).
 struct ConservativeArgs {
   TD_ADDR scene;          // SceneArgs
-  TD_ADDR draw;           // uint per object: non-zero where its triangles are drawn
+  TD_ADDR spans;          // RasterSpan[spanCount]
   TD_ADDR boxes;          // ConservativeWorldTriangle[boxTriangles]
   TD_ADDR near;           // uint64 per texel: depth bits over the object's complement (atomicMax)
   TD_ADDR queue;          // uint count, 3 uints padding, then queueCapacity ConservativeTriangles
@@ -21,7 +21,8 @@ struct ConservativeArgs {
   TD_FLOAT eye[3], nearPlane;
   TD_FLOAT forward[3], farPlane;
   TD_INT width, height, perspective;
-  TD_UINT triangles, objectCount, boxTriangles, queueCapacity, phase;
+  TD_UINT triangles;  // the spans' together
+  TD_UINT objectCount, boxTriangles, queueCapacity, phase, spanCount, pad;
 };
 
 struct ConservativeWorldTriangle {

@@ -133,19 +133,21 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
     draw[o] = job.casters[o] && !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 1 : 0;
   const uint32_t zero[TD_RASTER_COUNT_N] = {};
   const RasterQueue queue = rasterQueue(g, "shadow_maps:raster_queue", triangles_);
+  const RasterSpans drawn = rasterSpans(g, *fs.scene, draw);
   RasterArgs r{};
   r.scene = scene_;
-  r.draw = g.constants(draw.data(), draw.size() * sizeof(uint32_t));
+  r.spans = drawn.address;
+  r.spanCount = drawn.count;
   r.visibility = f.depth->address;
   r.queue = queue.buffer->address;
   r.counters = g.constants(zero, sizeof zero);
   std::memcpy(r.viewProj, &cam.viewProj.m[0][0], sizeof r.viewProj);
   r.camera = gpuCamera(cam, 0.0f);
-  r.triangles = uint32_t(triangles_);
+  r.triangles = uint32_t(drawn.triangles);
   r.objectCount = uint32_t(objects);
   r.queueCapacity = queue.capacity;
   r.bothFaces = 1;
-  recordRasterizer(g, queue, g.constants(&r, sizeof r), triangles_);
+  recordRasterizer(g, queue, g.constants(&r, sizeof r), drawn.triangles);
 
   // The conservative map: the same casters, those moving over an open shutter as their box.
   // Objects beyond the far plane stay (a perspective map stores them at a depth near 0, as the
@@ -170,9 +172,11 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
   const size_t capacity = std::min<size_t>(std::max<size_t>(triangles_, 1024), size_t(1) << 18);
   const GpuBuffer& cq = g.scratch("shadow_maps:conservative_queue",
                                   kQueueHeader + capacity * sizeof(ConservativeTriangle));
+  const RasterSpans meshes = rasterSpans(g, *fs.scene, draw);
   ConservativeArgs c{};
   c.scene = scene_;
-  c.draw = g.constants(draw.data(), draw.size() * sizeof(uint32_t));
+  c.spans = meshes.address;
+  c.spanCount = meshes.count;
   c.boxes = boxes.empty() ? 0 : g.constants(boxes.data(), boxes.size() * sizeof(boxes[0]));
   c.near = f.near->address;
   c.queue = cq.address;
@@ -185,7 +189,7 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
   c.width = cam.width;
   c.height = cam.height;
   c.perspective = cam.desc.projection == Projection::Perspective ? 1 : 0;
-  c.triangles = uint32_t(triangles_);
+  c.triangles = uint32_t(meshes.triangles);
   c.objectCount = uint32_t(objects);
   c.boxTriangles = uint32_t(boxes.size());
   c.queueCapacity = uint32_t(capacity);
@@ -197,7 +201,7 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
                                 sizeof(kConservativeDepthSpv) / 4, sizeof(uint64_t));
   cmd.fill(cq, 0, kQueueHeader, 0);
   cmd.barrier();
-  const uint32_t groups = groupsOf(triangles_ + boxes.size(), 64);
+  const uint32_t groups = groupsOf(meshes.triangles + boxes.size(), 64);
   if (groups > 0) {
     const uint32_t gx = std::min<uint32_t>(groups, 4096);
     cmd.dispatch(k, gx, (groups + gx - 1) / gx, 1, &setup);

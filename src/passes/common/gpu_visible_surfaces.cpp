@@ -23,6 +23,22 @@ constexpr size_t kQueueCapacity = size_t(1) << 18;  // large triangles; the rest
 constexpr size_t kQueueHeader = 16;                 // the count, padded
 }  // namespace
 
+RasterSpans rasterSpans(GpuFrame& gpu, const Scene& scene, const std::vector<uint32_t>& draw) {
+  std::vector<RasterSpan> spans;
+  RasterSpans out;
+  for (size_t o = 0; o < draw.size() && o < scene.objects.size(); ++o) {
+    if (!draw[o]) continue;
+    const size_t n = scene.meshes[size_t(scene.objects[o].mesh)].triangleCount();
+    if (n == 0) continue;
+    spans.push_back({uint32_t(out.triangles), uint32_t(o)});
+    out.triangles += n;
+  }
+  out.count = uint32_t(spans.size());
+  if (spans.empty()) spans.push_back({0, 0});
+  out.address = gpu.constants(spans.data(), spans.size() * sizeof(RasterSpan));
+  return out;
+}
+
 RasterQueue rasterQueue(GpuFrame& gpu, const std::string& key, size_t triangles) {
   const size_t capacity = std::min(std::max<size_t>(triangles, 1024), kQueueCapacity);
   return {&gpu.scratch(key, kQueueHeader + capacity * sizeof(RasterTriangle)), uint32_t(capacity)};
@@ -59,11 +75,8 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
                                         sizeof(kRasterResolveSpv) / 4, sizeof(RasterResolveArgs));
 
   size_t triangleCount = 0;
-  std::vector<uint32_t> firstTriangle(fs.objects.size());
-  for (size_t o = 0; o < fs.objects.size(); ++o) {
-    firstTriangle[o] = uint32_t(triangleCount);
+  for (size_t o = 0; o < fs.objects.size(); ++o)
     triangleCount += scene.meshes[size_t(scene.objects[o].mesh)].triangleCount();
-  }
   const std::string key = "raster:" + pass.name() + ":";
   const RasterQueue queueBuffer = rasterQueue(gpu, key + "queue", triangleCount);
   const uint64_t motion = gpuObjectMotionConstants(ctx);
@@ -89,13 +102,15 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
     const uint32_t zero[TD_RASTER_COUNT_N] = {};
     RasterArgs a{};
     a.scene = sceneAddress;
-    a.draw = gpu.constants(draw.data(), draw.size() * sizeof(uint32_t));
+    const RasterSpans spans = rasterSpans(gpu, scene, draw);
+    a.spans = spans.address;
+    a.spanCount = spans.count;
     a.visibility = vis.address;
     a.queue = queueBuffer.buffer->address;
     a.counters = gpu.constants(zero, sizeof zero);
     std::memcpy(a.viewProj, &cam.viewProj.m[0][0], sizeof a.viewProj);
     a.camera = gpuCamera(cam, ctx.pixelSpread(v));
-    a.triangles = uint32_t(triangleCount);
+    a.triangles = uint32_t(spans.triangles);
     a.objectCount = uint32_t(fs.objects.size());
     a.queueCapacity = queueBuffer.capacity;
     a.bothFaces = 0;
@@ -103,7 +118,7 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
     const uint64_t args = gpu.constants(&a, sizeof a);
 
     cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
-    recordRasterizer(gpu, queueBuffer, args, triangleCount);
+    recordRasterizer(gpu, queueBuffer, args, spans.triangles);
     RasterResolveArgs r{};
     r.scene = sceneAddress;
     r.view = gpuViewConstants(ctx, v);

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "pipeline/frame_context.h"
 #include "pipeline/pass.h"
@@ -13,6 +14,15 @@ namespace tandem {
 
 class GpuFrame;
 struct GpuBuffer;
+
+// The objects with draw[o] != 0 as the rasterizer's spans (raster_args.h RasterSpan), in this
+// submission's constants: their address and count, the triangles they hold.
+struct RasterSpans {
+  uint64_t address = 0;
+  uint32_t count = 0;
+  size_t triangles = 0;
+};
+RasterSpans rasterSpans(GpuFrame& gpu, const Scene& scene, const std::vector<uint32_t>& draw);
 
 // The compute rasterizer's queue of large triangles, kept as scratch `key` for up to `triangles`.
 struct RasterQueue {

@@ -14,6 +14,7 @@
 #include "passes/common/gpu_visible_surfaces.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
+#include "raster/rasterizer.h"
 
 namespace tandem {
 
@@ -51,28 +52,31 @@ class GpuProbeDevice final : public ProbeDevice {
     const GpuBuffer& vis = g.scratch("probes:visibility", pixels * sizeof(uint64_t));
     const RasterQueue queue = rasterQueue(g, "probes:raster_queue", triangles);
     std::vector<uint32_t> draw(std::max<size_t>(others.size(), 1), 0);
-    for (size_t o = 0; o < others.size(); ++o) draw[o] = others[o];
     const uint64_t scene_ = g.scene(fs).sceneAddress();
-    const uint64_t drawn = g.constants(draw.data(), draw.size() * sizeof(uint32_t));
     const GpuKernel& resolve = g.kernel("raster_resolve", kRasterResolveSpv,
                                         sizeof(kRasterResolveSpv) / 4, sizeof(RasterResolveArgs));
     const uint32_t zero[TD_RASTER_COUNT_N] = {};
     for (int f = 0; f < 6; ++f) {
       const Camera& cam = cameras[f];
+      // Objects outside the face's frustum left out on the host, as the CPU's rasterizer does.
+      for (size_t o = 0; o < others.size(); ++o)
+        draw[o] = others[o] && !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 1 : 0;
+      const RasterSpans drawn = rasterSpans(g, scene, draw);
       RasterArgs r{};
       r.scene = scene_;
-      r.draw = drawn;
+      r.spans = drawn.address;
+      r.spanCount = drawn.count;
       r.visibility = vis.address;
       r.queue = queue.buffer->address;
       r.counters = g.constants(zero, sizeof zero);
       std::memcpy(r.viewProj, &cam.viewProj.m[0][0], sizeof r.viewProj);
       r.camera = gpuCamera(cam, 0.0f);  // texels at level 0, as resolveSurface without a spread
-      r.triangles = uint32_t(triangles);
+      r.triangles = uint32_t(drawn.triangles);
       r.objectCount = uint32_t(fs.objects.size());
       r.queueCapacity = queue.capacity;
       r.bothFaces = 0;
       cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
-      recordRasterizer(g, queue, g.constants(&r, sizeof r), triangles);
+      recordRasterizer(g, queue, g.constants(&r, sizeof r), drawn.triangles);
       GpuView v{};
       v.camera = r.camera;
       std::memcpy(v.viewProj, &cam.viewProj.m[0][0], sizeof v.viewProj);
