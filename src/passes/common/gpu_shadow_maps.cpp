@@ -131,23 +131,9 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
   std::vector<uint32_t> draw(std::max<size_t>(objects, 1), 0);
   for (size_t o = 0; o < objects; ++o)
     draw[o] = job.casters[o] && !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 1 : 0;
-  const uint32_t zero[TD_RASTER_COUNT_N] = {};
   const RasterQueue queue = rasterQueue(g, "shadow_maps:raster_queue", triangles_);
-  const RasterSpans drawn = rasterSpans(g, *fs.scene, draw);
-  RasterArgs r{};
-  r.scene = scene_;
-  r.spans = drawn.address;
-  r.spanCount = drawn.count;
-  r.visibility = f.depth->address;
-  r.queue = queue.buffer->address;
-  r.counters = g.constants(zero, sizeof zero);
-  std::memcpy(r.viewProj, &cam.viewProj.m[0][0], sizeof r.viewProj);
-  r.camera = gpuCamera(cam, 0.0f);
-  r.triangles = uint32_t(drawn.triangles);
-  r.objectCount = uint32_t(objects);
-  r.queueCapacity = queue.capacity;
-  r.bothFaces = 1;
-  recordRasterizer(g, queue, g.constants(&r, sizeof r), drawn.triangles);
+  recordRasterizer(g, *fs.scene, scene_, queue,
+                   RasterView{&cam, 0.0f, &draw, f.depth, /*bothFaces=*/true});
 
   // The conservative map: the same casters, those moving over an open shutter as their box.
   // Objects beyond the far plane stay (a perspective map stores them at a depth near 0, as the

@@ -44,7 +44,25 @@ RasterQueue rasterQueue(GpuFrame& gpu, const std::string& key, size_t triangles)
   return {&gpu.scratch(key, kQueueHeader + capacity * sizeof(RasterTriangle)), uint32_t(capacity)};
 }
 
-void recordRasterizer(GpuFrame& gpu, const RasterQueue& queue, uint64_t args, size_t triangles) {
+uint64_t recordRasterizer(GpuFrame& gpu, const Scene& scene, uint64_t sceneAddress,
+                          const RasterQueue& queue, const RasterView& view) {
+  const Camera& cam = *view.camera;
+  const RasterSpans spans = rasterSpans(gpu, scene, *view.draw);
+  const uint32_t zero[TD_RASTER_COUNT_N] = {};
+  RasterArgs a{};
+  a.scene = sceneAddress;
+  a.spans = spans.address;
+  a.spanCount = spans.count;
+  a.visibility = view.visibility->address;
+  a.queue = queue.buffer->address;
+  a.counters = gpu.constants(zero, sizeof zero);
+  std::memcpy(a.viewProj, &cam.viewProj.m[0][0], sizeof a.viewProj);
+  a.camera = gpuCamera(cam, view.pixelSpread);
+  a.triangles = uint32_t(spans.triangles);
+  a.objectCount = uint32_t(scene.objects.size());
+  a.queueCapacity = queue.capacity;
+  a.bothFaces = view.bothFaces ? 1 : 0;
+  const uint64_t args = gpu.constants(&a, sizeof a);
   const GpuKernel& setup = gpu.device().info().float64
                                ? gpu.kernel("raster_triangles", kRasterTrianglesSpv,
                                             sizeof(kRasterTrianglesSpv) / 4, sizeof(uint64_t))
@@ -55,13 +73,14 @@ void recordRasterizer(GpuFrame& gpu, const RasterQueue& queue, uint64_t args, si
   GpuCommands& cmd = gpu.commands();
   cmd.fill(*queue.buffer, 0, kQueueHeader, 0);
   cmd.barrier();
-  if (triangles == 0) return;
-  const uint32_t groups = uint32_t((triangles + 63) / 64);
+  if (spans.triangles == 0) return a.counters;
+  const uint32_t groups = uint32_t((spans.triangles + 63) / 64);
   const uint32_t gx = std::min<uint32_t>(groups, 4096);
   cmd.dispatch(setup, gx, (groups + gx - 1) / gx, 1, &args);
   cmd.barrier();
   cmd.dispatch(large, kQueueGroups, 1, 1, &args);
   cmd.barrier();
+  return a.counters;
 }
 
 void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t targets, uint64_t hdr,
@@ -99,26 +118,10 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
     in += double(triangleCount);
     const size_t pixels = size_t(cam.width) * size_t(cam.height);
     const GpuBuffer& vis = gpu.scratch(key + std::to_string(vi), pixels * sizeof(uint64_t));
-    const uint32_t zero[TD_RASTER_COUNT_N] = {};
-    RasterArgs a{};
-    a.scene = sceneAddress;
-    const RasterSpans spans = rasterSpans(gpu, scene, draw);
-    a.spans = spans.address;
-    a.spanCount = spans.count;
-    a.visibility = vis.address;
-    a.queue = queueBuffer.buffer->address;
-    a.counters = gpu.constants(zero, sizeof zero);
-    std::memcpy(a.viewProj, &cam.viewProj.m[0][0], sizeof a.viewProj);
-    a.camera = gpuCamera(cam, ctx.pixelSpread(v));
-    a.triangles = uint32_t(spans.triangles);
-    a.objectCount = uint32_t(fs.objects.size());
-    a.queueCapacity = queueBuffer.capacity;
-    a.bothFaces = 0;
-    counters.push_back(a.counters);
-    const uint64_t args = gpu.constants(&a, sizeof a);
-
     cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
-    recordRasterizer(gpu, queueBuffer, args, spans.triangles);
+    counters.push_back(
+        recordRasterizer(gpu, scene, sceneAddress, queueBuffer,
+                         RasterView{&cam, ctx.pixelSpread(v), &draw, &vis, /*bothFaces=*/false}));
     RasterResolveArgs r{};
     r.scene = sceneAddress;
     r.view = gpuViewConstants(ctx, v);

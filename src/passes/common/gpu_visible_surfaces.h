@@ -30,10 +30,21 @@ struct RasterQueue {
   uint32_t capacity;
 };
 RasterQueue rasterQueue(GpuFrame& gpu, const std::string& key, size_t triangles);
-// Records the compute rasterizer's set-up and large-triangle kernels for one view's RasterArgs
-// (at `args`, in this submission's constants, whose queue is `queue`) over `triangles` triangles:
-// the visibility buffer, cleared by the caller, holds the nearest key a pixel after it.
-void recordRasterizer(GpuFrame& gpu, const RasterQueue& queue, uint64_t args, size_t triangles);
+// One view for the compute rasterizer: the objects drawn (draw[o] != 0), the camera (its pixel
+// rays test alpha masks at `pixelSpread`'s texture level), the visibility buffer drawn into
+// (cleared, or holding what the view is drawn over).
+struct RasterView {
+  const Camera* camera = nullptr;
+  float pixelSpread = 0;
+  const std::vector<uint32_t>* draw = nullptr;
+  const GpuBuffer* visibility = nullptr;
+  bool bothFaces = false;
+};
+// Records the compute rasterizer's set-up and large-triangle kernels for `view` over the drawn
+// objects' triangles, with `queue`: afterwards each pixel of the visibility buffer holds the
+// nearest key. The address of its counters (TD_RASTER_COUNT_N uints, read after the submission).
+uint64_t recordRasterizer(GpuFrame& gpu, const Scene& scene, uint64_t sceneAddress,
+                          const RasterQueue& queue, const RasterView& view);
 
 class GpuVisibleSurfaces {
  public:

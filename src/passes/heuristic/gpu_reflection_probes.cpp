@@ -55,30 +55,17 @@ class GpuProbeDevice final : public ProbeDevice {
     const uint64_t scene_ = g.scene(fs).sceneAddress();
     const GpuKernel& resolve = g.kernel("raster_resolve", kRasterResolveSpv,
                                         sizeof(kRasterResolveSpv) / 4, sizeof(RasterResolveArgs));
-    const uint32_t zero[TD_RASTER_COUNT_N] = {};
     for (int f = 0; f < 6; ++f) {
       const Camera& cam = cameras[f];
       // Objects outside the face's frustum left out on the host, as the CPU's rasterizer does.
       for (size_t o = 0; o < others.size(); ++o)
         draw[o] = others[o] && !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 1 : 0;
-      const RasterSpans drawn = rasterSpans(g, scene, draw);
-      RasterArgs r{};
-      r.scene = scene_;
-      r.spans = drawn.address;
-      r.spanCount = drawn.count;
-      r.visibility = vis.address;
-      r.queue = queue.buffer->address;
-      r.counters = g.constants(zero, sizeof zero);
-      std::memcpy(r.viewProj, &cam.viewProj.m[0][0], sizeof r.viewProj);
-      r.camera = gpuCamera(cam, 0.0f);  // texels at level 0, as resolveSurface without a spread
-      r.triangles = uint32_t(drawn.triangles);
-      r.objectCount = uint32_t(fs.objects.size());
-      r.queueCapacity = queue.capacity;
-      r.bothFaces = 0;
       cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
-      recordRasterizer(g, queue, g.constants(&r, sizeof r), drawn.triangles);
+      // Texels at level 0, as resolveSurface without a spread.
+      recordRasterizer(g, scene, scene_, queue,
+                       RasterView{&cam, 0.0f, &draw, &vis, /*bothFaces=*/false});
       GpuView v{};
-      v.camera = r.camera;
+      v.camera = gpuCamera(cam, 0.0f);
       std::memcpy(v.viewProj, &cam.viewProj.m[0][0], sizeof v.viewProj);
       std::memcpy(v.prevViewProj, &cam.viewProj.m[0][0], sizeof v.prevViewProj);
       v.depthOrigin[0] = cam.desc.position.x, v.depthOrigin[1] = cam.desc.position.y;
