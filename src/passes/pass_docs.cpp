@@ -157,9 +157,11 @@ std::string passesMarkdown() {
       const std::string d = p->description();
       o << "### `" << e.type << "`\n\n" << d << (d.empty() || d.back() == '.' ? "" : ".");
       // Where it runs with --device gpu (the others stay on the CPU).
-      if (p->hasGpu() || !p->gpuCondition().empty())
-        o << " Runs on the GPU too (`--device gpu`)"
-          << (p->gpuCondition().empty() ? "" : " " + p->gpuCondition()) << ".";
+      if (p->hasGpu() || !p->gpuCondition().empty()) {
+        o << " Runs on the GPU too (`--device gpu`)";
+        if (!p->gpuCondition().empty()) o << " " << p->gpuCondition();
+        o << ".";
+      }
       o << "\n\n";
       slots(o, *p);
       params(o, *p);
