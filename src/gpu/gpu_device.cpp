@@ -349,6 +349,7 @@ void GpuDevice::submitAndWait(VkCommandBuffer cb) {
   checkVk(vkResetFences(device_, 1, &fence_), "vkResetFences");
   checkVk(vkQueueSubmit(queue_, 1, &si, fence_), "vkQueueSubmit");
   checkVk(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  ++submissions_;
 }
 
 std::vector<std::string> GpuDevice::validationMessages() const {

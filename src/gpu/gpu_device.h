@@ -5,6 +5,7 @@
 #pragma once
 #include <volk.h>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -73,6 +74,8 @@ class GpuDevice {
   float timestampPeriodNs() const { return timestampPeriod_; }
   // Submits and waits (the queue is shared: one submission at a time).
   void submitAndWait(VkCommandBuffer cb);
+  // Submissions so far (each one a wait for the device: a frame should make few).
+  uint64_t submissions() const { return submissions_.load(); }
   // Messages the validation layers printed (on when TANDEM_VK_VALIDATION=1); tests fail on any.
   std::vector<std::string> validationMessages() const;
   bool validating() const { return messenger_ != VK_NULL_HANDLE; }
@@ -91,6 +94,7 @@ class GpuDevice {
   uint32_t family_ = 0;
   float timestampPeriod_ = 1;
   std::mutex queueMutex_;
+  std::atomic<uint64_t> submissions_{0};
 };
 
 }  // namespace tandem

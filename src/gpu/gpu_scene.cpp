@@ -134,8 +134,7 @@ void GpuScene::refitObject(ObjectBvh& ob, const Scene& scene, const FrameObject&
 }
 
 void GpuScene::update(const FrameScene& fs, GpuCommands& cmd) {
-  if (fs.geometryVersion == version_ && fs.scene == scene_ && fs.objects.size() == objects_.size())
-    return;
+  if (current(fs)) return;
   const Scene& scene = *fs.scene;
   const bool fresh = fs.scene != scene_ || objects_.size() != fs.objects.size();
   objects_.resize(fs.objects.size());

@@ -27,6 +27,11 @@ class GpuScene {
   // their BVH refitted (built on first sight), the BVH over the objects is rebuilt, and
   // everything is uploaded through `cmd` (submitted and waited for).
   void update(const FrameScene& fs, GpuCommands& cmd);
+  // Whether the device copy is `fs` already (update would do nothing).
+  bool current(const FrameScene& fs) const {
+    return fs.geometryVersion == version_ && fs.scene == scene_ &&
+           fs.objects.size() == objects_.size();
+  }
   // The scene's contents changed in place (lights, materials): the next update uploads all.
   void invalidate() { scene_ = nullptr; }
   // The trace arguments for this scene (rays, hits and count left for the caller).

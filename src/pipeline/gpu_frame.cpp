@@ -1,7 +1,9 @@
 #include "pipeline/gpu_frame.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
+#include <iterator>
 #include <stdexcept>
 
 #include "core/interrupt.h"
@@ -19,13 +21,77 @@ GpuFrame::~GpuFrame() {
   kernels_.clear();
   for (auto& [name, c] : copies_) memory_.release(c.buffer);
   for (auto& [key, b] : scratch_) memory_.release(b);
-  memory_.release(staging_);
+  memory_.release(uploadStaging_);
+  for (GpuBuffer& b : downloadStaging_) memory_.release(b);
+  for (GpuBuffer& b : released_) memory_.release(b);
   for (GpuBuffer& b : constants_) memory_.release(b);
 }
 
 GpuScene& GpuFrame::scene(const FrameScene& fs) {
+  // An update rewrites (and may reallocate) the scene's buffers, which work recorded in the open
+  // batch may read: that work runs first.
+  if (open_ && !scene_.current(fs)) commands_.checkpoint();
   scene_.update(fs, uploads_);
   return scene_;
+}
+
+void GpuFrame::release(GpuBuffer& b) {
+  if (!b) return;
+  if (open_) {
+    released_.push_back(b);
+    b = GpuBuffer{};
+  } else {
+    memory_.release(b);
+  }
+}
+
+void GpuFrame::open() {
+  if (open_) return;
+  constantsArena_ = 0;
+  constantsUsed_ = 0;
+  downloadsUsed_ = 0;
+  after_.clear();
+  commands_.begin();
+  open_ = true;
+}
+
+double GpuFrame::flush() {
+  if (!open_) return 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  open_ = false;
+  try {
+    commands_.submit();
+  } catch (...) {
+    after_.clear();
+    throw;
+  }
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ++batches_;
+  for (GpuBuffer& b : released_) memory_.release(b);
+  released_.clear();
+  std::vector<std::function<void()>> after;
+  after.swap(after_);
+  for (auto& f : after) f();
+  return ms;
+}
+
+void GpuFrame::abandon() {
+  if (!open_) return;  // nothing recorded is left unrun
+  commands_.abandon();
+  open_ = false;
+  after_.clear();
+  forget();
+  for (GpuBuffer& b : released_) memory_.release(b);
+  released_.clear();
+}
+
+std::vector<std::function<void()>> GpuFrame::takeAfterSubmit(size_t first) {
+  first = std::min(first, after_.size());
+  std::vector<std::function<void()>> out(std::make_move_iterator(after_.begin() + long(first)),
+                                         std::make_move_iterator(after_.end()));
+  after_.resize(first);
+  return out;
 }
 
 uint64_t GpuFrame::constants(const void* data, size_t bytes) {
@@ -75,27 +141,15 @@ void GpuFrame::dispatchInterruptibly(const GpuKernel& kernel, uint32_t x, uint32
 void GpuFrame::dropScratch(const std::string& key) {
   auto it = scratch_.find(key);
   if (it == scratch_.end()) return;
-  memory_.release(it->second);
+  release(it->second);
   scratch_.erase(it);
 }
 
 const GpuBuffer& GpuFrame::scratch(const std::string& key, size_t bytes) {
   GpuBuffer& b = scratch_[key];
-  if (b && b.size < bytes) memory_.release(b);
+  if (b && b.size < bytes) release(b);
   if (!b) b = memory_.allocate(std::max<size_t>(bytes, 4), false);
   return b;
-}
-
-void GpuFrame::beginSubmission() {
-  constantsArena_ = 0;
-  constantsUsed_ = 0;
-  after_.clear();
-}
-
-void GpuFrame::endSubmission() {
-  std::vector<std::function<void()>> after;
-  after.swap(after_);
-  for (auto& f : after) f();
 }
 
 const GpuKernel& GpuFrame::kernel(const std::string& name, const uint32_t* spirv, size_t words,
@@ -117,47 +171,77 @@ bool GpuFrame::onDevice(const std::string& name) const {
 
 GpuFrame::Copy& GpuFrame::copyFor(const std::string& name, size_t bytes) {
   Copy& c = copies_[name];
-  if (c.buffer && c.buffer.size < bytes) memory_.release(c.buffer);
+  if (c.buffer && c.buffer.size < bytes) release(c.buffer);
   if (!c.buffer) c.buffer = memory_.allocate(bytes, false);
   return c;
 }
 
-GpuBuffer& GpuFrame::staging(size_t bytes) {
-  if (staging_ && staging_.size < bytes) memory_.release(staging_);
-  if (!staging_) staging_ = memory_.allocate(bytes, true);
-  return staging_;
+GpuFrame::Copyback GpuFrame::recordCopyback(const GpuBuffer& src, size_t bytes) {
+  open();
+  if (downloadsUsed_ == downloadStaging_.size()) downloadStaging_.emplace_back();
+  GpuBuffer& s = downloadStaging_[downloadsUsed_];
+  if (s && s.size < bytes) memory_.release(s);  // last used by an earlier batch, which has run
+  if (!s) s = memory_.allocate(bytes, true);
+  commands_.barrier();  // what the batch wrote so far
+  Copyback c{downloadsUsed_++, 0, 0};
+  c.t0 = commands_.timestamp();
+  commands_.copy(src, s, bytes);
+  c.t1 = commands_.timestamp();
+  return c;
 }
 
+// An upload runs at once, on its own command buffer: the open batch, submitted later, reads it.
+// Nothing recorded in the batch can be reading the copy it overwrites: a copy written there, or
+// already current, is never uploaded to.
 size_t GpuFrame::upload(const std::string& name, const Buffer& b) {
   if (onDevice(name)) return 0;
   const size_t bytes = b.data.size() * sizeof(float);
   Copy& c = copyFor(name, bytes);
   if (bytes) {
-    GpuBuffer& s = staging(bytes);
-    std::memcpy(s.mapped, b.data.data(), bytes);
-    commands_.begin();
-    commands_.copy(s, c.buffer, bytes);
-    commands_.submit();
+    if (uploadStaging_ && uploadStaging_.size < bytes) memory_.release(uploadStaging_);
+    if (!uploadStaging_) uploadStaging_ = memory_.allocate(bytes, true);
+    std::memcpy(uploadStaging_.mapped, b.data.data(), bytes);
+    uploads_.begin();
+    uploads_.copy(uploadStaging_, c.buffer, bytes);
+    uploads_.submit();
   }
   c.current = true;
   c.newer = false;
   return bytes;
 }
 
+namespace {
+const GpuBuffer& newerCopy(const std::string& name, const GpuBuffer& copy, size_t bytes) {
+  if (bytes > copy.size)
+    throw std::logic_error("GPU copy of '" + name + "' is smaller than its host buffer");
+  return copy;
+}
+}  // namespace
+
 size_t GpuFrame::download(const std::string& name, Buffer& b) {
   auto it = copies_.find(name);
   if (it == copies_.end() || !it->second.newer) return 0;
   const size_t bytes = b.data.size() * sizeof(float);
-  if (bytes > it->second.buffer.size)
-    throw std::logic_error("GPU copy of '" + name + "' is smaller than its host buffer");
-  if (bytes) {
-    GpuBuffer& s = staging(bytes);
-    commands_.begin();
-    commands_.copy(it->second.buffer, s, bytes);
-    commands_.submit();
-    std::memcpy(b.data.data(), s.mapped, bytes);
-  }
+  if (bytes) readBack(newerCopy(name, it->second.buffer, bytes), bytes, b.data.data());
   it->second.newer = false;
+  return bytes;
+}
+
+size_t GpuFrame::queueDownload(const std::string& name, Buffer& b,
+                               std::function<void(double ms)> done) {
+  auto it = copies_.find(name);
+  if (it == copies_.end() || !it->second.newer) return 0;
+  const size_t bytes = b.data.size() * sizeof(float);
+  if (!bytes) return 0;
+  const Copyback c = recordCopyback(newerCopy(name, it->second.buffer, bytes), bytes);
+  it->second.newer = false;
+  afterSubmit([this, c, &b, bytes, done = std::move(done)] {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::memcpy(b.data.data(), downloadStaging_[c.staging].mapped, bytes);
+    const double hostMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (done) done(commands_.activeMs(c.t0, c.t1) + hostMs);
+  });
   return bytes;
 }
 
@@ -192,14 +276,14 @@ std::vector<std::string> GpuFrame::deviceOnly() const {
 void GpuFrame::drop(const std::string& name) {
   auto it = copies_.find(name);
   if (it == copies_.end()) return;
-  memory_.release(it->second.buffer);
+  release(it->second.buffer);
   copies_.erase(it);
 }
 
 void GpuFrame::forget() {
-  for (auto& [name, c] : copies_) memory_.release(c.buffer);
+  for (auto& [name, c] : copies_) release(c.buffer);
   copies_.clear();
-  for (auto& [key, b] : scratch_) memory_.release(b);
+  for (auto& [key, b] : scratch_) release(b);
   scratch_.clear();
   ++generation_;
 }
@@ -207,11 +291,13 @@ void GpuFrame::forget() {
 void GpuFrame::readBack(const GpuBuffer& b, size_t bytes, void* out) {
   if (bytes > b.size) throw std::logic_error("GPU: read back beyond a buffer's end");
   if (!bytes) return;
-  GpuBuffer& s = staging(bytes);
-  commands_.begin();
-  commands_.copy(b, s, bytes);
-  commands_.submit();
-  std::memcpy(out, s.mapped, bytes);
+  const bool wasOpen = open_;
+  const Copyback c = recordCopyback(b, bytes);
+  if (wasOpen)
+    commands_.checkpoint();  // the batch records on
+  else
+    flush();
+  std::memcpy(out, downloadStaging_[c.staging].mapped, bytes);
 }
 
 }  // namespace tandem

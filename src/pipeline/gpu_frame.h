@@ -2,6 +2,10 @@
 // buffer's current value lives. Buffers live where they were written: the pipeline moves a buffer
 // to the device before a GPU pass that declares it as an input, and back before a CPU pass (or
 // the caller) reads it, each move a timing row with its bytes (Pipeline::execute).
+//
+// Consecutive GPU passes record into one batch, submitted once where the host needs what they
+// computed (before a CPU pass, at the frame's end): a frame of GPU passes is one submission, not
+// one per pass. Uploads go ahead of the batch on a command buffer of their own.
 #pragma once
 #include <functional>
 #include <map>
@@ -38,9 +42,9 @@ class GpuFrame {
   // recording kernels that read it).
   GpuScene& scene(const FrameScene& fs);
   void sceneChanged() { scene_.invalidate(); }  // a scene (re)set, perhaps edited in place
-  // A copy of `bytes` of `data` in device-readable memory for this submission's kernels (records
-  // too large for push constants); its address. Valid until the next beginSubmission(); host
-  // visible, so what kernels write there reads back after the submission (constantsData).
+  // A copy of `bytes` of `data` in device-readable memory for this batch's kernels (records too
+  // large for push constants); its address. Valid until the next batch opens; host visible, so
+  // what kernels write there reads back after a checkpoint or the flush (constantsData).
   uint64_t constants(const void* data, size_t bytes);
   // The host's view of constants at `address` (kernels may write there: counters read back).
   const void* constantsData(uint64_t address) const;
@@ -50,9 +54,21 @@ class GpuFrame {
   void dispatchInterruptibly(const GpuKernel& kernel, uint32_t x, uint32_t y, const void* push);
   // Work to do once the recorded commands completed (reading back counters), in the order given.
   void afterSubmit(std::function<void()> f) { after_.push_back(std::move(f)); }
-  // Called by the pipeline around each GPU pass's recording and submission.
-  void beginSubmission();
-  void endSubmission();
+  size_t afterSubmitCount() const { return after_.size(); }
+  // The afterSubmit work queued from index `first` on, taken out (a pass's, which the pipeline
+  // runs with that pass's rays and parts).
+  std::vector<std::function<void()>> takeAfterSubmit(size_t first);
+
+  // The batch: begun if none is open (its constants start afresh).
+  void open();
+  bool isOpen() const { return open_; }
+  uint64_t batches() const { return batches_; }  // flushed so far
+  // Submits the batch, waits, then runs its afterSubmit work in order and frees what was released
+  // while it was open; the wall milliseconds of the submission and wait (0: none was open).
+  double flush();
+  // An exception while recording: the batch and its afterSubmit work dropped, and every device
+  // copy forgotten (what the batch was to write was never computed).
+  void abandon();
 
   // A device buffer of at least `bytes` kept under `key` across frames for one pass's own use (a
   // visibility buffer, a queue): never moved, its contents whatever the pass left there.
@@ -71,8 +87,13 @@ class GpuFrame {
   // Makes the device copy of host buffer `b` (called `name`) current; the bytes moved (0 when it
   // already was).
   size_t upload(const std::string& name, const Buffer& b);
-  // Makes the host copy current (b must have the device copy's size); the bytes moved.
+  // Makes the host copy current (b must have the device copy's size); the bytes moved. Inside a
+  // batch, a checkpoint: what was recorded runs, and recording goes on.
   size_t download(const std::string& name, Buffer& b);
+  // The same, done when the batch is flushed: b (which must live until then) holds the value
+  // after flush(), and then `done` gets the milliseconds the move took (the GPU's copy and the
+  // host's). The bytes to move.
+  size_t queueDownload(const std::string& name, Buffer& b, std::function<void(double ms)> done);
   // The device buffer that will hold `name`'s new value (b's size), the host's copy now stale.
   const GpuBuffer& write(const std::string& name, const Buffer& b);
   // The device copy of `name` (which must be current there).
@@ -91,13 +112,25 @@ class GpuFrame {
     bool newer = false;    // ... which the host does not have
   };
   Copy& copyFor(const std::string& name, size_t bytes);
-  GpuBuffer& staging(size_t bytes);
+  // Records the copy of `src` into staging of its own (one buffer per copy of the batch), timed.
+  struct Copyback {
+    size_t staging;  // in downloadStaging_
+    uint32_t t0, t1;
+  };
+  Copyback recordCopyback(const GpuBuffer& src, size_t bytes);
+  // b's memory given back, once no recorded command can use it (after the flush).
+  void release(GpuBuffer& b);
   std::shared_ptr<GpuDevice> device_;
   GpuMemory memory_;
   GpuCommands commands_;
-  GpuCommands uploads_;  // the scene's, recorded while a pass records into commands_
+  GpuCommands uploads_;  // the scene's and uploads, submitted ahead of the open batch
   GpuScene scene_;
-  GpuBuffer staging_;
+  GpuBuffer uploadStaging_;
+  std::vector<GpuBuffer> downloadStaging_;  // used in turn each batch
+  size_t downloadsUsed_ = 0;
+  std::vector<GpuBuffer> released_;  // freed when the batch has run
+  bool open_ = false;
+  uint64_t batches_ = 0;
   std::vector<GpuBuffer> constants_;  // arenas, filled in turn each submission
   size_t constantsArena_ = 0, constantsUsed_ = 0;
   uint64_t generation_ = 0;

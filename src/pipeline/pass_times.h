@@ -27,7 +27,7 @@ class PassTimes {
   // The rays the passes of `type` traced (one frame's rows only; 0 from medians).
   double raysOf(const std::string& type) const;
   // Every row renamed by type: "type" for a pass, "type/part" for its parts (instances of one
-  // type summed); rows of no pass ("scene_update", "history") keep their names.
+  // type summed); rows of no pass ("scene_update", "gpu_submit", "history") keep their names.
   std::map<std::string, double> byType() const;
 
  private:

@@ -328,18 +328,46 @@ void runIsolated(const Pass& p, FrameContext& ctx, Run&& run) {
 }  // namespace
 
 namespace {
+// A frame's timing rows in the order of its passes. A batched GPU pass's rows (its GPU time, its
+// parts, its rays) are known only once its batch ran: it reserves its place.
+struct FrameRows {
+  std::vector<std::vector<PassTiming>> groups;
+  void add(PassTiming t) { groups.push_back({std::move(t)}); }
+  size_t reserve() {
+    groups.emplace_back();
+    return groups.size() - 1;
+  }
+  std::vector<PassTiming> all() && {
+    std::vector<PassTiming> out;
+    for (auto& g : groups)
+      for (PassTiming& t : g) out.push_back(std::move(t));
+    return out;
+  }
+};
+
 // A move between host and device, as its own timing row with its bytes.
-void moveToHost(const std::string& name, FrameContext& ctx, FrameTimings& ft) {
+void moveToHost(const std::string& name, FrameContext& ctx, FrameRows& rows) {
   auto it = ctx.buffers.find(name);
   if (it == ctx.buffers.end()) return;
   const auto t0 = Clock::now();
   const size_t bytes = ctx.gpu->download(name, it->second);
-  if (bytes) ft.passes.push_back({"download:" + name, msSince(t0), 0, double(bytes)});
+  if (bytes) rows.add({"download:" + name, msSince(t0), 0, double(bytes)});
+}
+
+// The same move recorded in the open batch, done (and its row filled) when the batch has run.
+void queueToHost(const std::string& name, FrameContext& ctx, FrameRows& rows) {
+  auto it = ctx.buffers.find(name);
+  if (it == ctx.buffers.end() || !ctx.gpu->deviceNewer(name)) return;
+  const size_t slot = rows.reserve();
+  const double bytes = double(it->second.data.size() * sizeof(float));
+  ctx.gpu->queueDownload(name, it->second, [&rows, slot, name, bytes](double ms) {
+    rows.groups[slot].push_back({"download:" + name, ms, 0, bytes});
+  });
 }
 
 // Before a pass: its declared inputs where it runs (this frame's buffers, and for a GPU pass
 // last frame's value of its history inputs, under historyKey; records never move).
-void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameTimings& ft) {
+void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameRows& rows) {
   for (const BufferSlot& in : p.inputs()) {
     if (in.history) {  // last frame's value: on the host, moved for a GPU pass that reads it
       const std::string& name = p.bufferName(in.slot);
@@ -348,40 +376,66 @@ void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameTimings& ft) 
       if (!onGpu || it == ctx.history.end() || ctx.gpu->onDevice(key)) continue;
       const auto t0 = Clock::now();
       const size_t bytes = ctx.gpu->upload(key, it->second);
-      ft.passes.push_back({"upload:" + key, msSince(t0), 0, double(bytes)});
+      rows.add({"upload:" + key, msSince(t0), 0, double(bytes)});
       continue;
     }
     const std::string& name = p.bufferName(in.slot);
     auto it = ctx.buffers.find(name);
     if (it == ctx.buffers.end() || it->second.kind == BufferKind::Record) continue;
     if (!onGpu) {
-      if (ctx.gpu->deviceNewer(name)) moveToHost(name, ctx, ft);
+      if (ctx.gpu->deviceNewer(name)) moveToHost(name, ctx, rows);
       continue;
     }
     if (ctx.gpu->onDevice(name)) continue;
     const auto t0 = Clock::now();
     const size_t bytes = ctx.gpu->upload(name, it->second);
-    ft.passes.push_back({"upload:" + name, msSince(t0), 0, double(bytes)});
+    rows.add({"upload:" + name, msSince(t0), 0, double(bytes)});
   }
 }
 
-// Records the pass's kernels between two timestamps, submits and waits; the GPU milliseconds.
-double runOnGpu(Pass& p, FrameContext& ctx) {
-  GpuCommands& cmd = ctx.gpu->commands();
-  ctx.gpu->beginSubmission();
-  cmd.begin();
-  uint32_t a = 0, b = 0;
-  try {
-    a = cmd.timestamp();
-    p.executeGpu(ctx);
-    b = cmd.timestamp();
-  } catch (...) {
-    cmd.abandon();
-    throw;
-  }
-  cmd.submit();
-  ctx.gpu->endSubmission();
-  return cmd.activeMs(a, b);
+// Records the pass's kernels into the open batch between two timestamps. Its rows (GPU time,
+// the host's time recording, its parts and rays) and its own afterSubmit work come once the
+// batch has run: that work runs with the pass's rays and parts in the context, as if alone.
+// Whether the pass left such work (which may write its records).
+bool recordOnGpu(Pass& p, FrameContext& ctx, FrameRows& rows) {
+  GpuFrame& gpu = *ctx.gpu;
+  gpu.open();
+  GpuCommands& cmd = gpu.commands();
+  const size_t first = gpu.afterSubmitCount();
+  const auto t0 = Clock::now();
+  cmd.barrier();  // what the batch's earlier passes wrote is visible
+  const uint32_t a = cmd.timestamp();
+  p.executeGpu(ctx);
+  const uint32_t b = cmd.timestamp();
+  const double hostMs = msSince(t0);
+  const size_t slot = rows.reserve();
+  std::vector<std::function<void()>> work = gpu.takeAfterSubmit(first);
+  const bool deferred = !work.empty();
+  gpu.afterSubmit([&p, &ctx, &rows, &cmd, slot, a, b, hostMs, rays = ctx.passRays,
+                   parts = ctx.passParts, work = std::move(work)]() mutable {
+    const double otherRays = ctx.passRays;
+    std::vector<PassTiming> otherParts = std::move(ctx.passParts);
+    ctx.passRays = rays;
+    ctx.passParts = std::move(parts);
+    for (auto& f : work) f();
+    // A GPU pass's row is its GPU time (timestamps); its part "host" is the wall time of
+    // recording it. Parts come after their pass and are not added to the frame total again.
+    std::vector<PassTiming>& g = rows.groups[slot];
+    g.push_back({p.name(), cmd.activeMs(a, b), ctx.passRays});
+    g.push_back({p.name() + "/host", hostMs, 0});
+    for (PassTiming& part : ctx.passParts)
+      g.push_back({p.name() + "/" + part.name, part.ms, part.rays});
+    ctx.passRays = otherRays;
+    ctx.passParts = std::move(otherParts);
+  });
+  return deferred;
+}
+
+// Whether a pass reads this frame a record that a batched pass writes once its batch has run.
+bool readsPendingRecord(const Pass& p, const std::set<std::string>& pendingRecords) {
+  for (const BufferSlot& in : p.inputs())
+    if (!in.history && pendingRecords.count(p.bufferName(in.slot))) return true;
+  return false;
 }
 }  // namespace
 
@@ -404,44 +458,73 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
   ctx.consumed = {output};
   for (const auto& p : passes)
     for (const BufferSlot& in : p->inputs()) ctx.consumed.insert(p->bufferName(in.slot));
-  for (auto& p : passes) {
-    ctx.passRays = 0;
-    ctx.passParts.clear();
-    const bool onGpu = ctx.gpu && p->enabled && p->hasGpu();
-    if (ctx.gpu) moveInputs(*p, ctx, onGpu, ft);
-    auto t0 = Clock::now();
-    double gpuMs = -1;
-    const auto run = [&] {
-      if (onGpu)
-        gpuMs = runOnGpu(*p, ctx);
-      else if (p->enabled)
-        p->execute(ctx);
+  FrameRows rows;
+  double submitMs = 0;                   // the host's wait for the frame's batches
+  std::set<std::string> pendingRecords;  // records the open batch's passes write once it has run
+  const auto flush = [&] {
+    submitMs += ctx.gpu->flush();
+    pendingRecords.clear();
+  };
+  try {
+    for (size_t i = 0; i < passes.size(); ++i) {
+      Pass* p = passes[i].get();
+      const bool onGpu = ctx.gpu && p->enabled && p->hasGpu();
+      // The host sees what the batch computed before a CPU pass runs (what it and the CPU passes
+      // after it read from the device coming back in that batch), or before a GPU pass reads a
+      // record it writes.
+      if (ctx.gpu && !onGpu)
+        for (size_t j = i; j < passes.size(); ++j)
+          if (!(passes[j]->enabled && passes[j]->hasGpu()))
+            for (const BufferSlot& in : passes[j]->inputs())
+              if (!in.history) queueToHost(passes[j]->bufferName(in.slot), ctx, rows);
+      if (ctx.gpu && (!onGpu || readsPendingRecord(*p, pendingRecords))) flush();
+      ctx.passRays = 0;
+      ctx.passParts.clear();
+      if (ctx.gpu) moveInputs(*p, ctx, onGpu, rows);
+      auto t0 = Clock::now();
+      bool deferred = false;  // a GPU pass's work left for when the batch has run
+      const auto run = [&] {
+        if (onGpu) {
+          deferred = recordOnGpu(*p, ctx, rows);
+          if (ctx.isolatePasses) flush();
+        } else if (p->enabled) {
+          p->execute(ctx);
+        } else {
+          bypass(*p, ctx);
+        }
+      };
+      if (ctx.isolatePasses)
+        runIsolated(*p, ctx, run);
       else
-        bypass(*p, ctx);
-    };
-    if (ctx.isolatePasses)
-      runIsolated(*p, ctx, run);
-    else
-      run();
-    const std::string label = p->name();
-    const double wallMs = msSince(t0);
-    // A GPU pass's row is its GPU time (timestamps); its part "host" is the wall time of
-    // recording, submitting and waiting.
-    ft.passes.push_back({label, gpuMs >= 0 ? gpuMs : wallMs, ctx.passRays});
-    if (gpuMs >= 0) ft.passes.push_back({label + "/host", wallMs, 0});
-    // Parts are reported after their pass and are not added to the frame total again.
-    for (PassTiming& part : ctx.passParts)
-      ft.passes.push_back({label + "/" + part.name, part.ms, part.rays});
-  }
-  // The caller reads the frame's buffers on the host: what is newer on the device comes back
-  // (without keepAllOutputs only what the caller reads: the output, what it wants and history;
-  // the rest stays on the device, moved only if a pass on the host reads it later).
-  if (ctx.gpu) {
-    const std::vector<std::string> history = historyBuffers();
-    for (const std::string& name : ctx.gpu->deviceOnly())
-      if (ctx.keepAllOutputs || name == output || ctx.wanted.count(name) ||
-          std::find(history.begin(), history.end(), name) != history.end())
-        moveToHost(name, ctx, ft);
+        run();
+      if (onGpu) {
+        if (deferred && !ctx.isolatePasses)
+          for (const BufferSlot& o : p->outputs())
+            if (o.kind == BufferKind::Record) pendingRecords.insert(p->bufferName(o.slot));
+        continue;  // its rows come with the batch
+      }
+      const std::string label = p->name();
+      rows.add({label, msSince(t0), ctx.passRays});
+      for (PassTiming& part : ctx.passParts)
+        rows.add({label + "/" + part.name, part.ms, part.rays});
+    }
+    // The caller reads the frame's buffers on the host: what is newer on the device comes back
+    // in the frame's last batch (without keepAllOutputs only what the caller reads: the output,
+    // what it wants and history; the rest stays on the device, moved only if a pass on the host
+    // reads it later).
+    if (ctx.gpu) {
+      const std::vector<std::string> history = historyBuffers();
+      for (const std::string& name : ctx.gpu->deviceOnly()) {
+        if (ctx.keepAllOutputs || name == output || ctx.wanted.count(name) ||
+            std::find(history.begin(), history.end(), name) != history.end())
+          queueToHost(name, ctx, rows);
+      }
+      flush();
+      if (submitMs > 0) rows.add({"gpu_submit", submitMs, 0});
+    }
+  } catch (...) {
+    if (ctx.gpu) ctx.gpu->abandon();  // nothing the batch was to compute can be trusted
+    throw;
   }
   // What the next frame reads as last frame's value (copied: the buffer stays readable).
   auto h0 = Clock::now();
@@ -453,8 +536,9 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     if (ctx.gpu) ctx.gpu->hostWrote(historyKey(name));  // a new value: moved again when read
     any = true;
   }
-  if (any) ft.passes.push_back({"history", msSince(h0), 0});
+  if (any) rows.add({"history", msSince(h0), 0});
   ctx.historyReset = false;
+  ft.passes = std::move(rows).all();
   ft.totalMs = msSince(frameStart);
   return ft;
 }
