@@ -2,7 +2,10 @@
 
 #include <limits>
 
+#include "gpu/shaders/dof_args.h"
+#include "gpu/shaders/dof_coc_spv.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 #include "pipeline/view_tiles.h"
 #include "scene/thin_lens.h"
 
@@ -30,6 +33,31 @@ void DofCocPass::execute(FrameContext& ctx) {
         coc.at(x, y)[0] = c;
       }
   });
+}
+
+void DofCocPass::executeGpu(FrameContext& ctx) {
+  DofCocArgs a{};
+  a.position = ctx.deviceInput(*this, Slots::position);
+  a.depth = ctx.deviceInput(*this, Slots::depth);
+  a.coc = ctx.deviceOutput(*this, Slots::coc);
+  a.frameWidth = uint32_t(ctx.width);
+  GpuFrame& gpu = *ctx.gpu;
+  const GpuKernel& k = gpu.kernel("dof_coc", kDofCocSpv, sizeof(kDofCocSpv) / 4, sizeof a);
+  for (const View& v : ctx.views) {
+    const ThinLens lens = ThinLens::of(v.camera);
+    const Vec3 eye = v.camera.desc.position, fwd = v.camera.forward;
+    a.eyeX = eye.x, a.eyeY = eye.y, a.eyeZ = eye.z;
+    a.forwardX = fwd.x, a.forwardY = fwd.y, a.forwardZ = fwd.z;
+    a.aperture = lens.aperture;
+    a.focus = lens.focus;
+    a.pixelsPerSlope = lens.pixelsPerSlope;
+    a.lensActive = lens.active() ? 1 : 0;
+    a.viewX = uint32_t(v.x);
+    a.viewY = uint32_t(v.y);
+    a.width = uint32_t(v.width());
+    a.height = uint32_t(v.height());
+    gpu.commands().dispatch(k, (a.width + 7) / 8, (a.height + 7) / 8, 1, &a);
+  }
 }
 
 }  // namespace tandem

@@ -25,6 +25,8 @@ class DofCocPass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override { return {{Slots::coc, 1, BufferKind::Signed}}; }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/dof_coc.comp
+  void executeGpu(FrameContext& ctx) override;
 };
 
 }  // namespace tandem

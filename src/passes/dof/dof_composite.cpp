@@ -5,8 +5,11 @@
 
 #include "core/image_filters.h"
 #include "core/parallel.h"
+#include "gpu/shaders/dof_args.h"
+#include "gpu/shaders/dof_composite_spv.h"
 #include "passes/dof/dof_common.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 
 namespace tandem {
 
@@ -159,6 +162,38 @@ void DofCompositePass::execute(FrameContext& ctx) {
       out.setRgb(x, y, col);
     }
   });
+}
+
+void DofCompositePass::executeGpu(FrameContext& ctx) {
+  static_assert(TD_COMPOSITE_RT_CHANNELS == dof::RtChannels::kCount && kMaxReach == 33);
+  const Buffer& sharp = ctx.input(*this, Slots::hdr);  // the shape (its value is on the device)
+  const Buffer* rt = ctx.optionalInput(*this, Slots::rtRecon);
+  const auto deviceIf = [&](const char* slot) {
+    return ctx.optionalInput(*this, slot) ? ctx.deviceInput(*this, slot) : 0;
+  };
+  DofCompositeArgs a{};
+  a.sharp = ctx.deviceInput(*this, Slots::hdr);
+  a.coc = ctx.deviceInput(*this, Slots::coc);
+  a.postfx = deviceIf(Slots::postfx);
+  a.bokeh = deviceIf(Slots::bokeh);
+  a.rt = deviceIf(Slots::rtRecon);
+  a.dof = ctx.deviceOutput(*this, Slots::dof);
+  a.width = uint32_t(sharp.width);
+  a.height = uint32_t(sharp.height);
+  a.rtWidth = rt ? uint32_t(rt->width) : 0;
+  a.rtHeight = rt ? uint32_t(rt->height) : 0;
+  a.scaleX = rt ? float(rt->width) / float(sharp.width) : 1.0f;
+  a.scaleY = rt ? float(rt->height) / float(sharp.height) : 1.0f;
+  const DofCompositeSettings& s = settings();
+  a.rtMode = s.mode == DofCompositeSettings::Mode::Rt ? 1 : 0;
+  a.useBokeh = s.bokeh ? 1 : 0;
+  a.sharpBackground = s.silhouette == DofCompositeSettings::Silhouette::SharpBackground ? 1 : 0;
+  a.farBlend = s.farBlend;
+  a.fineCoc = s.fineCoc;
+  GpuFrame& gpu = *ctx.gpu;
+  const GpuKernel& k =
+      gpu.kernel("dof_composite", kDofCompositeSpv, sizeof(kDofCompositeSpv) / 4, sizeof a);
+  gpu.commands().dispatch(k, (a.width + 7) / 8, (a.height + 7) / 8, 1, &a);
 }
 
 }  // namespace tandem

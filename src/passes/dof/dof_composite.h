@@ -62,6 +62,8 @@ class DofCompositePass : public SettingsPass<DofCompositeSettings> {
   }
   std::vector<BufferSlot> outputs() const override { return {{Slots::dof, 3}}; }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/dof_composite.comp
+  void executeGpu(FrameContext& ctx) override;
 
  protected:
   const ParamTable<DofCompositeSettings>& tableFor() const override;

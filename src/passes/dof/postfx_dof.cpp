@@ -7,6 +7,7 @@
 #include "core/image_filters.h"
 #include "core/parallel.h"
 #include "passes/dof/dof_common.h"
+#include "passes/dof/gather_taps.h"
 #include "pipeline/frame_context.h"
 #include "scene/thin_lens.h"
 
@@ -41,9 +42,44 @@ const ParamTable<PostfxDofSettings>& PostfxDofPass::tableFor() const {
   return table;
 }
 
+namespace dof {
+
+GatherTaps gatherTaps(const ThinLens& lens, bool polygon, int64_t serial) {
+  GatherTaps g{};
+  const float rotation =
+      2.0f * kPi * float((uint32_t(serial) * 2654435769u) >> 8) / float(1u << 24) / 81.0f;
+  g.taps[0] = {0, 0, 0};
+  int i = 1;
+  for (int k = 1; k <= 4; ++k) {
+    const int n = 8 * k;
+    for (int j = 0; j < n; ++j, ++i) {
+      const float a = rotation + 2.0f * kPi * (float(j) + 0.5f * float(k & 1)) / float(n);
+      const float r = float(k) / 4.0f;
+      g.taps[size_t(i)] = {r * std::cos(a), r * std::sin(a), r};
+    }
+  }
+  for (size_t t = 0; t < g.taps.size(); ++t) {
+    const float angle = std::atan2(-g.taps[t].y, -g.taps[t].x);  // from the tap to the centre
+    g.extentFar[t] =
+        polygon && t > 0 ? apertureExtent(lens.blades, lens.rotationDeg, angle, false) : 1.0f;
+    g.extentNear[t] =
+        polygon && t > 0 ? apertureExtent(lens.blades, lens.rotationDeg, angle, true) : 1.0f;
+  }
+  return g;
+}
+
+void prefilterDirection(int t, float& cosA, float& sinA) {
+  const float a = 2.0f * kPi * float(t) / 8.0f;
+  cosA = std::cos(a);
+  sinA = std::sin(a);
+}
+
+}  // namespace dof
+
 namespace {
 
-constexpr int kTile = 8;  // half-res pixels per tile side (16 frame pixels)
+using dof::Tap;
+constexpr int kTile = dof::kPostfxTile;
 
 struct HalfSample {
   float r, g, b;
@@ -53,25 +89,6 @@ struct HalfSample {
   float radius;  // |coc| / 2
   float alpha;   // sample alpha: 1 / (π r²), r at least half a pixel
 };
-
-// The 81 taps: the centre, then rings k = 1..4 of 8k taps at radius k/4 (unit kernel).
-struct Tap {
-  float x, y, dist;
-};
-std::array<Tap, 81> ringTaps(float rotation) {
-  std::array<Tap, 81> t{};
-  t[0] = {0, 0, 0};
-  int i = 1;
-  for (int k = 1; k <= 4; ++k) {
-    const int n = 8 * k;
-    for (int j = 0; j < n; ++j, ++i) {
-      const float a = rotation + 2.0f * kPi * (float(j) + 0.5f * float(k & 1)) / float(n);
-      const float r = float(k) / 4.0f;
-      t[size_t(i)] = {r * std::cos(a), r * std::sin(a), r};
-    }
-  }
-  return t;
-}
 
 // The half-resolution grid the filter runs on, with its tiles' neighbourhood max |CoC|.
 struct HalfGrid {
@@ -156,9 +173,10 @@ HalfGrid prefilter(HalfGrid grid, const Buffer& hdr, const Buffer& cocIn) {
       const float cx = 2.0f * float(x) + 1.0f, cy = 2.0f * float(y) + 1.0f;  // frame coordinates
       float r = 0, g = 0, b = 0, wsum = 0;
       for (int t = 0; t < 9; ++t) {
-        const float a = 2.0f * kPi * float(t) / 8.0f;
-        const float px = t == 8 ? cx : cx + radius * std::cos(a);
-        const float py = t == 8 ? cy : cy + radius * std::sin(a);
+        float cosA = 0, sinA = 0;
+        if (t < 8) dof::prefilterDirection(t, cosA, sinA);
+        const float px = t == 8 ? cx : cx + radius * cosA;
+        const float py = t == 8 ? cy : cy + radius * sinA;
         float rgb[3];
         sampleBilinearN<3>(hdr, px, py, rgb);
         const float tc =
@@ -194,19 +212,9 @@ void gather(const HalfGrid& grid, const ThinLens& lens, const GatherSettings& gs
   const std::vector<HalfSample>& pre = grid.half;
   const float depthRange = gs.depthRange;
   const bool polygon = gs.polygon;
-  // A new ring rotation every executed frame (a static shot repeats its frame index).
-  const float rotation =
-      2.0f * kPi * float((uint32_t(gs.serial) * 2654435769u) >> 8) / float(1u << 24) / 81.0f;
-  const std::array<Tap, 81> taps = ringTaps(rotation);
-  // The polygon's extent along each tap's direction, for far- and near-field spots.
-  std::array<float, 81> extentFar{}, extentNear{};
-  for (size_t i = 0; i < taps.size(); ++i) {
-    const float angle = std::atan2(-taps[i].y, -taps[i].x);  // from the tap to the centre
-    extentFar[i] =
-        polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, false) : 1.0f;
-    extentNear[i] =
-        polygon && i > 0 ? dof::apertureExtent(lens.blades, lens.rotationDeg, angle, true) : 1.0f;
-  }
+  const dof::GatherTaps pattern = dof::gatherTaps(lens, polygon, gs.serial);
+  const std::array<Tap, 81>& taps = pattern.taps;
+  const std::array<float, 81>&extentFar = pattern.extentFar, &extentNear = pattern.extentNear;
   const float invRange = depthRange > 0 ? 1.0f / depthRange : 0.0f;
   const float nearFieldCoc = -0.5f * dof::kZoneOfFocusCoc;  // half-res pixels
   parallelRows(hh, [&](int y) {

@@ -55,6 +55,8 @@ class PostfxDofPass : public SettingsPass<PostfxDofSettings> {
     return {{Slots::postfx, 3}, dof::BokehChannels::slot()};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/postfx_dof.comp, postfx_dof_gpu.cpp
+  void executeGpu(FrameContext& ctx) override;
 
  protected:
   const ParamTable<PostfxDofSettings>& tableFor() const override;

@@ -1,0 +1,59 @@
+// Arguments of the depth-of-field kernels (C++ and GLSL; Tan et al. 2022): dof_coc.comp (the
+// circle of confusion), postfx_dof.comp (the post-process gather, one stage a dispatch) and
+// dof_composite.comp (eq. 7). Buffers are the CPU passes' (passes/dof/dof_common.h).
+#ifndef TANDEM_GPU_DOF_ARGS_H
+#define TANDEM_GPU_DOF_ARGS_H
+#include "shared.h"
+
+// The thin lens (scene/thin_lens.h) and one view's eye.
+struct DofCocArgs {
+  TD_ADDR position, depth, coc;
+  TD_FLOAT eyeX, eyeY, eyeZ, forwardX, forwardY, forwardZ;
+  TD_FLOAT aperture, focus, pixelsPerSlope, pad;
+  TD_UINT frameWidth, viewX, viewY, width, height, lensActive;
+};
+
+// postfx_dof's stages, in order (PostfxDofPass's steps 1-5).
+#define TD_POSTFX_DOWNSAMPLE 0u
+#define TD_POSTFX_TILE_MAX 1u
+#define TD_POSTFX_NEIGHBOUR_MAX 2u
+#define TD_POSTFX_PREFILTER 3u
+#define TD_POSTFX_GATHER 4u
+#define TD_POSTFX_MEDIAN 5u
+#define TD_POSTFX_UPSCALE 6u
+
+#define TD_POSTFX_TILE 8u  // half-res pixels a tile side
+// A half-resolution sample: r, g, b, coc (half-res pixels, signed), z (view depth), spec (1: a
+// bright highlight), radius (|coc| / 2), alpha (1 / (pi r^2)).
+#define TD_HALF_SAMPLE 8u
+// The gather's 81 taps, computed on the host: x, y, dist (unit kernel), and the aperture's
+// extent towards the centre for far- and near-field spots.
+#define TD_POSTFX_TAPS 81u
+#define TD_TAP_FLOATS 5u
+
+struct PostfxDofArgs {
+  TD_ADDR hdr, coc, specular;     // the frame's (specular: 4 floats a pixel)
+  TD_ADDR halfSamples;                   // TD_HALF_SAMPLE floats a half-res pixel
+  TD_ADDR tileMax, neighbourMax;  // a float a tile
+  TD_ADDR gathered, bokeh;        // half res: 3 and 2 floats a pixel
+  TD_ADDR filtered;               // the median of gathered
+  TD_ADDR taps;                   // TD_POSTFX_TAPS x TD_TAP_FLOATS
+  TD_ADDR src, dst;               // the upscale's: half res to the frame, `channels` floats
+  TD_UINT width, height, halfWidth, halfHeight, tilesX, tilesY, channels, pad;
+  TD_FLOAT lensK, focus, specularThreshold, bokehLuminance, depthRange, invRange;
+};
+
+// The push constants of every postfx_dof stage: the arguments' address and the stage.
+struct PostfxDofPush {
+  TD_ADDR args;
+  TD_UINT stage, pad;
+};
+
+#define TD_COMPOSITE_RT_CHANNELS 9u  // rt_recon (dof::RtChannels)
+struct DofCompositeArgs {
+  TD_ADDR sharp, coc, postfx, bokeh, rt, dof;  // postfx, bokeh, rt: 0 when absent
+  TD_UINT width, height, rtWidth, rtHeight;
+  TD_UINT rtMode, useBokeh, sharpBackground, pad;
+  TD_FLOAT farBlend, fineCoc, scaleX, scaleY;
+};
+#endif

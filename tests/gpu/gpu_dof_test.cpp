@@ -1,0 +1,139 @@
+// Tan et al. 2022's image-space depth-of-field passes on the GPU against the CPU: dof_coc,
+// postfx_dof (the half-resolution gather and its bokeh buffer) and dof_composite, each given the
+// same inputs on both devices (the buffers a CPU frame of the pipeline left), in `postfx-dof`,
+// `hybrid-dof` (the composite with rt_recon) and `rt-dof` (mode rt), with the polygonal aperture,
+// the median and the silhouette rule switched, and a pinhole; and `postfx-dof` on the GPU whole.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "gpu/gpu_test_util.h"
+#include "pipeline/gpu_frame.h"
+#include "pipeline/renderer.h"
+#include "scene/loaders.h"
+#include "scene/scene_camera.h"
+
+namespace tandem {
+namespace {
+
+const std::set<std::string> kDofPasses = {"dof_coc", "postfx_dof", "dof_composite"};
+
+Scene dofScene(const char* name) {
+  return loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/" + name + ".json");
+}
+
+// The pipeline's image-space DoF passes (with `params`), alone.
+Pipeline dofPasses(const std::string& pipeline, const std::vector<std::string>& params) {
+  Pipeline full = Pipeline::load(pipeline);
+  for (const std::string& p : params) full.setParam(p, "test");
+  Pipeline p;
+  p.name = pipeline + " (depth of field)";
+  for (auto& pass : full.passes)
+    if (kDofPasses.count(pass->type())) {
+      p.output = pass->bufferName("dof");
+      p.passes.push_back(std::move(pass));
+    }
+  return p;
+}
+
+// A frame of `pipeline` on the CPU; then its DoF passes run again from that frame's buffers, on
+// the CPU and on the GPU, and their outputs compared.
+void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pipeline,
+                   const Scene& scene, CameraDesc cam, const std::string& what,
+                   const std::vector<std::string>& params = {}) {
+  RenderSettings rs{.width = 160, .height = 90};
+  Renderer cpu(scene, Pipeline::load(pipeline), rs);
+  for (int f = 0; f < 2; ++f) {
+    cpu.renderFrame(f, cam);
+    cam.position = cam.position + Vec3(0.05f, 0.0f, 0.02f);
+  }
+  FrameContext runs[2];
+  for (int onGpu = 0; onGpu < 2; ++onGpu) {
+    FrameContext& ctx = runs[onGpu];
+    const FrameContext& from = cpu.context();
+    ctx.width = from.width;
+    ctx.height = from.height;
+    ctx.views = from.views;
+    ctx.frameIndex = from.frameIndex;
+    ctx.serial = from.serial - 1;  // the same frame again (the gather's ring rotation)
+    ctx.buffers = from.buffers;
+    ctx.scene = from.scene;
+    if (onGpu) ctx.gpu = std::make_shared<GpuFrame>(dev);
+    Pipeline p = dofPasses(pipeline, params);
+    for (const auto& pass : p.passes)  // what the passes write, written anew
+      for (const BufferSlot& o : pass->outputs()) ctx.buffers.erase(pass->bufferName(o.slot));
+    const FrameTimings ft = p.execute(ctx);
+    size_t hosts = 0;
+    for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
+    EXPECT_EQ(hosts, onGpu ? p.passes.size() : 0u) << what << ": a pass did not run on the GPU";
+  }
+  const std::string at = pipeline + ", " + what;
+  for (const char* name : {"coc", "postfx", "bokeh", "dof"}) {
+    if (!runs[0].buffers.count(name)) continue;
+    const Buffer &c = runs[0].input(name), &g = runs[1].input(name);
+    ASSERT_TRUE(c.sameShape(g)) << at << ": " << name;
+    for (float v : g.data) ASSERT_TRUE(std::isfinite(v)) << at << ": " << name;
+    if (std::string(name) == "coc") {  // pixels, signed: relative
+      EXPECT_GE(agreement(c, g, 1e-5f), 1.0) << at << ": coc";
+      continue;
+    }
+    // The bar of a deterministic GPU pass, and all but 0.1 % of the pixels within 1e-3 (the
+    // devices round alike but for a few ulps: on lavapipe they agree bit for bit).
+    const double db = psnr(c, g, 1.0);
+    EXPECT_GE(db, 45.0) << at << ": " << name;
+    EXPECT_GE(agreement(c, g, 1e-3f), 0.999) << at << ": " << name;
+    testing::Test::RecordProperty(at + ": " + name + " dB", std::to_string(db));
+    std::printf("%s: %s %.1f dB\n", at.c_str(), name, db);
+  }
+}
+
+TEST(GpuDof, ImageSpacePassesMatchTheCpuOnTheSameInputs) {
+  REQUIRE_GPU(dev);
+  for (const char* name : {"dof_fg", "dof_bg"}) {
+    const Scene scene = dofScene(name);
+    comparePasses(dev, "postfx-dof", scene, defaultCamera(scene), name);
+  }
+  const Scene fg = dofScene("dof_fg");
+  const CameraDesc cam = defaultCamera(fg);
+  comparePasses(dev, "postfx-dof", fg, cam, "disk aperture, no median",
+                {"postfx_dof.polygon=false", "postfx_dof.median=false"});
+  comparePasses(
+      dev, "postfx-dof", fg, cam, "eq. 7 silhouettes, no bokeh, no fine gather",
+      {"dof_composite.silhouette=eq7", "dof_composite.bokeh=false", "dof_composite.fine_coc=0"});
+  comparePasses(dev, "hybrid-dof", fg, cam, "with rt_recon");
+  comparePasses(dev, "rt-dof", fg, cam, "mode rt");
+  CameraDesc pinhole = cam;
+  pinhole.apertureDiameter = 0;
+  comparePasses(dev, "postfx-dof", fg, pinhole, "a pinhole");
+  expectNoValidationMessages(*dev);
+}
+
+// postfx-dof runs on the GPU whole, and over three frames of a moving camera (the TAA before and
+// after the DoF keeping their history there) gives the CPU's image.
+TEST(GpuDof, PostfxDofRunsOnTheGpuWhole) {
+  REQUIRE_GPU(dev);
+  const Scene scene = dofScene("dof_fg");
+  CameraDesc cam = defaultCamera(scene);
+  RenderSettings rs{.width = 160, .height = 90};
+  Renderer cpu(scene, Pipeline::load("postfx-dof"), rs);
+  rs.gpu = dev;
+  Renderer gpu(scene, Pipeline::load("postfx-dof"), rs);
+  for (int f = 0; f < 3; ++f) {
+    cpu.renderFrame(f, cam);
+    const FrameTimings ft = gpu.renderFrame(f, cam);
+    size_t hosts = 0;
+    for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
+    EXPECT_EQ(hosts, gpu.pipeline().passes.size()) << "frame " << f << ": a pass ran on the CPU";
+    const FrameContext &c = cpu.context(), &g = gpu.context();
+    const ImageAgreement a =
+        imageAgreement(cpu.output(), gpu.output(), c.input("object_id"), g.input("object_id"));
+    expectAgreement(a, "postfx-dof, frame " + std::to_string(f));
+    cam.position = cam.position + Vec3(0.05f, 0.0f, 0.02f);
+  }
+  expectNoValidationMessages(*dev);
+}
+
+}  // namespace
+}  // namespace tandem
