@@ -33,90 +33,8 @@ ReferenceArgs A;
 #include "scene.glsl"
 #include "whitted.glsl"
 
-// ---- SobolSampler (rt/sampler.cpp), bit for bit.
-uint laineKarras(uint x, uint seed) {
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return x;
-}
-uint hashCombine(uint seed, uint v) { return seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2)); }
-uint sobolDim1(uint i) {  // direction numbers v_k = v_{k-1} ^ v_{k-1} >> 1, v_0 = 1/2
-  uint v = 1u << 31, r = 0u;
-  for (int k = 0; k < 32; ++k, v ^= v >> 1)
-    if (((i >> k) & 1u) != 0u) r ^= v;
-  return r;
-}
-uint mix64(uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ul;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebul;
-  return uint((z ^ (z >> 31)) >> 16);
-}
-float toUnit(uint x) { return float(x >> 8) * (1.0 / 16777216.0); }
-
-uint samplerSeed, samplerIndex, samplerPair;
-void startSampler(uint64_t seed, uint64_t pixel, uint index) {
-  samplerSeed = mix64(seed * 0x9E3779B97F4A7C15ul ^ uint64_t(mix64(pixel + 0x632BE59BD9B4E019ul)));
-  samplerIndex = bitfieldReverse(index);
-  samplerPair = 0u;
-}
-uint nextPair(out uint pairSeed) {
-  pairSeed = hashCombine(samplerSeed, samplerPair++);
-  return laineKarras(samplerIndex, hashCombine(pairSeed, 0x68bc21ebu));
-}
-float uniform1() {
-  uint s;
-  const uint y = nextPair(s);
-  return toUnit(bitfieldReverse(laineKarras(bitfieldReverse(y), hashCombine(s, 0x02e5be93u))));
-}
-vec2 uniform2() {
-  uint s;
-  const uint y = nextPair(s);
-  const uint d1 = bitfieldReverse(sobolDim1(bitfieldReverse(y)));
-  return vec2(toUnit(bitfieldReverse(laineKarras(bitfieldReverse(y), hashCombine(s, 0x02e5be93u)))),
-              toUnit(bitfieldReverse(laineKarras(d1, hashCombine(s, 0x967a889bu)))));
-}
-
-// ---- The camera: Camera::lensPoint and generateThinLensRay.
-vec2 lensPoint(float u1, float u2) {
-  float lx = 0.0, ly = 0.0;
-  if (A.apertureBlades >= 3) {
-    const float n = float(A.apertureBlades), x = u1 * n;
-    const float k = min(floor(x), n - 1.0), su = sqrt(u2), v = x - k;
-    const float a0 = A.apertureRotation + 2.0 * kPi * k / n, a1 = a0 + 2.0 * kPi / n;
-    lx = su * ((1.0 - v) * cos(a0) + v * cos(a1));
-    ly = su * ((1.0 - v) * sin(a0) + v * sin(a1));
-  } else {
-    const float p = 2.0 * u1 - 1.0, q = 2.0 * u2 - 1.0;
-    float r = 0.0, phi = 0.0;
-    if (p != 0.0 || q != 0.0) {
-      if (abs(p) > abs(q)) {
-        r = p;
-        phi = kPi / 4.0 * (q / p);
-      } else {
-        r = q;
-        phi = kPi / 2.0 - kPi / 4.0 * (p / q);
-      }
-    }
-    lx = r * cos(phi);
-    ly = r * sin(phi);
-  }
-  return vec2(A.apertureRadius * lx, A.apertureRadius * ly);
-}
-
-void thinLensRay(GpuCamera c, vec2 p, vec2 lens, out vec3 o, out vec3 d) {
-  float tnear;
-  cameraRayAt(c, p, o, d, tnear);
-  if (A.apertureRadius <= 0.0 || c.orthographic != 0) return;
-  const vec2 l = lensPoint(lens.x, lens.y);
-  const vec3 forward = vec3(c.forward[0], c.forward[1], c.forward[2]);
-  const vec3 focus = o + d * (A.focusDistance / dot(d, forward));
-  o = vec3(c.eye[0], c.eye[1], c.eye[2]) + vec3(c.right[0], c.right[1], c.right[2]) * l.x +
-      vec3(c.up[0], c.up[1], c.up[2]) * l.y;
-  d = normalize(focus - o);
-}
+#include "sobol.glsl"
+#include "thin_lens.glsl"
 
 // ---- The path tracer (rt/path_tracer.cpp).
 float fresnelDielectric(float cosi, float eta) {
@@ -442,7 +360,9 @@ void main() {
     L = diffuseGIRadiance(cam, x, y);
   } else {
     vec3 o, d;
-    thinLensRay(cam, vec2(float(x), float(y)) + jitter, lens, o, d);
+    const ThinLensRays thin =
+        ThinLensRays(A.apertureRadius, A.focusDistance, A.apertureRotation, A.apertureBlades);
+    thinLensRay(cam, thin, vec2(float(x), float(y)) + jitter, lens, o, d);
     L = A.integrator == TD_REFERENCE_WHITTED ? whittedRadiance(cam, o, d) : pathRadiance(o, d);
   }
   if (any(isnan(L)) || any(isinf(L))) L = vec3(0.0);  // a degenerate pdf spoils no pixel

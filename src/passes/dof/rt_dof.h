@@ -55,6 +55,8 @@ class RTDofPass : public SettingsPass<RTDofSettings> {
             dof::farPositionSlot()};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/rt_dof.comp, rt_dof_gpu.cpp
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 
  protected:
