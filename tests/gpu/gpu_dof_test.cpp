@@ -19,7 +19,8 @@
 namespace tandem {
 namespace {
 
-const std::set<std::string> kDofPasses = {"dof_coc", "postfx_dof", "rt_dof", "dof_composite"};
+const std::set<std::string> kDofPasses = {"dof_coc", "postfx_dof", "rt_dof", "dof_reconstruction",
+                                          "dof_composite"};
 
 Scene dofScene(const char* name) {
   return loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/" + name + ".json");
@@ -89,7 +90,7 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     const double cpuValue = runs[0].counter(q, -1), gpuValue = runs[1].counter(q, -2);
     EXPECT_NEAR(gpuValue, cpuValue, 0.01 * std::abs(cpuValue) + 1e-3) << at << ": " << q;
   }
-  for (const char* name : {"coc", "postfx", "bokeh", "dof"}) {
+  for (const char* name : {"coc", "postfx", "bokeh", "rt_recon", "dof"}) {
     if (!runs[0].buffers.count(name)) continue;
     const Buffer &c = runs[0].input(name), &g = runs[1].input(name);
     ASSERT_TRUE(c.sameShape(g)) << at << ": " << name;
@@ -122,7 +123,8 @@ TEST(GpuDof, PassesMatchTheCpuOnTheSameInputs) {
       dev, "postfx-dof", fg, cam, "eq. 7 silhouettes, no bokeh, no fine gather",
       {"dof_composite.silhouette=eq7", "dof_composite.bokeh=false", "dof_composite.fine_coc=0"});
   comparePasses(dev, "hybrid-dof", fg, cam, "with rt_recon, reuse_raster");
-  comparePasses(dev, "hybrid-dof", fg, cam, "shading every lens ray", {"rt_dof.reuse_raster=false"});
+  comparePasses(dev, "hybrid-dof", fg, cam, "shading every lens ray",
+                {"rt_dof.reuse_raster=false"});
   comparePasses(dev, "rt-dof", fg, cam, "mode rt, 2 rays a pixel", {"ray_mask.m=2"});
   CameraDesc pinhole = cam;
   pinhole.apertureDiameter = 0;

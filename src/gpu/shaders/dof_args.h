@@ -33,7 +33,7 @@ struct DofCocArgs {
 
 struct PostfxDofArgs {
   TD_ADDR hdr, coc, specular;     // the frame's (specular: 4 floats a pixel)
-  TD_ADDR halfSamples;                   // TD_HALF_SAMPLE floats a half-res pixel
+  TD_ADDR halfSamples;            // TD_HALF_SAMPLE floats a half-res pixel
   TD_ADDR tileMax, neighbourMax;  // a float a tile
   TD_ADDR gathered, bokeh;        // half res: 3 and 2 floats a pixel
   TD_ADDR filtered;               // the median of gathered
@@ -43,13 +43,32 @@ struct PostfxDofArgs {
   TD_FLOAT lensK, focus, specularThreshold, bokehLuminance, depthRange, invRange;
 };
 
-// The push constants of every postfx_dof stage: the arguments' address and the stage.
-struct PostfxDofPush {
+// The push constants of a kernel run in stages (postfx_dof, dof_reconstruction): the arguments'
+// address and the stage.
+struct DofStagePush {
   TD_ADDR args;
   TD_UINT stage, pad;
 };
 
 #define TD_COMPOSITE_RT_CHANNELS 9u  // rt_recon (dof::RtChannels)
+
+// dof_reconstruction's stages: the 3x3 median, level 0 of the mips (premultiplied by coverage),
+// each coarser level (downsampleBox of the one before), the reconstruction.
+#define TD_RECON_MEDIAN 0u
+#define TD_RECON_PREMULTIPLY 1u
+#define TD_RECON_DOWNSAMPLE 2u
+#define TD_RECON_GATHER 3u
+#define TD_RECON_TAPS 25u  // the centre and rings of 8 and 16: ring, cos, sin each
+#define TD_RECON_LEVELS 4u
+struct DofReconstructionArgs {
+  TD_ADDR rtColor, variance, filtered, rtRecon, taps;
+  TD_ADDR mips[TD_RECON_LEVELS];
+  TD_ADDR src, dst;  // the downsample's levels
+  TD_UINT width, height, srcWidth, srcHeight;
+  TD_UINT dstWidth, dstHeight, levels, pad;
+  TD_INT mipWidth[TD_RECON_LEVELS], mipHeight[TD_RECON_LEVELS];
+  TD_FLOAT varianceWeight, lodScale, scale, pad2;
+};
 struct DofCompositeArgs {
   TD_ADDR sharp, coc, postfx, bokeh, rt, dof;  // postfx, bokeh, rt: 0 when absent
   TD_UINT width, height, rtWidth, rtHeight;

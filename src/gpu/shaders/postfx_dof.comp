@@ -11,7 +11,7 @@
 #include "dof_args.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(push_constant, scalar) uniform Push { PostfxDofPush p; };
+layout(push_constant, scalar) uniform Push { DofStagePush p; };
 layout(buffer_reference, scalar, buffer_reference_align = 8) buffer Args { PostfxDofArgs a; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Floats { float v[]; };
 

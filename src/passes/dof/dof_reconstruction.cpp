@@ -1,12 +1,17 @@
 #include "passes/dof/dof_reconstruction.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/image_filters.h"
 #include "core/parallel.h"
+#include "gpu/shaders/dof_args.h"
+#include "gpu/shaders/dof_reconstruction_spv.h"
 #include "passes/dof/dof_common.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 
 namespace tandem {
 
@@ -23,6 +28,26 @@ const ParamTable<DofReconstructionSettings>& DofReconstructionPass::tableFor() c
           .add(&S::median, {.name = "median", .doc = "3x3 median before the reconstruction"});
   return table;
 }
+
+namespace {
+// The taps' directions: the centre, then rings of 8 and 16 (the second turned by half a step),
+// the same for every pixel (and on both devices).
+struct Tap {
+  int ring;
+  float cos, sin;
+};
+std::vector<Tap> reconstructionTaps() {
+  std::vector<Tap> taps;
+  for (int ring = 0; ring <= 2; ++ring) {
+    const int n = ring == 0 ? 1 : 8 * ring;
+    for (int k = 0; k < n; ++k) {
+      const float a = 2.0f * kPi * (float(k) + 0.5f * float(ring & 1)) / float(n);
+      taps.push_back({ring, std::cos(a), std::sin(a)});
+    }
+  }
+  return taps;
+}
+}  // namespace
 
 void DofReconstructionPass::execute(FrameContext& ctx) {
   const Buffer& in = ctx.input(*this, Slots::rtColor);
@@ -45,20 +70,7 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
     mips.push_back(downsampleBox(mips.back()));
   const float vw = settings().varianceWeight, lodScale = settings().lodScale;
   const float scale = float(ctx.width) / float(w);  // CoC is in frame pixels
-  // The taps' directions: the centre, then rings of 8 and 16 (the second turned by half a step),
-  // the same for every pixel.
-  struct Tap {
-    int ring;
-    float cos, sin;
-  };
-  std::vector<Tap> taps;
-  for (int ring = 0; ring <= 2; ++ring) {
-    const int n = ring == 0 ? 1 : 8 * ring;
-    for (int k = 0; k < n; ++k) {
-      const float a = 2.0f * kPi * (float(k) + 0.5f * float(ring & 1)) / float(n);
-      taps.push_back({ring, std::cos(a), std::sin(a)});
-    }
-  }
+  const std::vector<Tap> taps = reconstructionTaps();
   parallelRows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const float* c0 = filtered.at(x, y);
@@ -93,6 +105,69 @@ void DofReconstructionPass::execute(FrameContext& ctx) {
         if (c != kCov) o[c] = c0[c] + (acc[c] * inv - c0[c]) * b;
     }
   });
+}
+
+void DofReconstructionPass::executeGpu(FrameContext& ctx) {
+  static_assert(TD_COMPOSITE_RT_CHANNELS == dof::RtChannels::kCount && dof::RtChannels::kCoc == 3 &&
+                dof::RtChannels::kCoverage == 5);
+  GpuFrame& gpu = *ctx.gpu;
+  GpuCommands& cmd = gpu.commands();
+  const Buffer& in = ctx.input(*this, Slots::rtColor);  // shapes (the values are on the device)
+  const Buffer& variance = ctx.input(*this, Slots::dofVariance);
+  if (!variance.sameShape(Buffer(in.width, in.height, 1)))
+    throw std::logic_error("dof_reconstruction: dof_variance is not rt_color's size");
+  const int w = in.width, h = in.height;
+  constexpr size_t N = dof::RtChannels::kCount;
+  DofReconstructionArgs a{};
+  a.rtColor = ctx.deviceInput(*this, Slots::rtColor);
+  a.variance = ctx.deviceInput(*this, Slots::dofVariance);
+  a.rtRecon = ctx.deviceOutput(*this, Slots::rtRecon, w, h);
+  const auto scratch = [&](const std::string& what, size_t floats) {
+    return gpu.scratch("dof_reconstruction:" + name() + ":" + what, floats * sizeof(float)).address;
+  };
+  a.filtered = settings().median ? scratch("filtered", size_t(w) * h * N) : a.rtColor;
+  std::vector<float> taps;
+  for (const Tap& t : reconstructionTaps()) taps.insert(taps.end(), {float(t.ring), t.cos, t.sin});
+  if (taps.size() != 3 * TD_RECON_TAPS) throw std::logic_error("dof_reconstruction: tap count");
+  a.taps = gpu.constants(taps.data(), taps.size() * sizeof(float));
+  // The mip levels (as downsampleBox halves them, while both sides exceed 1).
+  a.levels = 1;
+  a.mipWidth[0] = w;
+  a.mipHeight[0] = h;
+  while (a.levels < TD_RECON_LEVELS && a.mipWidth[a.levels - 1] > 1 &&
+         a.mipHeight[a.levels - 1] > 1) {
+    a.mipWidth[a.levels] = (a.mipWidth[a.levels - 1] + 1) / 2;
+    a.mipHeight[a.levels] = (a.mipHeight[a.levels - 1] + 1) / 2;
+    ++a.levels;
+  }
+  for (uint32_t l = 0; l < a.levels; ++l)
+    a.mips[l] = scratch("mip" + std::to_string(l), size_t(a.mipWidth[l]) * a.mipHeight[l] * N);
+  a.width = uint32_t(w);
+  a.height = uint32_t(h);
+  a.varianceWeight = settings().varianceWeight;
+  a.lodScale = settings().lodScale;
+  a.scale = float(ctx.width) / float(w);  // CoC is in frame pixels
+  const GpuKernel& k = gpu.kernel("dof_reconstruction", kDofReconstructionSpv,
+                                  sizeof(kDofReconstructionSpv) / 4, sizeof(DofStagePush));
+  const auto stage = [&](uint32_t which, const DofReconstructionArgs& args, uint32_t gw,
+                         uint32_t gh) {
+    const DofStagePush push{gpu.constants(&args, sizeof args), which, 0};
+    cmd.dispatch(k, (gw + 7) / 8, (gh + 7) / 8, 1, &push);
+    cmd.barrier();
+  };
+  if (settings().median) stage(TD_RECON_MEDIAN, a, a.width, a.height);
+  stage(TD_RECON_PREMULTIPLY, a, a.width, a.height);
+  for (uint32_t l = 1; l < a.levels; ++l) {
+    DofReconstructionArgs d = a;
+    d.src = a.mips[l - 1];
+    d.dst = a.mips[l];
+    d.srcWidth = uint32_t(a.mipWidth[l - 1]);
+    d.srcHeight = uint32_t(a.mipHeight[l - 1]);
+    d.dstWidth = uint32_t(a.mipWidth[l]);
+    d.dstHeight = uint32_t(a.mipHeight[l]);
+    stage(TD_RECON_DOWNSAMPLE, d, d.dstWidth, d.dstHeight);
+  }
+  stage(TD_RECON_GATHER, a, a.width, a.height);
 }
 
 }  // namespace tandem

@@ -39,6 +39,8 @@ class DofReconstructionPass : public SettingsPass<DofReconstructionSettings> {
     return {dof::RtChannels::slot(Slots::rtRecon)};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/dof_reconstruction.comp
+  void executeGpu(FrameContext& ctx) override;
 
  protected:
   const ParamTable<DofReconstructionSettings>& tableFor() const override;

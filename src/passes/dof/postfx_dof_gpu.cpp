@@ -80,9 +80,9 @@ void PostfxDofPass::executeGpu(FrameContext& ctx) {
   intensity.channels = 2;
   const uint64_t args = gpu.constants(&a, sizeof a);
   const GpuKernel& k =
-      gpu.kernel("postfx_dof", kPostfxDofSpv, sizeof(kPostfxDofSpv) / 4, sizeof(PostfxDofPush));
+      gpu.kernel("postfx_dof", kPostfxDofSpv, sizeof(kPostfxDofSpv) / 4, sizeof(DofStagePush));
   const auto stage = [&](uint32_t which, uint64_t record, uint32_t w, uint32_t h) {
-    const PostfxDofPush push{record, which, 0};
+    const DofStagePush push{record, which, 0};
     cmd.dispatch(k, (w + 7) / 8, (h + 7) / 8, 1, &push);
     cmd.barrier();
   };
