@@ -54,14 +54,20 @@ Buffer separableFilter(const Buffer& in, const std::vector<float>& kx,
   return convolve1d(convolve1d(in, kx, true), ky, false);
 }
 
-Buffer gaussianBlur(const Buffer& in, float sigma) {
-  if (!(sigma > 0.0f)) return in;
+std::vector<float> gaussianKernel(float sigma) {
+  if (!(sigma > 0.0f)) return {};
   const int r = int(std::ceil(3.0f * sigma));
   std::vector<float> k(size_t(2 * r + 1));
   float sum = 0.0f;
   for (int i = -r; i <= r; ++i)
     sum += k[size_t(i + r)] = std::exp(-0.5f * float(i * i) / (sigma * sigma));
   for (float& w : k) w /= sum;
+  return k;
+}
+
+Buffer gaussianBlur(const Buffer& in, float sigma) {
+  if (!(sigma > 0.0f)) return in;
+  const std::vector<float> k = gaussianKernel(sigma);
   return separableFilter(in, k, k);
 }
 

@@ -15,6 +15,8 @@ namespace tandem {
 // Separable Gaussian of standard deviation `sigma` pixels (radius ceil(3 sigma), weights
 // normalised). sigma <= 0 returns a copy.
 Buffer gaussianBlur(const Buffer& in, float sigma);
+// gaussianBlur's normalised 1-D kernel (radius ceil(3 sigma)); empty when sigma <= 0 (no blur).
+std::vector<float> gaussianKernel(float sigma);
 // Convolution with a separable kernel: `kx` along rows, then `ky` along columns (odd lengths,
 // centred, not normalised here).
 Buffer separableFilter(const Buffer& in, const std::vector<float>& kx,

@@ -19,8 +19,8 @@
 namespace tandem {
 namespace {
 
-const std::set<std::string> kDofPasses = {"dof_coc", "postfx_dof", "rt_dof", "dof_reconstruction",
-                                          "dof_composite"};
+const std::set<std::string> kDofPasses = {
+    "dof_coc", "postfx_dof", "rt_dof", "dof_accumulation", "dof_reconstruction", "dof_composite"};
 
 Scene dofScene(const char* name) {
   return loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/" + name + ".json");
@@ -64,6 +64,8 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     ctx.scene = from.scene;
     ctx.frame = from.frame;
     ctx.seed = from.seed;
+    ctx.history = from.history;  // last frame's accumulation (this frame's, run again)
+    ctx.historyReset = false;
     if (onGpu) ctx.gpu = std::make_shared<GpuFrame>(dev);
     Pipeline p = dofPasses(pipeline, params);
     for (const auto& pass : p.passes)  // what the passes write, written anew
@@ -85,12 +87,14 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     EXPECT_GE(same, 0.995) << at << ": " << name;
     std::printf("%s: %s %.2f %% of the pixels agree\n", at.c_str(), name, 100.0 * same);
   }
-  for (const char* q : {"rt_dof/lens_rays", "rt_dof/reused_share", "rt_dof/shadow_traced"}) {
+  for (const char* q : {"rt_dof/lens_rays", "rt_dof/reused_share", "rt_dof/shadow_traced",
+                        "dof_accumulation/mean_variance", "dof_accumulation/variance_above_1e-6"}) {
     if (!runs[0].buffers.count("rt_near")) break;
     const double cpuValue = runs[0].counter(q, -1), gpuValue = runs[1].counter(q, -2);
     EXPECT_NEAR(gpuValue, cpuValue, 0.01 * std::abs(cpuValue) + 1e-3) << at << ": " << q;
   }
-  for (const char* name : {"coc", "postfx", "bokeh", "rt_recon", "dof"}) {
+  for (const char* name : {"coc", "postfx", "bokeh", "acc_near", "acc_far", "acc_moments",
+                           "rt_color", "dof_variance", "rt_recon", "dof"}) {
     if (!runs[0].buffers.count(name)) continue;
     const Buffer &c = runs[0].input(name), &g = runs[1].input(name);
     ASSERT_TRUE(c.sameShape(g)) << at << ": " << name;

@@ -75,4 +75,31 @@ struct DofCompositeArgs {
   TD_UINT rtMode, useBokeh, sharpBackground, pad;
   TD_FLOAT farBlend, fineCoc, scaleX, scaleY;
 };
+
+// A view as dof_accumulation reprojects into it: last frame's projection (row-major), its
+// viewport, whether its camera moved.
+struct DofAccumulationView {
+  TD_FLOAT prevViewProj[16];
+  TD_INT x, y, width, height;
+  TD_INT cameraMoved, perspective, pad0, pad1;
+};
+// counters: two uint64 the kernel adds to, the variance summed (units of 2^-32) and the pixels
+// whose variance exceeds 1e-6.
+struct DofAccumulationArgs {
+  TD_ADDR rtNear, rtFar, rtHit, rtFarPosition, motion;
+  TD_ADDR prevNear, prevFar, prevMoments;  // 0: no history that fits
+  TD_ADDR accNear, accFar, accMoments, rtColor, variance;
+  TD_ADDR views, counters;
+  TD_UINT width, height, frameWidth, frameHeight;
+  TD_UINT motionWidth, motionHeight, viewCount, adaptive;
+  TD_FLOAT scale, minAlpha, motionPixels, pad;
+};
+
+// A separable filter's pass (core/image_filters.cpp convolve1d): out[x] = sum of w[t] in[x + t]
+// over t = -radius..radius in order, edges clamped, zero weights skipped.
+struct ConvolveArgs {
+  TD_ADDR src, dst, weights;
+  TD_UINT width, height, channels, radius;
+  TD_UINT horizontal, pad;
+};
 #endif

@@ -59,6 +59,9 @@ class DofAccumulationPass : public SettingsPass<DofAccumulationSettings> {
   std::vector<BufferSlot> inputs() const override;
   std::vector<BufferSlot> outputs() const override;
   void execute(FrameContext& ctx) override;
+  // shaders/dof_accumulation.comp, the variance's blur by convolve.comp (dof_accumulation_gpu.cpp)
+  bool hasGpu() const override { return true; }
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 
  protected:
