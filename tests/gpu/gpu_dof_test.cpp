@@ -19,8 +19,9 @@
 namespace tandem {
 namespace {
 
-const std::set<std::string> kDofPasses = {
-    "dof_coc", "postfx_dof", "rt_dof", "dof_accumulation", "dof_reconstruction", "dof_composite"};
+const std::set<std::string> kDofPasses = {"dof_coc",      "postfx_dof",       "ray_mask",
+                                          "rt_dof",       "dof_accumulation", "dof_reconstruction",
+                                          "dof_composite"};
 
 Scene dofScene(const char* name) {
   return loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/" + name + ".json");
@@ -45,7 +46,7 @@ Pipeline dofPasses(const std::string& pipeline, const std::vector<std::string>& 
 void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pipeline,
                    const Scene& scene, CameraDesc cam, const std::string& what,
                    const std::vector<std::string>& params = {}) {
-  RenderSettings rs{.width = 160, .height = 90};
+  RenderSettings rs{.width = 128, .height = 72};
   Renderer cpu(scene, Pipeline::load(pipeline), rs);
   for (int f = 0; f < 2; ++f) {
     cpu.renderFrame(f, cam);
@@ -78,7 +79,8 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
   const std::string at = pipeline + ", " + what;
   // The lens rays: the same rays on both devices, but where one passes within rounding of two
   // surfaces Embree and the GPU's traversal may each take another (a few pixels).
-  for (const char* name : {"rt_near", "rt_far", "rt_hit", "rt_far_position"}) {
+  // The ray mask: eq. 4 rounds, so a value within rounding of a half may give one ray more.
+  for (const char* name : {"ray_mask", "rt_near", "rt_far", "rt_hit", "rt_far_position"}) {
     if (!runs[0].buffers.count(name)) continue;
     const Buffer &c = runs[0].input(name), &g = runs[1].input(name);
     ASSERT_TRUE(c.sameShape(g)) << at << ": " << name;
@@ -88,9 +90,10 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
     std::printf("%s: %s %.2f %% of the pixels agree\n", at.c_str(), name, 100.0 * same);
   }
   for (const char* q : {"rt_dof/lens_rays", "rt_dof/reused_share", "rt_dof/shadow_traced",
-                        "dof_accumulation/mean_variance", "dof_accumulation/variance_above_1e-6"}) {
-    if (!runs[0].buffers.count("rt_near")) break;
+                        "dof_accumulation/mean_variance", "dof_accumulation/variance_above_1e-6",
+                        "ray_mask/rays_per_pixel", "ray_mask/masked_share"}) {
     const double cpuValue = runs[0].counter(q, -1), gpuValue = runs[1].counter(q, -2);
+    if (cpuValue == -1) continue;  // not reported (no rays; ray_mask's mode all)
     EXPECT_NEAR(gpuValue, cpuValue, 0.01 * std::abs(cpuValue) + 1e-3) << at << ": " << q;
   }
   for (const char* name : {"coc", "postfx", "bokeh", "acc_near", "acc_far", "acc_moments",
@@ -104,10 +107,14 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
       continue;
     }
     // The bar of a deterministic GPU pass, and all but 0.1 % of the pixels within 1e-3 (the
-    // devices round alike but for a few ulps: on lavapipe they agree bit for bit).
+    // devices round alike but for a few ulps: on lavapipe the image-space passes agree bit for
+    // bit); 1 % downstream of lens rays, where a ray's near-tie spreads through the
+    // accumulation's reprojection and the reconstruction's gather.
+    const bool afterRays = runs[0].buffers.count("rt_near") && std::string(name) != "postfx" &&
+                           std::string(name) != "bokeh";
     const double db = psnr(c, g, 1.0);
     EXPECT_GE(db, 45.0) << at << ": " << name;
-    EXPECT_GE(agreement(c, g, 1e-3f), 0.999) << at << ": " << name;
+    EXPECT_GE(agreement(c, g, 1e-3f), afterRays ? 0.99 : 0.999) << at << ": " << name;
     testing::Test::RecordProperty(at + ": " + name + " dB", std::to_string(db));
     std::printf("%s: %s %.1f dB\n", at.c_str(), name, db);
   }
@@ -130,34 +137,48 @@ TEST(GpuDof, PassesMatchTheCpuOnTheSameInputs) {
   comparePasses(dev, "hybrid-dof", fg, cam, "shading every lens ray",
                 {"rt_dof.reuse_raster=false"});
   comparePasses(dev, "rt-dof", fg, cam, "mode rt, 2 rays a pixel", {"ray_mask.m=2"});
+  comparePasses(dev, "hybrid-dof", fg, cam, "the near field dilated", {"ray_mask.dilate=true"});
   CameraDesc pinhole = cam;
   pinhole.apertureDiameter = 0;
   comparePasses(dev, "postfx-dof", fg, pinhole, "a pinhole");
   expectNoValidationMessages(*dev);
 }
 
-// postfx-dof runs on the GPU whole, and over three frames of a moving camera (the TAA before and
-// after the DoF keeping their history there) gives the CPU's image.
-TEST(GpuDof, PostfxDofRunsOnTheGpuWhole) {
-  REQUIRE_GPU(dev);
+// Every depth-of-field pipeline runs on the GPU whole, and over three frames of a moving camera
+// (the TAA and the ray-traced DoF's accumulation keeping their history there) gives the CPU's
+// image: PSNR >= 45 dB where both saw the same surface.
+void compareWhole(const std::shared_ptr<GpuDevice>& dev, const std::string& pipeline,
+                  const std::vector<std::string>& params = {}) {
   const Scene scene = dofScene("dof_fg");
   CameraDesc cam = defaultCamera(scene);
   RenderSettings rs{.width = 160, .height = 90};
-  Renderer cpu(scene, Pipeline::load("postfx-dof"), rs);
+  const auto load = [&] {
+    Pipeline p = Pipeline::load(pipeline);
+    for (const std::string& q : params) p.setParam(q, "test");
+    return p;
+  };
+  Renderer cpu(scene, load(), rs);
   rs.gpu = dev;
-  Renderer gpu(scene, Pipeline::load("postfx-dof"), rs);
+  Renderer gpu(scene, load(), rs);
   for (int f = 0; f < 3; ++f) {
+    const std::string at = pipeline + ", frame " + std::to_string(f);
     cpu.renderFrame(f, cam);
     const FrameTimings ft = gpu.renderFrame(f, cam);
     size_t hosts = 0;
     for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
-    EXPECT_EQ(hosts, gpu.pipeline().passes.size()) << "frame " << f << ": a pass ran on the CPU";
+    EXPECT_EQ(hosts, gpu.pipeline().passes.size()) << at << ": a pass ran on the CPU";
     const FrameContext &c = cpu.context(), &g = gpu.context();
-    const ImageAgreement a =
-        imageAgreement(cpu.output(), gpu.output(), c.input("object_id"), g.input("object_id"));
-    expectAgreement(a, "postfx-dof, frame " + std::to_string(f));
+    expectAgreement(
+        imageAgreement(cpu.output(), gpu.output(), c.input("object_id"), g.input("object_id")), at);
     cam.position = cam.position + Vec3(0.05f, 0.0f, 0.02f);
   }
+}
+
+TEST(GpuDof, PipelinesRunOnTheGpuWhole) {
+  REQUIRE_GPU(dev);
+  compareWhole(dev, "postfx-dof");
+  compareWhole(dev, "hybrid-dof");
+  compareWhole(dev, "rt-dof", {"ray_mask.m=2"});
   expectNoValidationMessages(*dev);
 }
 

@@ -95,6 +95,31 @@ struct DofAccumulationArgs {
   TD_FLOAT scale, minAlpha, motionPixels, pad;
 };
 
+// ray_mask's stages (RayMaskPass::execute): the filtered quantities' input (inverse depth and
+// normals), their 2x2 reduction to the mask (half resolution), the near field and the pixels the
+// composite's fine gather takes, the 16x16 tiles' largest near radius and its 3x3 neighbourhood
+// max (dilate), the rays per pixel (eq. 2-4). The Gaussian and the Sobel run through convolve.comp.
+#define TD_MASK_INPUT 0u
+#define TD_MASK_DOWNSAMPLE 1u
+#define TD_MASK_NEAR 2u
+#define TD_MASK_TILE_MAX 3u
+#define TD_MASK_NEIGHBOUR_MAX 4u
+#define TD_MASK_RAYS 5u
+#define TD_MASK_TILE 16u
+struct RayMaskArgs {
+  TD_ADDR position, normal, depth, coc, bokeh, variance;  // bokeh, variance: 0 when absent
+  TD_ADDR inverseDepth, blurred;     // 4 floats a frame pixel: d / z and the normal, then blurred
+  TD_ADDR low, gx, gy;        // 4 floats a mask pixel: reduced (or blurred), its gradients
+  TD_ADDR nearFine;           // 2 floats a mask pixel: near radius, fine (1: no rays)
+  TD_ADDR tileMax, tileNear;  // a float a tile
+  TD_ADDR mask, counters;     // counters: 2 uint64, rays and masked pixels
+  TD_UINT width, height, maskWidth, maskHeight;
+  TD_UINT scale, tilesX, tilesY, dilate;
+  TD_FLOAT eyeX, eyeY, eyeZ, focus;
+  TD_FLOAT forwardX, forwardY, forwardZ, fineCoc;
+  TD_FLOAT s, varianceWeight, m, pad;
+};
+
 // A separable filter's pass (core/image_filters.cpp convolve1d): out[x] = sum of w[t] in[x + t]
 // over t = -radius..radius in order, edges clamped, zero weights skipped.
 struct ConvolveArgs {

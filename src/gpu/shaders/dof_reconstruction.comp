@@ -8,6 +8,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_GOOGLE_include_directive : require
 #include "dof_args.h"
+#include "image_filters.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(push_constant, scalar) uniform Push { DofStagePush p; };
@@ -19,21 +20,6 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Floats { flo
 const uint N = TD_COMPOSITE_RT_CHANNELS;  // dof::RtChannels: coc 3, coverage 5
 const uint kCoc = 3u, kCov = 5u;
 
-void order(inout float a, inout float b) {
-  const float lo = min(a, b), hi = max(a, b);
-  a = lo;
-  b = hi;
-}
-float median9(float q[9]) {  // median9 (core/image_filters.cpp): the same exchanges
-  order(q[1], q[2]); order(q[4], q[5]); order(q[7], q[8]);
-  order(q[0], q[1]); order(q[3], q[4]); order(q[6], q[7]);
-  order(q[1], q[2]); order(q[4], q[5]); order(q[7], q[8]);
-  order(q[0], q[3]); order(q[5], q[8]); order(q[4], q[7]);
-  order(q[3], q[6]); order(q[1], q[4]); order(q[2], q[5]);
-  order(q[4], q[7]); order(q[4], q[2]); order(q[6], q[4]);
-  order(q[4], q[2]);
-  return q[4];
-}
 
 void median(DofReconstructionArgs a, uint x, uint y) {
   Floats in_ = Floats(a.rtColor), filtered = Floats(a.filtered);

@@ -9,6 +9,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_GOOGLE_include_directive : require
 #include "dof_args.h"
+#include "image_filters.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(push_constant, scalar) uniform Push { DofStagePush p; };
@@ -178,22 +179,6 @@ void gather(PostfxDofArgs a, uint x, uint y) {
   bokeh.v[2u * i0 + 1u] = wsum > 0.0 ? wfSum / wsum : 0.0;
 }
 
-// median9 (core/image_filters.cpp): the same exchanges.
-void order(inout float a, inout float b) {
-  const float lo = min(a, b), hi = max(a, b);
-  a = lo;
-  b = hi;
-}
-float median9(float p[9]) {
-  order(p[1], p[2]); order(p[4], p[5]); order(p[7], p[8]);
-  order(p[0], p[1]); order(p[3], p[4]); order(p[6], p[7]);
-  order(p[1], p[2]); order(p[4], p[5]); order(p[7], p[8]);
-  order(p[0], p[3]); order(p[5], p[8]); order(p[4], p[7]);
-  order(p[3], p[6]); order(p[1], p[4]); order(p[2], p[5]);
-  order(p[4], p[7]); order(p[4], p[2]); order(p[6], p[4]);
-  order(p[4], p[2]);
-  return p[4];
-}
 
 void median(PostfxDofArgs a, uint x, uint y) {
   Floats g = Floats(a.gathered), filtered = Floats(a.filtered);

@@ -61,6 +61,8 @@ class RayMaskPass : public SettingsPass<RayMaskSettings> {
     return {{Slots::rayMask, 1, BufferKind::Count, Extent::any()}};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/ray_mask.comp, ray_mask_gpu.cpp
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 
  protected:
