@@ -76,14 +76,15 @@ double GpuFrame::flush() {
   return ms;
 }
 
-void GpuFrame::abandon() {
-  if (!open_) return;  // nothing recorded is left unrun
+bool GpuFrame::abandon() {
+  if (!open_) return false;  // nothing recorded is left unrun
   commands_.abandon();
   open_ = false;
   after_.clear();
   forget();
   for (GpuBuffer& b : released_) memory_.release(b);
   released_.clear();
+  return true;
 }
 
 std::vector<std::function<void()>> GpuFrame::takeAfterSubmit(size_t first) {
@@ -243,6 +244,18 @@ size_t GpuFrame::queueDownload(const std::string& name, Buffer& b,
     if (done) done(commands_.activeMs(c.t0, c.t1) + hostMs);
   });
   return bytes;
+}
+
+void GpuFrame::copyOnDevice(const std::string& from, const std::string& to, size_t bytes,
+                            bool hostCurrent) {
+  const GpuBuffer& src = read(from);
+  if (bytes > src.size) throw std::logic_error("GPU: a copy of '" + from + "' beyond its end");
+  open();
+  Copy& c = copyFor(to, bytes);
+  commands_.barrier();  // what the batch wrote to `from`
+  commands_.copy(src, c.buffer, bytes);
+  c.current = true;
+  c.newer = !hostCurrent;
 }
 
 const GpuBuffer& GpuFrame::write(const std::string& name, const Buffer& b) {

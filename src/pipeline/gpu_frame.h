@@ -67,8 +67,8 @@ class GpuFrame {
   // while it was open; the wall milliseconds of the submission and wait (0: none was open).
   double flush();
   // An exception while recording: the batch and its afterSubmit work dropped, and every device
-  // copy forgotten (what the batch was to write was never computed).
-  void abandon();
+  // copy forgotten (what the batch was to write was never computed). Whether a batch was open.
+  bool abandon();
 
   // A device buffer of at least `bytes` kept under `key` across frames for one pass's own use (a
   // visibility buffer, a queue): never moved, its contents whatever the pass left there.
@@ -94,6 +94,11 @@ class GpuFrame {
   // after flush(), and then `done` gets the milliseconds the move took (the GPU's copy and the
   // host's). The bytes to move.
   size_t queueDownload(const std::string& name, Buffer& b, std::function<void(double ms)> done);
+  // Records in the batch a copy of `from`'s current device value into `to` (`bytes` of it): `to`
+  // is current on the device, and newer than the host's unless `hostCurrent` (the host holds the
+  // same value). History stays on the device this way (historyKey), moved only if the host reads
+  // it.
+  void copyOnDevice(const std::string& from, const std::string& to, size_t bytes, bool hostCurrent);
   // The device buffer that will hold `name`'s new value (b's size), the host's copy now stale.
   const GpuBuffer& write(const std::string& name, const Buffer& b);
   // The device copy of `name` (which must be current there).

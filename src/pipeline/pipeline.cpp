@@ -355,13 +355,17 @@ void moveToHost(const std::string& name, FrameContext& ctx, FrameRows& rows) {
 }
 
 // The same move recorded in the open batch, done (and its row filled) when the batch has run.
-void queueToHost(const std::string& name, FrameContext& ctx, FrameRows& rows) {
-  auto it = ctx.buffers.find(name);
-  if (it == ctx.buffers.end() || !ctx.gpu->deviceNewer(name)) return;
+// `history`: last frame's value (ctx.history, its device copy under historyKey).
+void queueToHost(const std::string& name, FrameContext& ctx, FrameRows& rows,
+                 bool history = false) {
+  std::map<std::string, Buffer>& where = history ? ctx.history : ctx.buffers;
+  const std::string key = history ? historyKey(name) : name;
+  auto it = where.find(name);
+  if (it == where.end() || !ctx.gpu->deviceNewer(key)) return;
   const size_t slot = rows.reserve();
   const double bytes = double(it->second.data.size() * sizeof(float));
-  ctx.gpu->queueDownload(name, it->second, [&rows, slot, name, bytes](double ms) {
-    rows.groups[slot].push_back({"download:" + name, ms, 0, bytes});
+  ctx.gpu->queueDownload(key, it->second, [&rows, slot, key, bytes](double ms) {
+    rows.groups[slot].push_back({"download:" + key, ms, 0, bytes});
   });
 }
 
@@ -369,11 +373,18 @@ void queueToHost(const std::string& name, FrameContext& ctx, FrameRows& rows) {
 // last frame's value of its history inputs, under historyKey; records never move).
 void moveInputs(const Pass& p, FrameContext& ctx, bool onGpu, FrameRows& rows) {
   for (const BufferSlot& in : p.inputs()) {
-    if (in.history) {  // last frame's value: on the host, moved for a GPU pass that reads it
+    if (in.history) {  // last frame's value: moved to where the pass reads it
       const std::string& name = p.bufferName(in.slot);
       auto it = ctx.history.find(name);
       const std::string key = historyKey(name);
-      if (!onGpu || it == ctx.history.end() || ctx.gpu->onDevice(key)) continue;
+      if (it == ctx.history.end()) continue;
+      if (!onGpu) {
+        const auto t0 = Clock::now();
+        const size_t bytes = ctx.gpu->download(key, it->second);
+        if (bytes) rows.add({"download:" + key, msSince(t0), 0, double(bytes)});
+        continue;
+      }
+      if (ctx.gpu->onDevice(key)) continue;
       const auto t0 = Clock::now();
       const size_t bytes = ctx.gpu->upload(key, it->second);
       rows.add({"upload:" + key, msSince(t0), 0, double(bytes)});
@@ -461,6 +472,7 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
   FrameRows rows;
   double submitMs = 0;                   // the host's wait for the frame's batches
   std::set<std::string> pendingRecords;  // records the open batch's passes write once it has run
+  std::set<std::string> deviceHistory;   // history the device copied to its history key
   const auto flush = [&] {
     submitMs += ctx.gpu->flush();
     pendingRecords.clear();
@@ -470,13 +482,13 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
       Pass* p = passes[i].get();
       const bool onGpu = ctx.gpu && p->enabled && p->hasGpu();
       // The host sees what the batch computed before a CPU pass runs (what it and the CPU passes
-      // after it read from the device coming back in that batch), or before a GPU pass reads a
-      // record it writes.
+      // after it read from the device, this frame's and last frame's, coming back in that
+      // batch), or before a GPU pass reads a record it writes.
       if (ctx.gpu && !onGpu)
         for (size_t j = i; j < passes.size(); ++j)
           if (!(passes[j]->enabled && passes[j]->hasGpu()))
             for (const BufferSlot& in : passes[j]->inputs())
-              if (!in.history) queueToHost(passes[j]->bufferName(in.slot), ctx, rows);
+              queueToHost(passes[j]->bufferName(in.slot), ctx, rows, in.history);
       if (ctx.gpu && (!onGpu || readsPendingRecord(*p, pendingRecords))) flush();
       ctx.passRays = 0;
       ctx.passParts.clear();
@@ -512,29 +524,50 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     // in the frame's last batch (without keepAllOutputs only what the caller reads: the output,
     // what it wants and history; the rest stays on the device, moved only if a pass on the host
     // reads it later).
+    // History on the device stays there: copied to its history key in the same batch (the
+    // next frame's GPU passes read it there; a CPU pass that reads it moves it first).
     if (ctx.gpu) {
-      const std::vector<std::string> history = historyBuffers();
-      for (const std::string& name : ctx.gpu->deviceOnly()) {
-        if (ctx.keepAllOutputs || name == output || ctx.wanted.count(name) ||
-            std::find(history.begin(), history.end(), name) != history.end())
+      for (const std::string& name : ctx.gpu->deviceOnly())
+        if (ctx.keepAllOutputs || name == output || ctx.wanted.count(name))
           queueToHost(name, ctx, rows);
+      for (const std::string& name : historyBuffers()) {
+        auto it = ctx.buffers.find(name);
+        if (it == ctx.buffers.end() || !ctx.gpu->onDevice(name)) continue;
+        const bool hostCurrent = !ctx.gpu->deviceNewer(name);  // came back, or was uploaded
+        ctx.gpu->copyOnDevice(name, historyKey(name), it->second.data.size() * sizeof(float),
+                              hostCurrent);
+        deviceHistory.insert(name);
       }
       flush();
       if (submitMs > 0) rows.add({"gpu_submit", submitMs, 0});
     }
   } catch (...) {
-    if (ctx.gpu) ctx.gpu->abandon();  // nothing the batch was to compute can be trusted
+    // Nothing the batch was to compute can be trusted; history only the device held is lost
+    // with it, so the next frame starts its history over.
+    bool lost = false;
+    if (ctx.gpu)
+      for (const std::string& name : historyBuffers())
+        lost |= ctx.gpu->deviceNewer(historyKey(name));
+    if (ctx.gpu && ctx.gpu->abandon() && lost) ctx.historyReset = true;
     throw;
   }
-  // What the next frame reads as last frame's value (copied: the buffer stays readable).
+  // What the next frame reads as last frame's value (copied: the buffer stays readable). What
+  // the device holds alone is kept on the host only as its shape.
   auto h0 = Clock::now();
   bool any = false;
   for (const std::string& name : historyBuffers()) {
     auto it = ctx.buffers.find(name);
     if (it == ctx.buffers.end()) continue;
-    ctx.history[name] = it->second;
-    if (ctx.gpu) ctx.gpu->hostWrote(historyKey(name));  // a new value: moved again when read
     any = true;
+    if (deviceHistory.count(name) && ctx.gpu->deviceNewer(historyKey(name))) {
+      Buffer& h = ctx.history[name];
+      if (!h.sameShape(it->second))
+        h = Buffer(it->second.width, it->second.height, it->second.channels, 0.0f, it->second.kind);
+      continue;
+    }
+    ctx.history[name] = it->second;
+    // A new value, moved again when a GPU pass reads it (unless the device copied it too).
+    if (ctx.gpu && !deviceHistory.count(name)) ctx.gpu->hostWrote(historyKey(name));
   }
   if (any) rows.add({"history", msSince(h0), 0});
   ctx.historyReset = false;
