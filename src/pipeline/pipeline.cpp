@@ -448,6 +448,49 @@ bool readsPendingRecord(const Pass& p, const std::set<std::string>& pendingRecor
     if (!in.history && pendingRecords.count(p.bufferName(in.slot))) return true;
   return false;
 }
+// At the frame's end, into its last batch: what the caller reads comes back (without
+// keepAllOutputs only the output and what it wants; the rest stays on the device, moved only if
+// a host pass reads it later), and history the device holds is copied to its history key (the
+// next frame's GPU passes read it there; a CPU pass that reads it moves it first). The history
+// buffers so copied.
+std::set<std::string> finishOnGpu(FrameContext& ctx, const std::string& output,
+                                  const std::vector<std::string>& history, FrameRows& rows) {
+  for (const std::string& name : ctx.gpu->deviceOnly())
+    if (ctx.keepAllOutputs || name == output || ctx.wanted.count(name))
+      queueToHost(name, ctx, rows);
+  std::set<std::string> copied;
+  for (const std::string& name : history) {
+    auto it = ctx.buffers.find(name);
+    if (it == ctx.buffers.end() || !ctx.gpu->onDevice(name)) continue;
+    const bool hostCurrent = !ctx.gpu->deviceNewer(name);  // came back, or was uploaded
+    ctx.gpu->copyOnDevice(name, historyKey(name), it->second.data.size() * sizeof(float),
+                          hostCurrent);
+    copied.insert(name);
+  }
+  return copied;
+}
+
+// What the next frame reads as last frame's value (copied: the buffer stays readable); what only
+// the device holds (`onDevice`, newer there) is kept on the host as its shape. Whether any was.
+bool keepHistory(FrameContext& ctx, const std::vector<std::string>& history,
+                 const std::set<std::string>& onDevice) {
+  bool any = false;
+  for (const std::string& name : history) {
+    auto it = ctx.buffers.find(name);
+    if (it == ctx.buffers.end()) continue;
+    any = true;
+    if (onDevice.count(name) && ctx.gpu->deviceNewer(historyKey(name))) {
+      Buffer& h = ctx.history[name];
+      if (!h.sameShape(it->second))
+        h = Buffer(it->second.width, it->second.height, it->second.channels, 0.0f, it->second.kind);
+      continue;
+    }
+    ctx.history[name] = it->second;
+    // A new value, moved again when a GPU pass reads it (unless the device copied it too).
+    if (ctx.gpu && !onDevice.count(name)) ctx.gpu->hostWrote(historyKey(name));
+  }
+  return any;
+}
 }  // namespace
 
 FrameTimings Pipeline::execute(FrameContext& ctx) {
@@ -520,24 +563,8 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
       for (PassTiming& part : ctx.passParts)
         rows.add({label + "/" + part.name, part.ms, part.rays});
     }
-    // The caller reads the frame's buffers on the host: what is newer on the device comes back
-    // in the frame's last batch (without keepAllOutputs only what the caller reads: the output,
-    // what it wants and history; the rest stays on the device, moved only if a pass on the host
-    // reads it later).
-    // History on the device stays there: copied to its history key in the same batch (the
-    // next frame's GPU passes read it there; a CPU pass that reads it moves it first).
     if (ctx.gpu) {
-      for (const std::string& name : ctx.gpu->deviceOnly())
-        if (ctx.keepAllOutputs || name == output || ctx.wanted.count(name))
-          queueToHost(name, ctx, rows);
-      for (const std::string& name : historyBuffers()) {
-        auto it = ctx.buffers.find(name);
-        if (it == ctx.buffers.end() || !ctx.gpu->onDevice(name)) continue;
-        const bool hostCurrent = !ctx.gpu->deviceNewer(name);  // came back, or was uploaded
-        ctx.gpu->copyOnDevice(name, historyKey(name), it->second.data.size() * sizeof(float),
-                              hostCurrent);
-        deviceHistory.insert(name);
-      }
+      deviceHistory = finishOnGpu(ctx, output, historyBuffers(), rows);
       flush();
       if (submitMs > 0) rows.add({"gpu_submit", submitMs, 0});
     }
@@ -551,24 +578,8 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
     if (ctx.gpu && ctx.gpu->abandon() && lost) ctx.historyReset = true;
     throw;
   }
-  // What the next frame reads as last frame's value (copied: the buffer stays readable). What
-  // the device holds alone is kept on the host only as its shape.
   auto h0 = Clock::now();
-  bool any = false;
-  for (const std::string& name : historyBuffers()) {
-    auto it = ctx.buffers.find(name);
-    if (it == ctx.buffers.end()) continue;
-    any = true;
-    if (deviceHistory.count(name) && ctx.gpu->deviceNewer(historyKey(name))) {
-      Buffer& h = ctx.history[name];
-      if (!h.sameShape(it->second))
-        h = Buffer(it->second.width, it->second.height, it->second.channels, 0.0f, it->second.kind);
-      continue;
-    }
-    ctx.history[name] = it->second;
-    // A new value, moved again when a GPU pass reads it (unless the device copied it too).
-    if (ctx.gpu && !deviceHistory.count(name)) ctx.gpu->hostWrote(historyKey(name));
-  }
+  const bool any = keepHistory(ctx, historyBuffers(), deviceHistory);
   if (any) rows.add({"history", msSince(h0), 0});
   ctx.historyReset = false;
   ft.passes = std::move(rows).all();

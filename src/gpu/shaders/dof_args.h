@@ -108,11 +108,11 @@ struct DofAccumulationArgs {
 #define TD_MASK_TILE 16u
 struct RayMaskArgs {
   TD_ADDR position, normal, depth, coc, bokeh, variance;  // bokeh, variance: 0 when absent
-  TD_ADDR inverseDepth, blurred;     // 4 floats a frame pixel: d / z and the normal, then blurred
-  TD_ADDR low, gx, gy;        // 4 floats a mask pixel: reduced (or blurred), its gradients
-  TD_ADDR nearFine;           // 2 floats a mask pixel: near radius, fine (1: no rays)
-  TD_ADDR tileMax, tileNear;  // a float a tile
-  TD_ADDR mask, counters;     // counters: 2 uint64, rays and masked pixels
+  TD_ADDR inverseDepth, blurred;  // 4 floats a frame pixel: d / z and the normal, then blurred
+  TD_ADDR low, gx, gy;            // 4 floats a mask pixel: reduced (or blurred), its gradients
+  TD_ADDR nearFine;               // 2 floats a mask pixel: near radius, fine (1: no rays)
+  TD_ADDR tileMax, tileNear;      // a float a tile
+  TD_ADDR mask, counters;         // counters: 2 uint64, rays and masked pixels
   TD_UINT width, height, maskWidth, maskHeight;
   TD_UINT scale, tilesX, tilesY, dilate;
   TD_FLOAT eyeX, eyeY, eyeZ, focus;
