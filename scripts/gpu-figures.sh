@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The GPU figures of docs/benchmarks.md in one run, each measured side by side with the same binary
 # on the machine's CPU cores (issue: "side by side in one run"): frame times of the heuristic
-# hybrid's pipelines, the hybrid's SSIM against rt-only on the GPU, and the reference's ray rate.
+# hybrid's pipelines and of the depth-of-field pipelines, the hybrid's SSIM against rt-only on the
+# GPU, and the reference's ray rate.
 # Prepared for a lent GPU machine, where one `run` of the device tool must measure everything:
 #
 #   bash ../shared/tools/device-pack.sh
@@ -52,6 +53,10 @@ row hybrid-heuristic scenes/atrium_spheres.json
 row hybrid-heuristic-taa scenes/atrium_spheres.json
 row hybrid-budget scenes/atrium_spheres.json
 row hybrid-all scenes/atrium_spheres.json
+# Tan et al. 2022's depth of field, every pass on the GPU (issue 44's first figure).
+row postfx-dof scenes/dof_fg.json
+row hybrid-dof scenes/dof_fg.json
+row rt-dof scenes/dof_fg.json
 
 # The hybrid against ray tracing everything, both on the GPU: the same frame, SSIM.
 for p in hybrid-heuristic rt-only; do
