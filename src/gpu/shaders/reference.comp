@@ -11,6 +11,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_GOOGLE_include_directive : require
 #include "bvh.h"
+#include "light_grid_data.h"
 #include "reference_args.h"
 #include "scene_data.h"
 #include "whitted_args.h"
@@ -32,6 +33,7 @@ ReferenceArgs A;
 #include "camera.glsl"
 #include "scene.glsl"
 #include "whitted.glsl"
+#include "diffuse_gi.glsl"
 
 #include "sobol.glsl"
 #include "thin_lens.glsl"
@@ -44,17 +46,6 @@ float fresnelDielectric(float cosi, float eta) {
   const float rs = (eta * cosi - cost) / (eta * cosi + cost);
   const float rp = (cosi - eta * cost) / (cosi + eta * cost);
   return 0.5 * (rs * rs + rp * rp);
-}
-vec3 toWorld(vec3 l, vec3 n) {  // orthonormalBasis (core/math.h)
-  const float sgn = n.z >= 0.0 ? 1.0 : -1.0;
-  const float q = -1.0 / (sgn + n.z), bb = n.x * n.y * q;
-  const vec3 t = vec3(1.0 + sgn * n.x * n.x * q, sgn * bb, -sgn * n.x);
-  const vec3 b = vec3(bb, sgn + n.y * n.y * q, -n.y);
-  return t * l.x + b * l.y + n * l.z;
-}
-vec3 sampleCosine(vec3 n, float u1, float u2) {
-  const float r = sqrt(u1), phi = 2.0 * kPi * u2;
-  return toWorld(vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u1))), n);
 }
 vec3 sampleBlinnHalf(vec3 n, float e, float u1, float u2) {
   const float cosT = pow(u1, 1.0 / (e + 1.0));
@@ -248,70 +239,6 @@ vec3 whittedRadiance(GpuCamera c, vec3 o, vec3 d) {
   return color + traceStack();
 }
 
-// ---- DiffuseGI (rt/diffuse_gi.cpp) with its LightGrid, operation for operation.
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer GridFloats { float v[]; };
-
-// LightGrid::pick at p with u: the light (-1: none) and its probability.
-int gridPick(vec3 p, float u, out float pdf) {
-  pdf = 0.0;
-  const int n = A.gridCount;
-  Ints candidates = Ints(A.gridCandidates);
-  if (n == 0) return -1;
-  pdf = 1.0;
-  if (n == 1) return candidates.v[0];
-  u = clamp(u, 0.0, uintBitsToFloat(0x3f7fffffu));
-  const vec3 f = (p - v3(A.gridLo)) * v3(A.gridInvCell);
-  int cell = 0, stride = 1;
-  for (int k = 0; k < 3; ++k) {
-    const int c = clamp(int(floor(clamp(f[k], -1.0, 1e6))), 0, A.gridDims[k] - 1);
-    cell += c * stride;
-    stride *= A.gridDims[k];
-  }
-  GridFloats cdf = GridFloats(A.gridCdf);
-  const uint base = uint(cell) * uint(n);
-  if (cdf.v[base + uint(n - 1)] <= 0.0) {
-    const int i = min(int(u * float(n)), n - 1);
-    pdf = 1.0 / float(n);
-    return candidates.v[i];
-  }
-  // std::upper_bound: the first entry greater than u.
-  int lo = 0, hi = n;
-  while (lo < hi) {
-    const int mid = (lo + hi) / 2;
-    if (cdf.v[base + uint(mid)] <= u)
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  const int i = min(lo, n - 1);
-  pdf = cdf.v[base + uint(i)] - (i > 0 ? cdf.v[base + uint(i - 1)] : 0.0);
-  return candidates.v[i];
-}
-
-vec3 giAlbedo(Surface s) { return clamp(s.diffuse, vec3(0.0), vec3(1.0)); }
-vec3 giEmitted(Surface s, vec3 wo) { return dot(s.geoNormal, wo) > 0.0 ? s.emission : vec3(0.0); }
-
-// DiffuseGI::oneLight: irradiance / pi from one light the grid picks, over its probability.
-vec3 giOneLight(Surface s, vec3 n, float u) {
-  float pdf;
-  const int i = gridPick(s.position, u, pdf);
-  if (i < 0 || !(pdf > 0.0)) return vec3(0.0);
-  const GpuLight l = Lights(S.lights).l[i];
-  vec3 wi, radiance;
-  float dist;
-  sampleLight(l, s.position, wi, dist, radiance);
-  const float cosI = dot(n, wi);
-  if (cosI <= 0.0 || maxComponent(radiance) <= 0.0) return vec3(0.0);
-  if (l.castsShadows != 0u) {
-    ++rays;
-    TraceHit h;
-    const float tfar = isinf(dist) ? kInf : dist * (1.0 - 1e-4);
-    if (traverse(offsetRayOrigin(s, wi), wi, 0.0, tfar, TRACE_ANY | TRACE_FILTERED, h))
-      return vec3(0.0);
-  }
-  return radiance * (cosI / (pdf * kPi));
-}
-
 // DiffuseGI::radiance of the surface a pinhole ray through the pixel centre meets (the foveated
 // path tracer's G-buffer surface), seen along wo.
 vec3 diffuseGIRadiance(GpuCamera c, int x, int y) {
@@ -321,25 +248,8 @@ vec3 diffuseGIRadiance(GpuCamera c, int x, int y) {
   TraceHit h;
   if (!closestHit(o, d, tnear, 1e30, true, h)) return skyRadiance(d);
   const Surface s = resolveSurface(h.object, h.prim, o, d, h.t, h.u, h.v, A.pixelSpread);
-  const vec3 wo = -d;
-  const vec3 n = dot(s.normal, wo) < 0.0 ? -s.normal : s.normal;
   const vec2 u0 = uniform2(), u1 = uniform2(), u2 = uniform2();
-  vec3 sum = giOneLight(s, n, u0.x);
-  // Cosine-weighted bounce: Lambert's cos / pi cancels the density.
-  const vec3 dir = safeNormalize(sampleCosine(n, u1.x, u1.y));
-  if (!(dot(dir, s.geoNormal) * dot(n, s.geoNormal) <= 0.0)) {
-    const vec3 origin = offsetRayOrigin(s, dir);
-    TraceHit g;
-    if (!closestHit(origin, dir, 0.0, 1e30, false, g)) {
-      sum += skyRadiance(dir);
-    } else {
-      const Surface hs = resolveSurface(g.object, g.prim, origin, dir, g.t, g.u, g.v, 0.0);
-      const vec3 wh = -dir;
-      const vec3 nh = dot(hs.normal, wh) < 0.0 ? -hs.normal : hs.normal;
-      sum += giEmitted(hs, wh) + giAlbedo(hs) * giOneLight(hs, nh, u2.x);
-    }
-  }
-  return giEmitted(s, wo) + giAlbedo(s) * sum;
+  return giRadiance(s, -d, u0, u1, u2);
 }
 
 void main() {
@@ -348,6 +258,7 @@ void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= cam.width || y >= cam.height) return;
   useScene(A.scene);
+  giGrid = A.grid;
   whitted = WhittedConfig(A.whittedDepth, A.importanceCutoff, A.shadowCull, A.whittedFlags);
   const uint64_t seed = (uint64_t(A.seedHi) << 32) | uint64_t(A.seedLo);
   const uint64_t pixel = uint64_t(y) * uint64_t(cam.width) + uint64_t(x);

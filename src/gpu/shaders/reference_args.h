@@ -3,6 +3,7 @@
 #ifndef TANDEM_GPU_REFERENCE_ARGS_H
 #define TANDEM_GPU_REFERENCE_ARGS_H
 #include "camera_data.h"
+#include "light_grid_data.h"
 
 #define TD_REFERENCE_PATH 0u
 #define TD_REFERENCE_WHITTED 1u
@@ -31,11 +32,8 @@ struct ReferenceArgs {
   TD_FLOAT importanceCutoff, shadowCull;
   TD_UINT whittedFlags;  // TD_WHITTED_*
   TD_UINT pad2;
-  // diffuse-gi: the LightGrid that picks lights (rt/light_grid.h): per cell (x fastest) the
-  // cumulative distribution over the candidate lights, and the candidates.
-  TD_ADDR gridCdf, gridCandidates;
-  TD_INT gridDims[3], gridCount;    // gridCount: candidates
-  TD_FLOAT gridLo[3], pixelSpread;  // pixelSpread: the primary hit's texture filtering
-  TD_FLOAT gridInvCell[3], pad3;
+  GpuLightGrid grid;     // diffuse-gi: the LightGrid that picks lights (rt/light_grid.h)
+  TD_FLOAT pixelSpread;  // the primary hit's texture filtering
+  TD_FLOAT pad3[3];
 };
 #endif

@@ -8,6 +8,7 @@
 #include "gpu/shaders/reference_args.h"
 #include "gpu/shaders/reference_spv.h"
 #include "gpu/shaders/whitted_args.h"
+#include "passes/common/gpu_light_grid.h"
 #include "passes/common/gpu_whitted.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
@@ -168,26 +169,6 @@ std::vector<GpuEmitter> gpuEmitters(const FrameScene& fs, std::vector<int32_t>& 
   }
   return emitters;
 }
-// diffuse-gi picks its lights by the grid renderReference builds: built on the host (its
-// visibility probes are the CPU's rays, once a render) and copied to the device.
-void gpuLightGrid(FrameContext& ctx, ReferenceArgs& a) {
-  const Scene& scene = *ctx.scene;
-  const ShadingContext shading = ShadingContext::from(scene);
-  const LightGrid grid = DiffuseGI::buildGrid(scene, shading, &ctx.rayTracer());
-  std::vector<float> cdf(1, 0.0f);
-  std::vector<int32_t> candidates(1, -1);
-  if (!grid.cdf().empty()) cdf = grid.cdf();
-  if (!grid.candidates().empty())
-    candidates.assign(grid.candidates().begin(), grid.candidates().end());
-  a.gridCount = int32_t(grid.candidates().size());
-  for (int k = 0; k < 3; ++k) {
-    a.gridDims[k] = grid.cells(k);
-    a.gridLo[k] = grid.bounds().lo[k];
-    a.gridInvCell[k] = grid.invCell()[k];
-  }
-  a.gridCdf = ctx.gpu->constants(cdf.data(), cdf.size() * sizeof(float));
-  a.gridCandidates = ctx.gpu->constants(candidates.data(), candidates.size() * sizeof(int32_t));
-}
 }  // namespace
 
 void PTReferencePass::executeGpu(FrameContext& ctx) {
@@ -226,12 +207,15 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
   a.integrator = settings().integrator == Integrator::Whitted     ? TD_REFERENCE_WHITTED
                  : settings().integrator == Integrator::DiffuseGI ? TD_REFERENCE_DIFFUSE_GI
                                                                   : TD_REFERENCE_PATH;
-  // Unused arrays but for diffuse-gi, which picks lights by the light grid.
-  const float noCdf = 0.0f;
-  const int32_t noCandidate = -1;
-  a.gridCdf = gpu.constants(&noCdf, sizeof noCdf);
-  a.gridCandidates = gpu.constants(&noCandidate, sizeof noCandidate);
-  if (a.integrator == TD_REFERENCE_DIFFUSE_GI) gpuLightGrid(ctx, a);
+  // diffuse-gi picks its lights by the grid renderReference builds: built on the host (its
+  // visibility probes are the CPU's rays, once a render) and copied to the device.
+  if (a.integrator == TD_REFERENCE_DIFFUSE_GI) {
+    const LightGrid grid =
+        DiffuseGI::buildGrid(scene, ShadingContext::from(scene), &ctx.rayTracer());
+    a.grid = gpuLightGrid(gpu, &grid, {});
+  } else {
+    a.grid = gpuLightGrid(gpu, nullptr, {});  // unused
+  }
   const WhittedSettings w = [&] {
     WhittedSettings ws;
     ws.maxDepth = settings().whittedDepth;

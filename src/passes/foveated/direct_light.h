@@ -32,6 +32,8 @@ class DirectLightPass : public SettingsPass<DirectLightSettings> {
     return {{Slots::ptDirect, 3, BufferKind::Color}};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/direct_light.comp
+  void executeGpu(FrameContext& ctx) override;
 
  protected:
   const ParamTable<DirectLightSettings>& tableFor() const override;

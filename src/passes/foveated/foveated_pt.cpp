@@ -40,6 +40,27 @@ std::vector<CounterDesc> FoveatedPTPass::counters() const {
   };
 }
 
+const LightGrid* FoveatedPTPass::prepare(FrameContext& ctx, const ShadingContext& shading) {
+  if (warnedScene_ != ctx.scene) {
+    warnedScene_ = ctx.scene;
+    if (const std::string note = DiffuseGI::blackMaterialsNote(*ctx.scene); !note.empty())
+      std::fprintf(stderr, "tandem: warning: %s\n", note.c_str());
+  }
+  if (settings().lightSelection != FoveatedPTSettings::LightSelection::Grid) return nullptr;
+  const uint64_t key = lightSetKey(shading.lights, DiffuseGI::lightsSampled(*ctx.scene));
+  if (!grid_ || key != gridKey_ || gridScene_ != ctx.scene) {
+    const auto t0 = Clock::now();
+    grid_ =
+        std::make_unique<LightGrid>(DiffuseGI::buildGrid(*ctx.scene, shading, &ctx.rayTracer()));
+    gridKey_ = key;
+    gridScene_ = ctx.scene;
+    ctx.report(*this, FoveatedPTCounters::lightGridBuilt, 1);
+    ctx.report(*this, FoveatedPTCounters::lightGridProbeRays, double(grid_->probeRays()));
+    ctx.passParts.push_back({"light_grid", msSince(t0), 0});
+  }
+  return grid_.get();
+}
+
 void FoveatedPTPass::execute(FrameContext& ctx) {
   const PrimarySurfaces g = PrimarySurfaces::of(ctx, *this);
   const Buffer& coords = ctx.input(*this, Slots::fovCoords);
@@ -49,25 +70,7 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
   variance.fill(0.0f);
   const RayTracer& rt = ctx.rayTracer();
   const ShadingContext shading = ShadingContext::from(*ctx.scene);
-  if (warnedScene_ != ctx.scene) {
-    warnedScene_ = ctx.scene;
-    if (const std::string note = DiffuseGI::blackMaterialsNote(*ctx.scene); !note.empty())
-      std::fprintf(stderr, "tandem: warning: %s\n", note.c_str());
-  }
-  const LightGrid* grid = nullptr;
-  if (settings().lightSelection == FoveatedPTSettings::LightSelection::Grid) {
-    const uint64_t key = lightSetKey(shading.lights, DiffuseGI::lightsSampled(*ctx.scene));
-    if (!grid_ || key != gridKey_ || gridScene_ != ctx.scene) {
-      const auto t0 = Clock::now();
-      grid_ = std::make_unique<LightGrid>(DiffuseGI::buildGrid(*ctx.scene, shading, &rt));
-      gridKey_ = key;
-      gridScene_ = ctx.scene;
-      ctx.report(*this, FoveatedPTCounters::lightGridBuilt, 1);
-      ctx.report(*this, FoveatedPTCounters::lightGridProbeRays, double(grid_->probeRays()));
-      ctx.passParts.push_back({"light_grid", msSince(t0), 0});
-    }
-    grid = grid_.get();
-  }
+  const LightGrid* grid = prepare(ctx, shading);
   const DiffuseGI gi(rt, *ctx.scene, shading, grid);
   const uint64_t seed = hashCombine(uint32_t(ctx.seed), uint32_t(ctx.serial + 1));
   const size_t listed = size_t(coords.width) * (coords.height > 0 ? 1 : 0);

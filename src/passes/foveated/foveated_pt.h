@@ -15,6 +15,7 @@
 
 #include "pipeline/param_table.h"
 #include "rt/light_grid.h"
+#include "shading/blinn_phong.h"
 
 namespace tandem {
 
@@ -47,12 +48,17 @@ class FoveatedPTPass : public SettingsPass<FoveatedPTSettings> {
     return {{Slots::ptNoisy, 3, BufferKind::Color}, {Slots::ptVariance, 1, BufferKind::Variance}};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/foveated_pt.comp
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 
  protected:
   const ParamTable<FoveatedPTSettings>& tableFor() const override;
 
  private:
+  // The black-materials warning once a scene, and the light grid (null: uniform selection),
+  // built when the lights change: what both devices do before tracing.
+  const LightGrid* prepare(FrameContext& ctx, const ShadingContext& shading);
   std::unique_ptr<LightGrid> grid_;
   uint64_t gridKey_ = 0;
   const void* gridScene_ = nullptr;

@@ -2,6 +2,7 @@
 
 #include "core/profiler.h"
 #include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 #include "scene/scene.h"
 
 namespace tandem {
@@ -85,7 +86,7 @@ std::vector<CounterDesc> FoveationPass::counters() const {
   };
 }
 
-void FoveationPass::execute(FrameContext& ctx) {
+bool FoveationPass::update(FrameContext& ctx) {
   const View& eye = ctx.views.front();
   FoveationDesc d = desc(eye.width(), eye.height());
   // A moving gaze: the distribution is rebuilt only on the frames where the point moves.
@@ -106,10 +107,13 @@ void FoveationPass::execute(FrameContext& ctx) {
   ctx.report(*this, FoveationCounters::listed, double(map_.coords.size() * ctx.views.size()));
   ctx.report(*this, FoveationCounters::samples,
              double(map_.totalSamples() * int64_t(ctx.views.size())));
+  return rebuild;
+}
+
+void FoveationPass::write(FrameContext& ctx) {
   Buffer& coords = ctx.output(*this, Slots::fovCoords, int(map_.coords.size()), 1);
   Buffer& mask = ctx.output(*this, Slots::fovMask);
   Buffer& layer = ctx.output(*this, Slots::fovLayer);
-  if (!rebuild && written_ == mask.data.data() && !ctx.historyReset) return;
   for (size_t i = 0; i < map_.coords.size(); ++i) {
     const uint32_t px = map_.coords[i];
     float* c = coords.at(int(i), 0);
@@ -127,6 +131,38 @@ void FoveationPass::execute(FrameContext& ctx) {
         layer.at(x + v.x, y + v.y)[0] = float(map_.layer[i]);
       }
   written_ = mask.data.data();
+}
+
+void FoveationPass::execute(FrameContext& ctx) {
+  const bool rebuilt = update(ctx);
+  if (!rebuilt && !ctx.historyReset) {  // the buffers kept hold the distribution already
+    ctx.output(*this, Slots::fovCoords, int(map_.coords.size()), 1);
+    if (written_ == ctx.output(*this, Slots::fovMask).data.data()) {
+      ctx.output(*this, Slots::fovLayer);
+      return;
+    }
+  }
+  write(ctx);
+}
+
+// On the GPU the distribution is still built on the host: it is configuration, not a frame's
+// work (the thesis computes it once), and is moved to the device only on the frames that change
+// it; the others leave the device's copies as they are and move nothing.
+void FoveationPass::executeGpu(FrameContext& ctx) {
+  GpuFrame& gpu = *ctx.gpu;
+  const char* slots[3] = {Slots::fovCoords, Slots::fovMask, Slots::fovLayer};
+  bool kept = !update(ctx) && !ctx.historyReset;
+  for (const char* slot : slots) kept = kept && gpu.onDevice(bufferName(slot));
+  if (kept) {
+    ctx.deviceOutput(*this, Slots::fovCoords, int(map_.coords.size()), 1);
+    ctx.deviceOutput(*this, Slots::fovMask);
+    ctx.deviceOutput(*this, Slots::fovLayer);
+    return;
+  }
+  write(ctx);
+  const auto t0 = Clock::now();
+  for (const char* slot : slots) gpu.upload(bufferName(slot), ctx.buffers.at(bufferName(slot)));
+  ctx.passParts.push_back({"upload", msSince(t0), 0});
 }
 
 }  // namespace tandem

@@ -61,6 +61,9 @@ class FoveationPass : public SettingsPass<FoveationSettings> {
             {Slots::fovLayer, 1, BufferKind::Id}};
   }
   void execute(FrameContext& ctx) override;
+  // The distribution built on the host, moved to the device when it changes.
+  bool hasGpu() const override { return true; }
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   // The distribution the parameters describe for an eye of width x height (what execute uses).
   FoveationDesc desc(int width, int height) const;
@@ -70,6 +73,10 @@ class FoveationPass : public SettingsPass<FoveationSettings> {
   const ParamTable<FoveationSettings>& tableFor() const override;
 
  private:
+  // The distribution for this frame, rebuilt if its description changed (whether it was), its
+  // counters reported; and its buffers written on the host.
+  bool update(FrameContext& ctx);
+  void write(FrameContext& ctx);
   FoveationMap map_;
   FoveationDesc built_;
   bool valid_ = false;
