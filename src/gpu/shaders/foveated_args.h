@@ -15,6 +15,12 @@ struct FoveatedView {
   TD_INT x, y, width, height, pad;
 };
 
+// A view's rectangle and eye (the image-space passes: nh_denoise, periphery_accumulation).
+struct EyeView {
+  TD_FLOAT eye[3];
+  TD_INT x, y, width, height, pad;
+};
+
 // The G-buffer targets PrimarySurfaces reads.
 struct GpuPrimarySurfaces {
   TD_ADDR position, normal, geoNormal, diffuse, emission, depth;
@@ -42,5 +48,24 @@ struct DirectLightArgs {
   GpuLightGrid lights;  // the candidates (the scene's sampled lights)
   TD_INT count;         // lights traced per pixel
   TD_UINT viewCount, frameWidth, pad;
+};
+// periphery_accumulation.comp's counters: the history lengths summed (in units of 2^-16, 64-bit
+// integer atomics: an exact, ordered sum) and the pixels summed.
+struct PeripheryCounters {
+  TD_ADDR framesSum, pixels;
+};
+
+#define TD_PERIPHERY_DEMODULATE 1u
+#define TD_PERIPHERY_FILL 2u
+
+struct PeripheryArgs {
+  TD_ADDR views;  // EyeView[viewCount]
+  TD_ADDR noisy, mask, layer, motion, position, normal, depth, diffuse, emission;
+  TD_ADDR variance, previous;  // 0: absent (no variance input; no history: reset)
+  TD_ADDR accum, accumVariance, accumMask, history;
+  TD_ADDR counters;  // PeripheryCounters
+  TD_UINT width, viewCount, flags;
+  TD_INT fromLayer;
+  TD_FLOAT alphaMin, positionTolerance, minCos, pad;
 };
 #endif

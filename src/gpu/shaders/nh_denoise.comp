@@ -18,11 +18,14 @@ layout(push_constant, scalar) uniform Push { NhStagePush p; };
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ArgsRef {
   NhDenoiseArgs a;
 };
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Views { NhView v[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Views { EyeView v[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Floats { float v[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Uints { uint v[]; };
 
 NhDenoiseArgs A;
+
+#include "demodulation.glsl"
+
 shared float sums[TD_NH_GROUP];
 shared uint counts[TD_NH_COUNTS];
 
@@ -32,12 +35,12 @@ vec3 at3(uint64_t b, uint i) {
   return vec3(f.v[3u * i], f.v[3u * i + 1u], f.v[3u * i + 2u]);
 }
 
-vec3 v3eye(NhView v) { return vec3(v.eye[0], v.eye[1], v.eye[2]); }
+vec3 v3eye(EyeView v) { return vec3(v.eye[0], v.eye[1], v.eye[2]); }
 
 // The view holding pixel (x, y); -1: none.
 int viewOf(int x, int y) {
   for (uint k = 0u; k < A.viewCount; ++k) {
-    const NhView v = Views(A.views).v[k];
+    const EyeView v = Views(A.views).v[k];
     if (x >= v.x && x < v.x + v.width && y >= v.y && y < v.y + v.height) return int(k);
   }
   return -1;
@@ -47,20 +50,8 @@ int regionOf(uint i) {
   const int layer = clamp(int(Floats(A.layer).v[i]), 0, 2);
   return A.regions == 0u ? 0 : A.regions == 1u ? min(layer, 1) : layer;
 }
-// Demodulation (passes/foveated/demodulation.h).
-vec3 albedo(uint i) {
-  Floats d = Floats(A.diffuse);
-  const bool on = A.demodulate != 0u && Floats(A.depth).v[i] > 0.0;
-  vec3 r;
-  for (int k = 0; k < 3; ++k) {
-    const float x = d.v[4u * i + uint(k)];
-    r[k] = on && x > 0.01 ? min(x, 1.0) : 1.0;
-  }
-  return r;
-}
-vec3 emitted(uint i) {
-  return A.demodulate != 0u && Floats(A.depth).v[i] > 0.0 ? at3(A.emission, i) : vec3(0.0);
-}
+vec3 albedo(uint i) { return demodAlbedo(A.diffuse, A.depth, A.demodulate != 0u, i); }
+vec3 emitted(uint i) { return demodEmitted(A.emission, A.depth, A.demodulate != 0u, i); }
 
 struct State {
   vec3 c;
@@ -154,7 +145,7 @@ void noise(int x, int y, int view) {
   startCounts();
   float d2[3] = float[3](0.0, 0.0, 0.0);
   if (view >= 0) {
-    const NhView v = Views(A.views).v[view];
+    const EyeView v = Views(A.views).v[view];
     const uint u = uint(y) * A.width + uint(x);
     Floats mask = Floats(A.mask);
     if (mask.v[u] > 0.0) {
@@ -233,7 +224,7 @@ void level(int x, int y, int view) {
     putState(1u - p.from, u, s);
     return;
   }
-  const NhView v = Views(A.views).v[view];
+  const EyeView v = Views(A.views).v[view];
   const float mean = Floats(A.stats).v[TD_NH_MEAN];
   precise const float sc = A.sigmaColor * mean;
   const float invColor = 1.0 / max(sc * sc * ldexp(1.0, -p.iteration), 1e-20);

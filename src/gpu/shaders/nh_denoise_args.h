@@ -4,7 +4,7 @@
 // writing the other.
 #ifndef TANDEM_GPU_NH_DENOISE_ARGS_H
 #define TANDEM_GPU_NH_DENOISE_ARGS_H
-#include "shared.h"
+#include "foveated_args.h"
 
 #define TD_NH_SETUP 0u   // inputs -> state 0; region sizes; partial luminance sums (L̄)
 #define TD_NH_NOISE 1u   // levels_from = variance: partial sums of each region's noise
@@ -26,11 +26,6 @@
 #define TD_NH_MEAN 0
 #define TD_NH_NOISE_R 1
 #define TD_NH_STATS 4
-
-struct NhView {
-  TD_FLOAT eye[3];
-  TD_INT x, y, width, height, pad;
-};
 
 struct NhDenoiseArgs {
   TD_ADDR views;                    // NhView[viewCount]

@@ -34,12 +34,12 @@ void NHDenoisePass::executeGpu(FrameContext& ctx) {
   const NHDenoiseSettings& s = settings();
   const uint32_t W = uint32_t(ctx.width), H = uint32_t(ctx.height);
   NhDenoiseArgs a{};
-  std::vector<NhView> views;
+  std::vector<EyeView> views;
   for (const View& v : ctx.views) {
     const Vec3 eye = v.camera.desc.position;
     views.push_back({{eye.x, eye.y, eye.z}, v.x, v.y, v.width(), v.height(), 0});
   }
-  a.views = gpu.constants(views.data(), views.size() * sizeof(NhView));
+  a.views = gpu.constants(views.data(), views.size() * sizeof(EyeView));
   a.noisy = ctx.deviceInput(*this, Slots::ptNoisy);
   a.variance =
       ctx.optionalInput(*this, Slots::ptVariance) ? ctx.deviceInput(*this, Slots::ptVariance) : 0;

@@ -75,6 +75,8 @@ class PeripheryAccumulationPass : public SettingsPass<PeripheryAccumulationSetti
             HistoryChannels::slot()};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/periphery_accumulation.comp
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 
  protected:
