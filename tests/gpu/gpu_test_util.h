@@ -39,13 +39,16 @@ inline std::shared_ptr<GpuDevice> testDevice(std::string* why) {
 // GPU's traversal may each take another one, so those pixels are told apart by the object ids the
 // two sides saw. `psnr` over the pixels where they saw the same object, `ties` the share of the
 // others, and `tiesOffEdges` those of them whose 3x3 neighbourhood in the CPU's ids shows no
-// pixel of the GPU's object (a disagreement that is not a near-tie: a bug).
+// pixel of the GPU's object (a disagreement that is not a near-tie: a bug). Given both depth
+// buffers, a pixel where both saw their objects at the same depth (coplanar surfaces that
+// overlap: an exact tie) is a near-tie too.
 struct ImageAgreement {
   double psnrAll = 0, psnr = 0, ties = 0;
   int tiesOffEdges = 0;
 };
 inline ImageAgreement imageAgreement(const Buffer& cpu, const Buffer& gpu, const Buffer& cpuIds,
-                                     const Buffer& gpuIds) {
+                                     const Buffer& gpuIds, const Buffer* cpuDepth = nullptr,
+                                     const Buffer* gpuDepth = nullptr) {
   ImageAgreement r;
   r.psnrAll = psnr(cpu, gpu, 1.0);
   Buffer a = cpu, b = gpu;
@@ -59,7 +62,8 @@ inline ImageAgreement imageAgreement(const Buffer& cpu, const Buffer& gpu, const
       ++ties;
       for (int k = 0; k < cpu.channels; ++k)
         b.data[i * size_t(cpu.channels) + size_t(k)] = a.data[i * size_t(cpu.channels) + size_t(k)];
-      bool near = false;
+      bool near = cpuDepth && gpuDepth && cpuDepth->data[i] > 0 &&
+                  std::abs(cpuDepth->data[i] - gpuDepth->data[i]) <= 1e-6f * cpuDepth->data[i];
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int nx = x + dx, ny = y + dy;
