@@ -293,7 +293,7 @@ class PyRenderer {
 py::dict reference(const std::string& scene, const std::string& sceneJson,
                    const std::string& integrator, double spp, double width, double height,
                    const std::string& cameraJson, double time, double shutter, bool stereo,
-                   const std::string& cache, uint64_t seed) {
+                   const std::string& cache, uint64_t seed, const std::string& device) {
   // The CLI's checks (render_limits.h), before the scene loads.
   checkFrameSize("reference", "width", "height", width, height, stereo);
   checkSpp("reference", "spp", spp);
@@ -321,6 +321,7 @@ py::dict reference(const std::string& scene, const std::string& sceneJson,
     job.settings.integrator = Integrator::DiffuseGI;
   else if (integrator != "path")
     throw InputError("reference", "integrator", "expected path, whitted or diffuse-gi");
+  job.gpu = GpuDevice::forChoice(parseDeviceChoice(device, "reference", "device"), "reference");
   ReferenceImage img;
   {
     py::gil_scoped_release release;
@@ -444,7 +445,8 @@ PYBIND11_MODULE(_tandem, m) {
 
   m.def("reference", &reference, py::arg("scene"), py::arg("scene_json"), py::arg("integrator"),
         py::arg("spp"), py::arg("width"), py::arg("height"), py::arg("camera_json"),
-        py::arg("time"), py::arg("shutter"), py::arg("stereo"), py::arg("cache"), py::arg("seed"));
+        py::arg("time"), py::arg("shutter"), py::arg("stereo"), py::arg("cache"), py::arg("seed"),
+        py::arg("device"));
   m.def("compare", &compare, py::arg("a"), py::arg("b"), py::arg("hdr"), py::arg("maps"));
   m.def("run_experiment", &runExperimentPy);
   m.def("experiments", &listExperiments);

@@ -259,11 +259,12 @@ def _scene_arg(scene):
 
 
 def reference(scene="cornell", integrator="path", spp=64, width=640, height=360, camera=None,
-              time=0.0, shutter=0.0, stereo=False, cache=None, seed=0):
+              time=0.0, shutter=0.0, stereo=False, cache=None, seed=0, device="auto"):
     """A reference render (`tandem reference`): integrator "path", "whitted" (the same shading
     as the pipelines, with lens and shutter) or "diffuse-gi" (the foveated path tracer,
-    converged). Cached as the CLI caches (cache="" renders anew). Returns {"hdr", "output",
-    "variance", "spp", "seconds", "from_cache"}."""
+    converged). Cached as the CLI caches (cache="" renders anew). `device`: where it renders
+    (auto, cpu or gpu), as the CLI's --device. Returns {"hdr", "output", "variance", "spp",
+    "seconds", "from_cache"}."""
     name, text = _spec(scene, "scene")
     where = "reference"
     if not isinstance(integrator, str):
@@ -272,12 +273,14 @@ def reference(scene="cornell", integrator="path", spp=64, width=640, height=360,
         _mapping(camera, where, "camera")
     if cache is not None and not isinstance(cache, (str, os.PathLike)):
         _fail(where, "cache", f"expected a folder, got {cache!r}")
+    if not isinstance(device, str):
+        _fail(where, "device", f"expected auto, cpu or gpu, got {device!r}")
     return _tandem.reference(
         name, text, integrator, float(_integer(spp, where, "spp")),
         _size(width, where, "width"), _size(height, where, "height"),
         _json(camera, "camera") if camera else "", _real(time, where, "time"),
         _real(shutter, where, "shutter"), _boolean(stereo, where, "stereo"),
-        os.fspath(default_cache() if cache is None else cache), _seed(seed, where))
+        os.fspath(default_cache() if cache is None else cache), _seed(seed, where), device)
 
 
 def compare(a, b, hdr=False, maps=False):
