@@ -28,6 +28,8 @@ class MotionBlurCompositePass : public Pass {
   }
   std::vector<BufferSlot> outputs() const override { return {{Slots::hdr, 3}}; }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/postfx_motion_blur.comp
+  void executeGpu(FrameContext& ctx) override;
 };
 
 }  // namespace tandem

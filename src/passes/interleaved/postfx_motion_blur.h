@@ -54,6 +54,8 @@ class PostfxMotionBlurPass : public SettingsPass<PostfxMotionBlurSettings> {
     return {{Slots::mbPostfx, 3}, {Slots::mbMask, 1, BufferKind::Mask}};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/postfx_motion_blur.comp
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 
  protected:
