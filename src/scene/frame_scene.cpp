@@ -32,6 +32,14 @@ Vec3 lerpSteps(const std::vector<std::vector<Vec3>>& steps, size_t v, float tau)
 
 }  // namespace
 
+// Versions unique in the process, not per FrameScene: a FrameScene made afresh (a scene reset with
+// new lights) must not repeat a version that caches keyed on it (the ray tracer's BVH, shadow
+// maps, probes) saw for other geometry.
+static uint64_t newVersion() {
+  static std::atomic<uint64_t> versions{0};
+  return ++versions;
+}
+
 Vec3 positionAt(const FrameObject& o, size_t v, float tau) {
   return o.stepPositions.size() < 2 ? o.positions[v] : lerpSteps(o.stepPositions, v, tau);
 }
@@ -93,12 +101,25 @@ void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
     for (const auto& step : f.stepPositions)
       for (const Vec3& p : step) f.bounds.extend(p);
   }
-  // Versions unique in the process, not per FrameScene: a FrameScene made afresh (a scene reset
-  // with new lights) must not repeat a version that caches keyed on it (the ray tracer's BVH,
-  // shadow maps, probes) saw for other geometry.
-  static std::atomic<uint64_t> versions{0};
-  if (changed) geometryVersion = ++versions;
-  if (staticChanged) staticVersion = ++versions;
+  if (changed) geometryVersion = newVersion();
+  if (staticChanged) staticVersion = newVersion();
+}
+
+FrameScene FrameScene::at(float tau) const {
+  FrameScene f = *this;
+  bool moving = false;
+  for (FrameObject& o : f.objects) {
+    if (o.stepPositions.size() < 2) continue;
+    moving = true;
+    for (size_t v = 0; v < o.positions.size(); ++v) {
+      o.positions[v] = positionAt(o, v, tau);
+      o.normals[v] = normalAt(o, v, tau);
+    }
+    o.stepPositions.clear();
+    o.stepNormals.clear();
+  }
+  if (moving) f.geometryVersion = newVersion();
+  return f;
 }
 
 }  // namespace tandem

@@ -127,7 +127,7 @@ std::vector<CounterDesc> InterleavedPass::counters() const {
   return all;
 }
 
-void InterleavedPass::execute(FrameContext& ctx) {
+InterleavedPass::Pairs InterleavedPass::framePairs(const FrameContext& ctx) const {
   const InterleavedSettings& s = settings();
   const int n = s.samples, k = s.spp;
   const std::string problem = tileShapeProblem(n, k);
@@ -136,32 +136,75 @@ void InterleavedPass::execute(FrameContext& ctx) {
   const PairMetric metric = s.mode == InterleavedSettings::Mode::Dof          ? PairMetric::Lens
                             : s.mode == InterleavedSettings::Mode::MotionBlur ? PairMetric::Time
                                                                               : PairMetric::Both;
-  std::vector<TimeLensPair> pairs = stratifiedTimeLensPairs(n, ctx.seed, s.correlated);
-  const TileSet& tiles = tileSetFor(
+  Pairs p;
+  p.pairs = stratifiedTimeLensPairs(n, ctx.seed, s.correlated);
+  p.tiles = &tileSetFor(
       n, k, s.scheme == SamplingScheme::RandomTiles ? TileKind::Random : TileKind::ColoredCorner,
-      metric, pairs, ctx.seed);
+      metric, p.pairs, ctx.seed);
+  p.taus.resize(size_t(n));
+  for (int j = 0; j < n; ++j)
+    p.taus[size_t(j)] = !s.time()            ? 0.0f
+                        : s.shutterTime >= 0 ? s.shutterTime
+                                             : p.pairs[size_t(j)].tau;
+  return p;
+}
+
+const SampleLayout& InterleavedPass::layoutFor(const FrameContext& ctx, const TileSet& tiles, int W,
+                                               int H) {
+  const InterleavedSettings& s = settings();
+  Hasher key;
+  key.pod(int(s.scheme)).pod(W).pod(H).pod(ctx.seed).pod(s.jitter).pod(&tiles);
+  if (!layout_ || layoutKey_ != key.value()) {
+    layout_ = std::make_unique<SampleLayout>(
+        buildSampleLayout(s.scheme, tiles, W, H, ctx.seed, s.jitter));
+    layoutKey_ = key.value();
+    ++layoutVersion_;
+  }
+  return *layout_;
+}
+
+std::vector<Camera> InterleavedPass::pairCameras(const View& v, const Pairs& p) const {
+  const InterleavedSettings& s = settings();
+  std::vector<Camera> cams;
+  cams.reserve(p.pairs.size());
+  for (size_t j = 0; j < p.pairs.size(); ++j) {
+    TimeLensPair pair = p.pairs[j];
+    pair.tau = p.taus[j];
+    cams.push_back(
+        cameraForPair(v, pair, s.time(), s.lens(), s.viewJitter ? v.jitter : Vec2{0, 0}));
+  }
+  return cams;
+}
+
+void InterleavedPass::reportTiles(FrameContext& ctx, const TileSet& tiles) const {
+  const InterleavedCounters c(*this);
+  ctx.report(*this, c.passes(), double(settings().samples));
+  ctx.report(*this, c.samplesPerPixel(), double(settings().spp));
+  ctx.report(*this, c.minSimilarTimeDistance(), tiles.quality.minSimilarTimeDistance);
+  ctx.report(*this, c.footprintTimeDiscrepancy(), tiles.quality.meanFootprintDiscrepancy);
+}
+
+void InterleavedPass::execute(FrameContext& ctx) {
+  const InterleavedSettings& s = settings();
+  Pairs p = framePairs(ctx);
   const bool whittedShading = s.shading == InterleavedSettings::Shading::Whitted;
   RayTracer* rt = whittedShading ? &ctx.rayTracer() : nullptr;
   RayTracer* counted = whittedShading || tracesPrimaryRays() ? &ctx.rayTracer() : nullptr;
   const uint64_t raysBefore = counted ? counted->raysTraced() : 0;
   ShadowTally shadowTally;
   Frame f{s,
-          n,
-          k,
-          std::move(pairs),
-          tiles,
-          tiles.shape,
-          std::vector<float>(static_cast<size_t>(n)),
+          s.samples,
+          s.spp,
+          std::move(p.pairs),
+          *p.tiles,
+          p.tiles->shape,
+          std::move(p.taus),
           *ctx.scene,
           ShadingContext::from(*ctx.scene),
           rt,
           s.whitted.settings(),
           rt ? shadowMapsFor(ctx, *this, s.whitted) : nullptr,
           &shadowTally};
-  for (int j = 0; j < n; ++j)
-    f.taus[size_t(j)] = !s.time()            ? 0.0f
-                        : s.shutterTime >= 0 ? s.shutterTime
-                                             : f.pairs[size_t(j)].tau;
   visMs_ = shadeMs_ = resolveMs_ = 0;
   for (const View& v : ctx.views) renderView(ctx, f, v);
   if (counted) ctx.passRays += double(counted->raysTraced() - raysBefore);
@@ -169,31 +212,13 @@ void InterleavedPass::execute(FrameContext& ctx) {
   ctx.passParts.push_back({"visibility", visMs_, 0});
   ctx.passParts.push_back({"shade", shadeMs_, 0});
   ctx.passParts.push_back({"resolve", resolveMs_, 0});
-  const InterleavedCounters c(*this);
-  ctx.report(*this, c.passes(), double(n));
-  ctx.report(*this, c.samplesPerPixel(), double(k));
-  ctx.report(*this, c.minSimilarTimeDistance(), tiles.quality.minSimilarTimeDistance);
-  ctx.report(*this, c.footprintTimeDiscrepancy(), tiles.quality.meanFootprintDiscrepancy);
+  reportTiles(ctx, f.tiles);
 }
 
 void InterleavedPass::renderView(FrameContext& ctx, const Frame& f, const View& v) {
   const InterleavedSettings& s = f.s;
-  const int W = v.width(), H = v.height(), n = f.n;
-  Hasher key;
-  key.pod(int(s.scheme)).pod(W).pod(H).pod(ctx.seed).pod(s.jitter).pod(&f.tiles);
-  if (!layout_ || layoutKey_ != key.value()) {
-    layout_ = std::make_unique<SampleLayout>(
-        buildSampleLayout(s.scheme, f.tiles, W, H, ctx.seed, s.jitter));
-    layoutKey_ = key.value();
-  }
-  const SampleLayout& L = *layout_;
-  std::vector<Camera> cams;
-  cams.reserve(size_t(n));
-  for (int j = 0; j < n; ++j) {
-    TimeLensPair p = f.pairs[size_t(j)];
-    p.tau = f.taus[size_t(j)];
-    cams.push_back(cameraForPair(v, p, s.time(), s.lens(), s.viewJitter ? v.jitter : Vec2{0, 0}));
-  }
+  const SampleLayout& L = layoutFor(ctx, f.tiles, v.width(), v.height());
+  const std::vector<Camera> cams = pairCameras(v, Pairs{f.pairs, &f.tiles, f.taus});
 
   // 0. Which samples are needed: those of pixels within the filter's reach of the mask.
   const Buffer* mask = ctx.optionalInput(*this, Slots::sampleMask);
@@ -220,11 +245,7 @@ void InterleavedPass::renderView(FrameContext& ctx, const Frame& f, const View& 
   resolve(f, v, ctx.output(*this, Slots::hdr), reach, mask ? &wanted : nullptr);
   writeMotion(ctx, f, v, cams, active, ctx.output(*this, Slots::velocity),
               ctx.output(*this, Slots::viewDepth), ctx.outputIfConsumed(*this, Slots::motion));
-  Buffer* samplesOut = ctx.isConsumed(*this, Slots::sampleTimeLens)
-                           ? &ctx.output(*this, Slots::sampleTimeLens, ctx.width * f.shape.sx,
-                                         ctx.height * f.shape.sy)
-                           : nullptr;
-  writeViewerBuffers(f, v, samplesOut, ctx.outputIfConsumed(*this, Slots::tileLayout));
+  writeViewerBuffers(ctx, Pairs{f.pairs, &f.tiles, f.taus}, v);
   resolveMs_ += msSince(t2);
 }
 
@@ -398,50 +419,60 @@ void InterleavedPass::resolve(const Frame& f, const View& v, Buffer& hdr, int re
   });
 }
 
+InterleavedPass::MotionCarry InterleavedPass::motionCarry(const FrameContext& ctx,
+                                                          const std::vector<float>& taus,
+                                                          const View& v, bool motion) const {
+  // Per pair and animated object: world at open (and close) after world at the pair's time
+  // undone.
+  // Motion (frame to frame, for temporal AA): the same point at the pair's shutter fraction of
+  // the previous frame, seen by the previous camera moved as far into its shutter (its
+  // displacement over the shutter taken as this frame's).
+  const Scene& scene = *ctx.scene;
+  const size_t n = taus.size();
+  const float t0s = ctx.frame.time, t1s = ctx.frame.shutterClose, tPrev = ctx.frame.prevTime;
+  MotionCarry mc;
+  mc.carry.resize(n);
+  mc.carryPrev.resize(n);
+  for (size_t j = 0; j < n; ++j) {
+    const float into = (t1s - t0s) * taus[j];
+    mc.carry[j].resize(scene.objects.size());
+    mc.carryPrev[j].resize(scene.objects.size());
+    for (size_t o = 0; o < scene.objects.size(); ++o) {
+      const Object& obj = scene.objects[o];
+      if (!obj.animated()) continue;
+      const Mat4 undo = obj.worldMatrix(t0s + into).inverse();
+      mc.carry[j][o] = {obj.worldMatrix(t0s) * undo, obj.worldMatrix(t1s) * undo};
+      mc.carryPrev[j][o] = obj.worldMatrix(tPrev + into) * undo;
+    }
+    if (motion) {
+      const float tau = settings().time() ? taus[j] : 0.0f;
+      auto intoShutter = [&](CameraDesc d) {
+        d.position = d.position + (v.shutterCamera.desc.position - v.camera.desc.position) * tau;
+        d.lookAt = d.lookAt + (v.shutterCamera.desc.lookAt - v.camera.desc.lookAt) * tau;
+        return Camera::make(d, v.width(), v.height());
+      };
+      mc.nowCams.push_back(intoShutter(v.camera.desc));
+      mc.prevCams.push_back(intoShutter(v.prevCamera.desc));
+    }
+  }
+  return mc;
+}
+
 void InterleavedPass::writeMotion(FrameContext& ctx, const Frame& f, const View& v,
                                   const std::vector<Camera>& cams, const uint8_t* active,
                                   Buffer& velocityOut, Buffer& depthOut, Buffer* motionOut) const {
   const SampleLayout& L = *layout_;
   const TileShape& shape = f.shape;
   const Scene& scene = f.scene;
-  const int W = v.width(), H = v.height(), SW = L.stridesW(), n = f.n;
-  const bool time = f.s.time();
-  const std::vector<float>& taus = f.taus;
+  const int W = v.width(), H = v.height(), SW = L.stridesW();
   // Velocity and depth of each pixel's first sample, for the post-process motion blur: the
   // surface point carried rigidly with its object from the sample's time to shutter open and
   // close, projected through the cameras at open and close.
-  const float t0s = ctx.frame.time, t1s = ctx.frame.shutterClose;
-  // Per pair and animated object: world at open (and close) after world at the pair's time
-  // undone.
-  // Motion (frame to frame, for temporal AA): the same point at the pair's shutter fraction of
-  // the previous frame, seen by the previous camera moved as far into its shutter (its
-  // displacement over the shutter taken as this frame's).
-  const float tPrev = ctx.frame.prevTime;
-  std::vector<std::vector<std::pair<Mat4, Mat4>>> carry(static_cast<size_t>(n));
-  std::vector<std::vector<Mat4>> carryPrev(static_cast<size_t>(n));
-  std::vector<Camera> nowCams, prevCams;
-  for (int j = 0; j < n; ++j) {
-    const float into = (t1s - t0s) * taus[size_t(j)];
-    carry[size_t(j)].resize(scene.objects.size());
-    carryPrev[size_t(j)].resize(scene.objects.size());
-    for (size_t o = 0; o < scene.objects.size(); ++o) {
-      const Object& obj = scene.objects[o];
-      if (!obj.animated()) continue;
-      const Mat4 undo = obj.worldMatrix(t0s + into).inverse();
-      carry[size_t(j)][o] = {obj.worldMatrix(t0s) * undo, obj.worldMatrix(t1s) * undo};
-      carryPrev[size_t(j)][o] = obj.worldMatrix(tPrev + into) * undo;
-    }
-    if (motionOut) {
-      const float tau = time ? taus[size_t(j)] : 0.0f;
-      auto intoShutter = [&](CameraDesc d) {
-        d.position = d.position + (v.shutterCamera.desc.position - v.camera.desc.position) * tau;
-        d.lookAt = d.lookAt + (v.shutterCamera.desc.lookAt - v.camera.desc.lookAt) * tau;
-        return Camera::make(d, W, H);
-      };
-      nowCams.push_back(intoShutter(v.camera.desc));
-      prevCams.push_back(intoShutter(v.prevCamera.desc));
-    }
-  }
+  const MotionCarry mc = motionCarry(ctx, f.taus, v, motionOut != nullptr);
+  const auto& carry = mc.carry;
+  const auto& carryPrev = mc.carryPrev;
+  const auto& nowCams = mc.nowCams;
+  const auto& prevCams = mc.prevCams;
   parallelTiles(W, H, [&](int x0, int y0, int x1, int y1) {
     for (int py = y0; py < y1; ++py)
       for (int px = x0; px < x1; ++px) {
@@ -494,10 +525,14 @@ void InterleavedPass::writeMotion(FrameContext& ctx, const Frame& f, const View&
   });
 }
 
-void InterleavedPass::writeViewerBuffers(const Frame& f, const View& v, Buffer* samplesOut,
-                                         Buffer* layoutOut) const {
+void InterleavedPass::writeViewerBuffers(FrameContext& ctx, const Pairs& f, const View& v) {
+  const TileShape& shape = f.tiles->shape;
+  Buffer* samplesOut =
+      ctx.isConsumed(*this, Slots::sampleTimeLens)
+          ? &ctx.output(*this, Slots::sampleTimeLens, ctx.width * shape.sx, ctx.height * shape.sy)
+          : nullptr;
+  Buffer* layoutOut = ctx.outputIfConsumed(*this, Slots::tileLayout);
   const SampleLayout& L = *layout_;
-  const TileShape& shape = f.shape;
   const int H = v.height(), W = v.width(), SW = L.stridesW();
   // For the viewer: each sample's time and lens coordinates, each pixel's tile prototype.
   if (samplesOut)
@@ -514,7 +549,7 @@ void InterleavedPass::writeViewerBuffers(const Frame& f, const View& v, Buffer* 
             }
         },
         16);
-  const bool tiled = f.s.scheme >= SamplingScheme::RandomTiles;
+  const bool tiled = settings().scheme >= SamplingScheme::RandomTiles;
   if (layoutOut)
     parallelRange(
         size_t(H),
@@ -522,7 +557,7 @@ void InterleavedPass::writeViewerBuffers(const Frame& f, const View& v, Buffer* 
           for (size_t y = y0; y < y1; ++y)
             for (int x = 0; x < W; ++x)
               layoutOut->at(x + v.x, int(y) + v.y)[0] =
-                  tiled ? float(f.tiles.prototypeAt(x / shape.tw, int(y) / shape.th)) : -1.0f;
+                  tiled ? float(f.tiles->prototypeAt(x / shape.tw, int(y) / shape.th)) : -1.0f;
         },
         16);
 }

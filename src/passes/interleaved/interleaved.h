@@ -123,6 +123,36 @@ class InterleavedPass : public SettingsPass<InterleavedSettings> {
                           const uint8_t* active, VisibilityBuffer& vis) = 0;
   virtual bool tracesPrimaryRays() const { return false; }
 
+ protected:
+  // The frame's pairs (both devices): T, the tiles handing them out, each pair's shutter
+  // fraction (0 without time; shutter_time when set).
+  struct Pairs {
+    std::vector<TimeLensPair> pairs;
+    const TileSet* tiles;
+    std::vector<float> taus;
+  };
+  Pairs framePairs(const FrameContext& ctx) const;
+  // The samples of a W x H view, built when the scheme, size, seed or tiles change
+  // (layoutVersion() then changes).
+  const SampleLayout& layoutFor(const FrameContext& ctx, const TileSet& tiles, int W, int H);
+  uint64_t layoutVersion() const { return layoutVersion_; }
+  // Each pair's camera for view v: along its shutter path, at its lens point.
+  std::vector<Camera> pairCameras(const View& v, const Pairs& p) const;
+  void reportTiles(FrameContext& ctx, const TileSet& tiles) const;
+  // What velocity and motion carry a pair's surface point with (writeMotion): per pair and
+  // animated object, world at the pair's time to world at shutter open and close, and to the
+  // previous frame's same shutter fraction; with `motion`, each pair's camera of this and the
+  // previous frame moved as far into its shutter.
+  struct MotionCarry {
+    std::vector<std::vector<std::pair<Mat4, Mat4>>> carry;
+    std::vector<std::vector<Mat4>> carryPrev;
+    std::vector<Camera> nowCams, prevCams;
+  };
+  MotionCarry motionCarry(const FrameContext& ctx, const std::vector<float>& taus, const View& v,
+                          bool motion) const;
+  // For the viewer, when something reads them: sample_time_lens and tile_layout (the host's).
+  void writeViewerBuffers(FrameContext& ctx, const Pairs& p, const View& v);
+
  private:
   struct Frame;  // what one frame's views share (interleaved.cpp)
   void renderView(FrameContext& ctx, const Frame& f, const View& v);
@@ -140,10 +170,9 @@ class InterleavedPass : public SettingsPass<InterleavedSettings> {
   void writeMotion(FrameContext& ctx, const Frame& f, const View& v,
                    const std::vector<Camera>& cams, const uint8_t* active, Buffer& velocity,
                    Buffer& depth, Buffer* motion) const;
-  void writeViewerBuffers(const Frame& f, const View& v, Buffer* samples, Buffer* layout) const;
 
   std::unique_ptr<SampleLayout> layout_;
-  uint64_t layoutKey_ = 0;
+  uint64_t layoutKey_ = 0, layoutVersion_ = 0;
   VisibilityBuffer vis_;
   std::vector<Vec3> colour_, position_;  // per sample: shaded colour, surface point
   std::vector<uint8_t> active_;

@@ -1,6 +1,7 @@
 // interleaved_rt: the visibility of interleaved sampling by ray tracing, each sample's primary ray
 // at its pair's time and lens point (interleaved.h: what the samples are).
 #pragma once
+#include "core/buffer.h"
 #include "passes/interleaved/interleaved.h"
 
 namespace tandem {
@@ -13,11 +14,22 @@ class InterleavedRTPass : public InterleavedPass {
            "(Foster 2015, the same tiles)";
   }
 
+  // shaders/interleaved.comp; a pixel's shading rate (shared samples) stays on the CPU.
+  bool hasGpu() const override {
+    return settings().shadingRate == InterleavedSettings::ShadingRate::Sample;
+  }
+  std::string gpuCondition() const override { return "with `shading_rate = sample`"; }
+  void executeGpu(FrameContext& ctx) override;
+
  protected:
   void visibility(FrameContext& ctx, const SampleLayout& layout, const std::vector<Camera>& cams,
                   const std::vector<float>& taus, const uint8_t* active,
                   VisibilityBuffer& vis) override;
   bool tracesPrimaryRays() const override { return true; }
+
+ private:
+  Buffer layoutBuffer_, idsBuffer_;  // the sample layout as the kernels read it
+  uint64_t packedVersion_ = 0;
 };
 
 }  // namespace tandem
