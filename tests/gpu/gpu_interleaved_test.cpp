@@ -125,5 +125,42 @@ TEST(GpuInterleaved, InterleavedRtMatchesTheCpu) {
   expectNoValidationMessages(*dev);
 }
 
+// The accumulation baselines on the GPU whole (the compute rasterizer at each pair's time and lens
+// point, the scene moved between pairs): the CPU's image.
+TEST(GpuInterleaved, AccumulationMatchesTheCpu) {
+  REQUIRE_GPU(dev);
+  const Scene scene = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/interleaved_both.json");
+  for (const char* pipeline : {"accumulation-dof", "accumulation-motion-blur"}) {
+    for (const char* shading : {"whitted", "local"}) {
+      const std::string at = std::string(pipeline) + ", " + shading;
+      RenderSettings rs{.width = 64, .height = 36};
+      rs.shutter = 0.1f;
+      const auto load = [&] {
+        Pipeline p = Pipeline::load(pipeline);
+        p.setParam("accumulation.samples=8", "test");
+        p.setParam(std::string("accumulation.shading=") + shading, "test");
+        return p;
+      };
+      Renderer cpu(scene, load(), rs);
+      rs.gpu = dev;
+      Renderer gpu(scene, load(), rs);
+      cpu.renderFrame(0, defaultCamera(scene));
+      const FrameTimings ft = gpu.renderFrame(0, defaultCamera(scene));
+      size_t hosts = 0;
+      for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
+      EXPECT_EQ(hosts, gpu.pipeline().passes.size()) << at << ": a pass ran on the CPU";
+      const Buffer &c = cpu.context().input("hdr"), &g = gpu.context().input("hdr");
+      const double db = psnr(c, g, 1.0);
+      EXPECT_GE(db, 45.0) << at;
+      EXPECT_GE(agreement(c, g, 1e-3f), 0.99) << at;
+      EXPECT_EQ(gpu.context().counter("accumulation/triangles_binned", -1),
+                cpu.context().counter("accumulation/triangles_binned", -2))
+          << at;
+      std::printf("%s: hdr %.1f dB\n", at.c_str(), db);
+    }
+  }
+  expectNoValidationMessages(*dev);
+}
+
 }  // namespace
 }  // namespace tandem

@@ -45,6 +45,9 @@ class AccumulationPass : public SettingsPass<AccumulationSettings> {
   }
   std::vector<BufferSlot> outputs() const override { return {{Slots::hdr, 3}}; }
   void execute(FrameContext& ctx) override;
+  // The compute rasterizer and shaders/accumulation.comp.
+  bool hasGpu() const override { return true; }
+  void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
 
  protected:
