@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The GPU figures of docs/benchmarks.md in one run, each measured side by side with the same binary
 # on the machine's CPU cores (issue: "side by side in one run"): frame times of the heuristic
-# hybrid's pipelines and of the depth-of-field pipelines, the hybrid's SSIM against rt-only on the
-# GPU, and the reference's ray rate.
+# hybrid's pipelines, the depth-of-field, foveated and motion-blur pipelines, the hybrid's SSIM
+# against rt-only on the GPU, and the reference's ray rate.
 # Prepared for a lent GPU machine, where one `run` of the device tool must measure everything:
 #
 #   bash ../shared/tools/device-pack.sh
@@ -34,11 +34,11 @@ $T info --devices > "$out/devices.txt" 2>&1 || true
 # The median frame of a bench report.
 median() { awk '$1 == "frame" {print $2}' "$1"; }
 
-row() {  # pipeline scene
+row() {  # pipeline scene [more bench arguments]
   local name="$1-$(basename "$2" .json)" cpu gpu
   for d in cpu gpu; do
     $T bench "$2" --pipeline "$1" --device "$d" --width $W --height $H --frames $frames \
-      --warmup $warm --json "$out/$name-$d.json" > "$out/$name-$d.txt" 2>&1 ||
+      --warmup $warm --json "$out/$name-$d.json" "${@:3}" > "$out/$name-$d.txt" 2>&1 ||
       echo "gpu-figures: bench $1 $2 on $d failed (see $out/$name-$d.txt)" >&2
   done
   cpu=$(median "$out/$name-cpu.txt")
@@ -57,6 +57,13 @@ row hybrid-all scenes/atrium_spheres.json
 row postfx-dof scenes/dof_fg.json
 row hybrid-dof scenes/dof_fg.json
 row rt-dof scenes/dof_fg.json
+# Peres 2022's foveated stereo path tracing (both eyes, W x H each), every pass on the GPU.
+row foveated-base scenes/foveated_pink_room.json
+row foveated-nh3ld-temporal scenes/foveated_pink_room.json
+# Interleaved sampling with ray-traced visibility, the motion-blur baseline, the post-process.
+row interleaved-rt scenes/interleaved_motion.json --shutter 0.1
+row accumulation-motion-blur scenes/interleaved_motion.json --shutter 0.1
+row hybrid-motion-blur scenes/interleaved_motion.json --shutter 0.1
 
 # The hybrid against ray tracing everything, both on the GPU: the same frame, SSIM.
 for p in hybrid-heuristic rt-only; do
