@@ -55,19 +55,8 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& pip
   FrameContext runs[2];
   for (int onGpu = 0; onGpu < 2; ++onGpu) {
     FrameContext& ctx = runs[onGpu];
-    const FrameContext& from = cpu.context();
-    ctx.width = from.width;
-    ctx.height = from.height;
-    ctx.views = from.views;
-    ctx.frameIndex = from.frameIndex;
-    ctx.serial = from.serial - 1;  // the same frame again (the gather's ring rotation)
-    ctx.buffers = from.buffers;
-    ctx.scene = from.scene;
-    ctx.frame = from.frame;
-    ctx.seed = from.seed;
-    ctx.history = from.history;  // last frame's accumulation (this frame's, run again)
-    ctx.historyReset = false;
-    if (onGpu) ctx.gpu = std::make_shared<GpuFrame>(dev);
+    // The same frame again (the gather's ring rotation), last frame's accumulation with it.
+    ctx = frameAgain(cpu.context(), onGpu ? dev : nullptr);
     Pipeline p = dofPasses(pipeline, params);
     for (const auto& pass : p.passes)  // what the passes write, written anew
       for (const BufferSlot& o : pass->outputs()) ctx.buffers.erase(pass->bufferName(o.slot));

@@ -54,19 +54,8 @@ Pipeline foveatedPasses(const std::string& pipeline, const std::vector<std::stri
 FrameContext runAgain(const FrameContext& from, const std::string& pipeline,
                       const std::vector<std::string>& params, const std::shared_ptr<GpuDevice>& dev,
                       uint64_t seed) {
-  FrameContext ctx;
-  ctx.width = from.width;
-  ctx.height = from.height;
-  ctx.views = from.views;
-  ctx.frameIndex = from.frameIndex;
-  ctx.serial = from.serial - 1;  // the same frame again (its samples)
-  ctx.buffers = from.buffers;
-  ctx.scene = from.scene;
-  ctx.frame = from.frame;
+  FrameContext ctx = frameAgain(from, dev);  // the same frame again (its samples)
   ctx.seed = seed;
-  ctx.history = from.history;  // last frame's accumulation
-  ctx.historyReset = false;
-  if (dev) ctx.gpu = std::make_shared<GpuFrame>(dev);
   Pipeline p = foveatedPasses(pipeline, params);
   for (const auto& pass : p.passes)  // what the passes write, written anew
     for (const BufferSlot& o : pass->outputs()) ctx.buffers.erase(pass->bufferName(o.slot));

@@ -48,21 +48,15 @@ void compare(const std::shared_ptr<GpuDevice>& dev, const Case& k) {
   FrameContext runs[2];
   for (int onGpu = 0; onGpu < 2; ++onGpu) {
     FrameContext& ctx = runs[onGpu];
-    ctx.width = from.width;
-    ctx.height = from.height;
-    ctx.views = from.views;
-    ctx.serial = from.serial;
-    ctx.scene = from.scene;
-    ctx.frame = from.frame;
-    ctx.seed = from.seed;
-    if (k.masked) {  // a disc of pixels where the samples are wanted
+    ctx = frameAgain(from, onGpu ? dev : nullptr);
+    ctx.buffers.clear();  // the pass reads none but the mask
+    if (k.masked) {       // a disc of pixels where the samples are wanted
       Buffer mask(ctx.width, ctx.height, 1, 0.0f, BufferKind::Mask);
       for (int y = 0; y < ctx.height; ++y)
         for (int x = 0; x < ctx.width; ++x)
           mask.at(x, y)[0] = std::hypot(x - 30.0f, y - 18.0f) < 12.0f ? 1.0f : 0.0f;
       ctx.buffers["sample_mask"] = mask;
     }
-    if (onGpu) ctx.gpu = std::make_shared<GpuFrame>(dev);
     Pipeline p = load();
     const FrameTimings ft = p.execute(ctx);
     size_t hosts = 0;

@@ -32,15 +32,7 @@ void comparePasses(const std::shared_ptr<GpuDevice>& dev, const std::string& wha
   FrameContext runs[2];
   for (int onGpu = 0; onGpu < 2; ++onGpu) {
     FrameContext& ctx = runs[onGpu];
-    ctx.width = from.width;
-    ctx.height = from.height;
-    ctx.views = from.views;
-    ctx.serial = from.serial - 1;
-    ctx.buffers = from.buffers;
-    ctx.scene = from.scene;
-    ctx.frame = from.frame;
-    ctx.seed = from.seed;
-    if (onGpu) ctx.gpu = std::make_shared<GpuFrame>(dev);
+    ctx = frameAgain(from, onGpu ? dev : nullptr);
     Pipeline full = load(), p;
     p.name = "motion blur passes";
     for (auto& pass : full.passes)

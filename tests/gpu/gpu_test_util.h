@@ -13,6 +13,8 @@
 #include "core/error.h"
 #include "eval/metrics/metrics.h"
 #include "gpu/gpu_device.h"
+#include "pipeline/frame_context.h"
+#include "pipeline/gpu_frame.h"
 
 namespace tandem {
 
@@ -97,6 +99,26 @@ inline void expectAgreement(const ImageAgreement& a, const std::string& what) {
   EXPECT_GE(a.psnr, 45.0) << what << " (whole image: " << a.psnrAll << " dB)";
   EXPECT_LE(a.ties, 0.002) << what;
   EXPECT_EQ(a.tiesOffEdges, 0) << what;
+}
+
+// A context to run passes again on `from`'s frame: its size, views, scene and seed, the serial
+// it had (so they draw the same samples), its buffers and last frame's history; on the GPU `dev`
+// (null: the CPU).
+inline FrameContext frameAgain(const FrameContext& from, const std::shared_ptr<GpuDevice>& dev) {
+  FrameContext ctx;
+  ctx.width = from.width;
+  ctx.height = from.height;
+  ctx.views = from.views;
+  ctx.frameIndex = from.frameIndex;
+  ctx.serial = from.serial - 1;  // execute() counts it up again
+  ctx.buffers = from.buffers;
+  ctx.scene = from.scene;
+  ctx.frame = from.frame;
+  ctx.seed = from.seed;
+  ctx.history = from.history;
+  ctx.historyReset = false;
+  if (dev) ctx.gpu = std::make_shared<GpuFrame>(dev);
+  return ctx;
 }
 
 inline void expectNoValidationMessages(const GpuDevice& dev) {

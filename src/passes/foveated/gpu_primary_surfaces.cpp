@@ -26,6 +26,15 @@ uint64_t gpuFoveatedViews(FrameContext& ctx) {
   return ctx.gpu->constants(views.data(), views.size() * sizeof(FoveatedView));
 }
 
+uint64_t gpuEyeViews(FrameContext& ctx) {
+  std::vector<EyeView> views;
+  for (const View& v : ctx.views) {
+    const Vec3 eye = v.camera.desc.position;
+    views.push_back({{eye.x, eye.y, eye.z}, v.x, v.y, v.width(), v.height(), 0});
+  }
+  return ctx.gpu->constants(views.data(), views.size() * sizeof(EyeView));
+}
+
 GpuPrimarySurfaces gpuPrimarySurfaces(const FrameContext& ctx, const Pass& pass) {
   const char* const* s = PrimarySurfaces::kSlots;
   return {ctx.deviceInput(pass, s[0]), ctx.deviceInput(pass, s[1]), ctx.deviceInput(pass, s[2]),

@@ -10,6 +10,8 @@ namespace tandem {
 
 // The frame's views in this batch's constants (FoveatedView[ctx.views.size()]); their address.
 uint64_t gpuFoveatedViews(FrameContext& ctx);
+// The frame's views as rectangles and eyes (EyeView[ctx.views.size()]) in this batch's constants.
+uint64_t gpuEyeViews(FrameContext& ctx);
 GpuPrimarySurfaces gpuPrimarySurfaces(const FrameContext& ctx, const Pass& pass);
 
 }  // namespace tandem

@@ -8,6 +8,7 @@
 
 #include "gpu/shaders/nh_denoise_args.h"
 #include "gpu/shaders/nh_denoise_spv.h"
+#include "passes/foveated/gpu_primary_surfaces.h"
 #include "passes/foveated/nh_denoise.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
@@ -34,12 +35,7 @@ void NHDenoisePass::executeGpu(FrameContext& ctx) {
   const NHDenoiseSettings& s = settings();
   const uint32_t W = uint32_t(ctx.width), H = uint32_t(ctx.height);
   NhDenoiseArgs a{};
-  std::vector<EyeView> views;
-  for (const View& v : ctx.views) {
-    const Vec3 eye = v.camera.desc.position;
-    views.push_back({{eye.x, eye.y, eye.z}, v.x, v.y, v.width(), v.height(), 0});
-  }
-  a.views = gpu.constants(views.data(), views.size() * sizeof(EyeView));
+  a.views = gpuEyeViews(ctx);
   a.noisy = ctx.deviceInput(*this, Slots::ptNoisy);
   a.variance =
       ctx.optionalInput(*this, Slots::ptVariance) ? ctx.deviceInput(*this, Slots::ptVariance) : 0;
@@ -67,7 +63,7 @@ void NHDenoisePass::executeGpu(FrameContext& ctx) {
   a.stats = gpu.constants(zeroStats, sizeof zeroStats);
   a.width = W;
   a.height = H;
-  a.viewCount = uint32_t(views.size());
+  a.viewCount = uint32_t(ctx.views.size());
   a.regions = uint32_t(s.regions);
   a.demodulate = s.demodulate ? 1u : 0u;
   a.sigmaColor = s.sigmaColor;

@@ -5,6 +5,7 @@
 
 #include "gpu/shaders/foveated_args.h"
 #include "gpu/shaders/periphery_accumulation_spv.h"
+#include "passes/foveated/gpu_primary_surfaces.h"
 #include "passes/foveated/periphery_accumulation.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
@@ -15,12 +16,7 @@ void PeripheryAccumulationPass::executeGpu(FrameContext& ctx) {
   GpuFrame& gpu = *ctx.gpu;
   const PeripheryAccumulationSettings& s = settings();
   PeripheryArgs a{};
-  std::vector<EyeView> views;
-  for (const View& v : ctx.views) {
-    const Vec3 eye = v.camera.desc.position;
-    views.push_back({{eye.x, eye.y, eye.z}, v.x, v.y, v.width(), v.height(), 0});
-  }
-  a.views = gpu.constants(views.data(), views.size() * sizeof(EyeView));
+  a.views = gpuEyeViews(ctx);
   a.noisy = ctx.deviceInput(*this, Slots::ptNoisy);
   a.mask = ctx.deviceInput(*this, Slots::fovMask);
   a.layer = ctx.deviceInput(*this, Slots::fovLayer);
@@ -40,7 +36,7 @@ void PeripheryAccumulationPass::executeGpu(FrameContext& ctx) {
   const PeripheryCounters zero{};
   a.counters = gpu.constants(&zero, sizeof zero);
   a.width = uint32_t(ctx.width);
-  a.viewCount = uint32_t(views.size());
+  a.viewCount = uint32_t(ctx.views.size());
   a.flags =
       (s.demodulate ? TD_PERIPHERY_DEMODULATE : 0u) | (s.fillUnlisted ? TD_PERIPHERY_FILL : 0u);
   a.fromLayer = s.fromLayer;
