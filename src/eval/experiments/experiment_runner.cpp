@@ -222,6 +222,19 @@ int runStaged(const ExperimentRequest& r);
 
 }  // namespace
 
+void applyGpuFields(nlohmann::json& j, const std::string& file, bool hardwareGpu) {
+  if (!j.contains("gpu")) return;
+  const nlohmann::json g = j["gpu"];
+  if (!g.is_object())
+    throw InputError(file, "gpu", "expected an object of the fields a GPU renders with instead");
+  for (auto it = g.begin(); it != g.end(); ++it)
+    if (it.key() == "gpu" || it.key() == "runner" || !j.contains(it.key()))
+      throw InputError(file, "gpu." + it.key(), "not a field of this experiment it could replace");
+  j.erase("gpu");
+  if (hardwareGpu)
+    for (auto it = g.begin(); it != g.end(); ++it) j[it.key()] = it.value();
+}
+
 // Everything is written into a staging folder beside the output folder and moved into it only
 // when the run succeeded: a run that fails, runs out of disk or is stopped leaves nothing behind,
 // and what the output folder held before is replaced file by file, never removed.
@@ -267,6 +280,8 @@ int runStaged(const ExperimentRequest& r) {
   std::ifstream in(file);
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw InputError(file.string(), "", "not a JSON object");
+  const std::shared_ptr<GpuDevice> gpu = defaultRenderDevice();
+  applyGpuFields(j, file.string(), gpu && gpu->info().hardware);
   const std::string runner = j.value("runner", "sweep");
   const Overrides v{r, file};
   // The flags of one runner are an error elsewhere, not silently ignored.

@@ -5,6 +5,7 @@
 // overrides replace the file's settings. `tandem experiment` and the Python module both call it.
 #pragma once
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -32,5 +33,10 @@ std::vector<std::pair<std::string, std::string>> listExperiments();
 std::string experimentOutDir(const ExperimentRequest& r);
 // Runs it; returns the exit status (0 on success). Bad files and overrides throw InputError.
 int runExperiment(const ExperimentRequest& r);
+// The papers' real-time sizes where a GPU renders: an experiment's "gpu" object holds fields of
+// the experiment (its sizes) that replace the file's own when `hardwareGpu` (a CPU, or a CPU
+// Vulkan, keeps the file's). "gpu" is removed either way; a field it names that the experiment
+// lacks is an InputError naming `file` and "gpu.FIELD".
+void applyGpuFields(nlohmann::json& experiment, const std::string& file, bool hardwareGpu);
 
 }  // namespace tandem
