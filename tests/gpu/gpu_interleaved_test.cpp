@@ -1,8 +1,10 @@
-// Interleaved sampling with ray-traced visibility (Foster 2015; Fatahalian et al. 2009) on the
-// GPU against the CPU: interleaved_rt run on both devices from the same frame (the same pairs,
-// tiles and sample layout), for motion blur over an open shutter (the GPU's scene moved to each
-// pair's time), defocus, both, with the schemes, filters and shading switched, a sample mask, and
-// the velocity, view depth and motion buffers the post-process blur and TAA read.
+// Interleaved sampling (Foster 2015; Fatahalian et al. 2009) on the GPU against the CPU:
+// interleaved_rt and interleaved_raster (the compute rasterizer in sample mode) run on both
+// devices from the same frame (the same pairs, tiles and sample layout), for motion blur over an
+// open shutter (the GPU's scene moved to each pair's time), defocus, both, with the schemes,
+// filters, shading and shading rate switched, a sample mask, and the velocity, view depth and
+// motion buffers the post-process blur and TAA read; the motion-blur pipelines on the GPU whole;
+// the accumulation baselines.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +21,7 @@ namespace tandem {
 namespace {
 
 struct Case {
-  std::string scene, what;
+  std::string pipeline, scene, what;
   std::vector<std::string> params;
   bool masked = false;
   std::string output = "hdr";  // "motion": something reads the motion buffer
@@ -30,16 +32,16 @@ void compare(const std::shared_ptr<GpuDevice>& dev, const Case& k) {
   RenderSettings rs{.width = 64, .height = 36};
   rs.shutter = 0.1f;
   const auto load = [&] {
-    Pipeline p = Pipeline::load("interleaved-rt");
+    Pipeline p = Pipeline::load(k.pipeline);
     for (const std::string& q : k.params) p.setParam(q, "test");
     Pipeline alone;
-    alone.name = "interleaved_rt alone";
+    alone.name = k.pipeline + ": its first pass alone";
     alone.passes.push_back(std::move(p.passes.front()));
     alone.output = k.output;
     return alone;
   };
   // Two frames on the CPU (the camera path moving: last frame's camera for the motion buffer).
-  Renderer cpu(scene, Pipeline::load("interleaved-rt"), rs);
+  Renderer cpu(scene, Pipeline::load(k.pipeline), rs);
   CameraDesc cam = defaultCamera(scene);
   cpu.renderFrame(0, cam);
   cam.position = cam.position + Vec3(0.02f, 0.0f, 0.01f);
@@ -90,32 +92,79 @@ void compare(const std::shared_ptr<GpuDevice>& dev, const Case& k) {
     const Buffer& h = g.input("hdr");
     EXPECT_EQ(h.at(2, 2)[0], 0.0f) << k.what;
   }
-  for (const char* q :
-       {"interleaved_rt/passes", "interleaved_rt/samples_per_pixel", "interleaved_rt/shadow_traced",
-        "interleaved_rt/min_similar_time_distance_px"}) {
-    const double cv = c.counter(q, -1);
+  const std::string type =
+      k.pipeline == "interleaved-rt" ? "interleaved_rt/" : "interleaved_raster/";
+  for (const std::string q :
+       {"passes", "samples_per_pixel", "shadow_traced", "min_similar_time_distance_px"}) {
+    const double cv = c.counter(type + q, -1);
     if (cv == -1) continue;
-    EXPECT_NEAR(g.counter(q, -2), cv, 0.01 * std::abs(cv) + 1e-6) << k.what << ": " << q;
+    EXPECT_NEAR(g.counter(type + q, -2), cv, 0.01 * std::abs(cv) + 1e-6) << k.what << ": " << q;
   }
 }
 
-TEST(GpuInterleaved, InterleavedRtMatchesTheCpu) {
+TEST(GpuInterleaved, InterleavedPassesMatchTheCpu) {
   REQUIRE_GPU(dev);
+  const std::string rt = "interleaved-rt", raster = "interleaved-raster";
   const std::vector<Case> cases = {
-      {"interleaved_motion", "motion blur, colored-corner tiles", {}},
-      {"interleaved_defocus",
-       "defocus, Blackman-Harris filter",
+      {rt, "interleaved_motion", "rt: motion blur, colored-corner tiles", {}},
+      {rt,
+       "interleaved_defocus",
+       "rt: defocus, Blackman-Harris filter",
        {"interleaved_rt.filter=blackman_harris", "interleaved_rt.filter_radius=1.5"}},
-      {"interleaved_both",
-       "both, stratified, local shading",
+      {rt,
+       "interleaved_both",
+       "rt: both, stratified, local shading",
        {"interleaved_rt.scheme=stratified", "interleaved_rt.shading=local"}},
-      {"interleaved_motion",
-       "a sample mask, the motion buffer read",
+      {rt,
+       "interleaved_motion",
+       "rt: a sample mask, the motion buffer read",
        {"interleaved_rt.samples=8", "interleaved_rt.spp=2"},
+       true,
+       "motion"},
+      {raster, "interleaved_motion", "raster: motion blur (the scene moved between passes)", {}},
+      {raster,
+       "interleaved_both",
+       "raster: both, random tiles, Blackman-Harris",
+       {"interleaved_raster.scheme=random_tiles", "interleaved_raster.filter=blackman_harris"}},
+      {raster,
+       "interleaved_motion",
+       "raster: a sharp image shaded once a pixel and surface (MSAA-style)",
+       {"interleaved_raster.mode=motion_blur", "interleaved_raster.shutter_time=0.5",
+        "interleaved_raster.shading_rate=pixel"}},
+      {raster,
+       "interleaved_motion",
+       "raster: a sample mask, the motion buffer read",
+       {"interleaved_raster.samples=8", "interleaved_raster.spp=2"},
        true,
        "motion"},
   };
   for (const Case& k : cases) compare(dev, k);
+  expectNoValidationMessages(*dev);
+}
+
+// The motion-blur pipelines on the GPU whole over two frames (TAA's history kept on the device):
+// the CPU's image.
+TEST(GpuInterleaved, MotionBlurPipelinesRunOnTheGpuWhole) {
+  REQUIRE_GPU(dev);
+  const Scene scene = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/interleaved_motion.json");
+  for (const char* pipeline : {"postfx-motion-blur", "hybrid-motion-blur"}) {
+    RenderSettings rs{.width = 64, .height = 36};
+    rs.shutter = 0.1f;
+    Renderer cpu(scene, Pipeline::load(pipeline), rs);
+    rs.gpu = dev;
+    Renderer gpu(scene, Pipeline::load(pipeline), rs);
+    for (int f = 0; f < 2; ++f) {
+      const std::string at = std::string(pipeline) + ", frame " + std::to_string(f);
+      cpu.renderFrame(f, defaultCamera(scene));
+      const FrameTimings ft = gpu.renderFrame(f, defaultCamera(scene));
+      size_t hosts = 0;
+      for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
+      EXPECT_EQ(hosts, gpu.pipeline().passes.size()) << at << ": a pass ran on the CPU";
+      const Buffer &c = cpu.context().input("hdr"), &g = gpu.context().input("hdr");
+      EXPECT_GE(psnr(c, g, 1.0), 45.0) << at;
+      EXPECT_GE(agreement(c, g, 1e-3f), 0.99) << at;
+    }
+  }
   expectNoValidationMessages(*dev);
 }
 

@@ -28,6 +28,9 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Car
 };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Out { float v[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Words { uint v[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer Keys {
+  uint64_t v[];
+};
 
 InterleavedArgs A;
 
@@ -39,10 +42,10 @@ InterleavedArgs A;
 const uint kRowEntries = 64u * 64u;  // entries per row of groups (the host's dispatch)
 
 vec2 samplePos(uint id) {
-  Out l = Out(A.sampleData);
-  return vec2(l.v[3u * id], l.v[3u * id + 1u]);
+  Out l = Out(A.samplePos);
+  return vec2(l.v[2u * id], l.v[2u * id + 1u]);
 }
-uint samplePair(uint id) { return floatBitsToUint(Out(A.sampleData).v[3u * id + 2u]); }
+uint samplePair(uint id) { return Words(A.samplePair).v[id]; }
 
 // Step 0 (markActive): a sample is needed when a mask pixel lies within the filter's reach of
 // its pixel.
@@ -61,13 +64,30 @@ void shade(uint k) {
   if (k >= p.count) return;
   const uint id = Words(A.ids).v[p.begin + k];
   if (!activeSample(id)) return;
+  if ((A.flags & TD_IL_PER_PIXEL) != 0u && Words(A.rep).v[id] != id) return;
   const IlPair pair = Pairs(A.pairs).v[p.pair];
   vec3 o, d;
   float tnear;
   cameraRayAt(pair.camera, samplePos(id), o, d, tnear);
   TraceHit h;
-  ++rays;
-  const bool found = traverse(o, d, 0.0, 1e30, TRACE_FILTERED | TRACE_CULL_BACK, h);
+  bool found;
+  if ((A.flags & TD_IL_RASTER) != 0u) {
+    // The rasterizer's triangle, intersected by the sample's camera ray (as the CPU resolves it).
+    const uint64_t key = Keys(A.visibility).v[id];
+    found = key != 0ul;
+    if (found) {
+      const uint triangle = ~uint(key & 0xfffffffful);
+      h.object = objectOfTriangle(triangle, uint(A.objectCount));
+      const GpuObject ob = Objects(S.objects).o[h.object];
+      h.prim = int(triangle - ob.firstIndex / 3u);
+      const uvec3 k = triangleVertices(ob, h.prim);
+      intersectTriangle(o, d, vertexPosition(k.x), vertexPosition(k.y), vertexPosition(k.z), h.t,
+                        h.u, h.v);
+    }
+  } else {
+    ++rays;
+    found = traverse(o, d, 0.0, 1e30, TRACE_FILTERED | TRACE_CULL_BACK, h);
+  }
   vec3 c;
   Out position = Out(A.position);
   if (!found) {
@@ -197,9 +217,47 @@ void motionPixel(int px, int py) {
   }
 }
 
+// findRepresentatives: the first of the pixel's samples (in order) that sees the same triangle
+// (or the sky) at the same pair, or at the same time when the lens does not vary.
+void represent(uint id) {
+  const int sw = A.width * A.sx;
+  const int px = int(id % uint(sw)) / A.sx, py = int(id / uint(sw)) / A.sy;
+  Keys keys = Keys(A.visibility);
+  Pairs pairs = Pairs(A.pairs);
+  const uint triangle = uint(keys.v[id] & 0xfffffffful), j = samplePair(id);
+  const bool lens = (A.flags & TD_IL_LENS) != 0u;
+  uint rep = id;
+  bool done = false;  // reached id, or found its representative
+  for (int sy = 0; sy < A.sy && !done; ++sy)
+    for (int sx = 0; sx < A.sx && !done; ++sx) {
+      const uint q = uint(py * A.sy + sy) * uint(sw) + uint(px * A.sx + sx);
+      done = q == id;
+      if (done) break;
+      const uint jq = samplePair(q);
+      if (uint(keys.v[q] & 0xfffffffful) == triangle &&
+          (jq == j || (!lens && pairs.v[jq].tau == pairs.v[j].tau))) {
+        rep = q;
+        done = true;
+      }
+    }
+  Words(A.rep).v[id] = rep;
+}
+
 void main() {
   A = ArgsRef(p.args).a;
   const uint k = gl_GlobalInvocationID.y * kRowEntries + gl_GlobalInvocationID.x;
+  if (p.stage == TD_IL_REPRESENT || p.stage == TD_IL_COPY) {
+    if (k >= p.count) return;
+    if (p.stage == TD_IL_REPRESENT) {
+      represent(k);
+    } else {
+      const uint r = Words(A.rep).v[k];
+      Out colour = Out(A.colour);
+      if (r != k)
+        for (uint c = 0u; c < 3u; ++c) colour.v[3u * k + c] = colour.v[3u * r + c];
+    }
+    return;
+  }
   if (p.stage == TD_IL_SHADE) {
     useScene(A.scene);
     if (A.shadowMaps != 0ul) useShadowMaps(A.shadowMaps);

@@ -31,6 +31,12 @@ struct RasterArgs {
   GpuCamera camera;       // the pixel rays of alpha-tested texels
   TD_UINT triangles;      // the drawn objects' together
   TD_UINT objectCount, queueCapacity, bothFaces, spanCount, pad;
+  // Sample mode (interleaved sampling: Rasterizer::renderSamples) when sampleIds != 0: the
+  // visibility buffer is indexed by sample id, and a triangle is tested at the samples of the
+  // cells its box touches, the cell's [sampleStart[c], sampleStart[c + 1]) of sampleIds, each at
+  // its 8-bit fixed-point position (sampleFixed: x, y) with its depth at samplePos (x, y).
+  TD_ADDR sampleStart, sampleIds, sampleFixed, samplePos;
+  TD_INT cellW, cellH, cellsX, cellsY;
 };
 
 // A set-up triangle (Rasterizer::SetupTriangle) whose pixel box is large: drawn by a workgroup.

@@ -26,6 +26,15 @@ void main() {
   const int lx = int(gl_LocalInvocationID.x), ly = int(gl_LocalInvocationID.y);
   for (uint i = gl_WorkGroupID.x; i < n; i += gl_NumWorkGroups.x) {
     const RasterTriangle t = q.t[i];
+    if (a.sampleIds != 0ul) {  // sample mode: 8 x 8 cells at a time
+      const ivec4 c = cellBox(t, a);
+      for (int by = c.y; by <= c.w; by += 8)
+        for (int bx = c.x; bx <= c.z; bx += 8) {
+          const int cx = bx + lx, cy = by + ly;
+          if (cx <= c.z && cy <= c.w) drawCell(t, a, cx, cy);
+        }
+      continue;
+    }
     for (int by = t.py0; by <= t.py1; by += 8)
       for (int bx = t.px0; bx <= t.px1; bx += 8) {
         const int px = bx + lx, py = by + ly;

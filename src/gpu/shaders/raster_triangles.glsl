@@ -64,6 +64,8 @@ int toFixed(float v) {
   return int(f + (f >= 0.0 ? 0.5 : -0.5));
 }
 
+bool anywhere = false;  // sample mode (RasterArgs::sampleIds)
+
 // The clipped polygon (at most 9 corners) and its corners on the screen.
 vec4 poly[12];
 int X[12], Y[12];
@@ -119,14 +121,34 @@ bool setUpPiece(int a, int b, int c, int W, int H, out RasterTriangle t) {
   t.yRef = SY[a];
   const int minX = min(t.x[0], min(t.x[1], t.x[2])), maxX = max(t.x[0], max(t.x[1], t.x[2]));
   const int minY = min(t.y[0], min(t.y[1], t.y[2])), maxY = max(t.y[0], max(t.y[1], t.y[2]));
-  t.px0 = max(0, (minX - 128 + 255) >> 8);
-  t.px1 = min(W - 1, (maxX - 128) >> 8);
-  t.py0 = max(0, (minY - 128 + 255) >> 8);
-  t.py1 = min(H - 1, (maxY - 128) >> 8);
+  if (anywhere) {  // sample mode: the pixels the box touches (samples lie anywhere in them)
+    t.px0 = max(0, minX >> 8);
+    t.px1 = min(W - 1, maxX >> 8);
+    t.py0 = max(0, minY >> 8);
+    t.py1 = min(H - 1, maxY >> 8);
+  } else {
+    t.px0 = max(0, (minX - 128 + 255) >> 8);
+    t.px1 = min(W - 1, (maxX - 128) >> 8);
+    t.py0 = max(0, (minY - 128 + 255) >> 8);
+    t.py1 = min(H - 1, (maxY - 128) >> 8);
+  }
   return t.px0 <= t.px1 && t.py0 <= t.py1;
 }
 
+// The work of drawing a box: its pixels, or in sample mode its cells.
+int boxSize(RasterTriangle t, RasterArgs a) {
+  if (!anywhere) return (t.px1 - t.px0 + 1) * (t.py1 - t.py0 + 1);
+  const ivec4 c = cellBox(t, a);
+  return (c.z - c.x + 1) * (c.w - c.y + 1);
+}
+
 void drawBox(RasterTriangle t, RasterArgs a) {
+  if (anywhere) {
+    const ivec4 c = cellBox(t, a);
+    for (int cy = c.y; cy <= c.w; ++cy)
+      for (int cx = c.x; cx <= c.z; ++cx) drawCell(t, a, cx, cy);
+    return;
+  }
   for (int py = t.py0; py <= t.py1; ++py)
     for (int px = t.px0; px <= t.px1; ++px) drawPixel(t, a, px, py);
 }
@@ -175,7 +197,7 @@ void rasterize(uint triangle, int object, RasterArgs a) {
     t.alphaMask = (m.flags & TD_MAT_ALPHA_MASK) != 0u ? 1u : 0u;
     t.pad = 0u;
     atomicAdd(groupCounts[TD_RASTER_BINNED], 1u);
-    if ((t.px1 - t.px0 + 1) * (t.py1 - t.py0 + 1) > kDirectPixels) {
+    if (boxSize(t, a) > kDirectPixels) {
       RasterQueue q = RasterQueue(a.queue);
       const uint slot = atomicAdd(q.count, 1u);
       if (slot < a.queueCapacity) {
@@ -193,6 +215,7 @@ void main() {
   barrier();
   const RasterArgs a = RasterArgsRef(args).a;
   useScene(a.scene);
+  anywhere = a.sampleIds != 0ul;
   const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
   const uint i = group * 64u + gl_LocalInvocationIndex;
   if (i < a.triangles) {

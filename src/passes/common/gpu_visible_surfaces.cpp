@@ -62,6 +62,16 @@ uint64_t recordRasterizer(GpuFrame& gpu, const Scene& scene, uint64_t sceneAddre
   a.objectCount = uint32_t(scene.objects.size());
   a.queueCapacity = queue.capacity;
   a.bothFaces = view.bothFaces ? 1 : 0;
+  if (const RasterSamples* r = view.samples) {
+    a.sampleStart = r->start;
+    a.sampleIds = r->ids;
+    a.sampleFixed = r->fixedPos;
+    a.samplePos = r->pos;
+    a.cellW = r->cellW;
+    a.cellH = r->cellH;
+    a.cellsX = r->cellsX;
+    a.cellsY = r->cellsY;
+  }
   const uint64_t args = gpu.constants(&a, sizeof a);
   const GpuKernel& setup = gpu.device().info().float64
                                ? gpu.kernel("raster_triangles", kRasterTrianglesSpv,

@@ -33,12 +33,19 @@ RasterQueue rasterQueue(GpuFrame& gpu, const std::string& key, size_t triangles)
 // One view for the compute rasterizer: the objects drawn (draw[o] != 0), the camera (its pixel
 // rays test alpha masks at `pixelSpread`'s texture level), the visibility buffer drawn into
 // (cleared, or holding what the view is drawn over).
+// Sample mode (interleaved sampling): one pass's samples, on the device (raster_args.h): the
+// visibility buffer is then indexed by sample id.
+struct RasterSamples {
+  uint64_t start = 0, ids = 0, fixedPos = 0, pos = 0;
+  int cellW = 1, cellH = 1, cellsX = 0, cellsY = 0;
+};
 struct RasterView {
   const Camera* camera = nullptr;
   float pixelSpread = 0;
   const std::vector<uint32_t>* draw = nullptr;
   const GpuBuffer* visibility = nullptr;
   bool bothFaces = false;
+  const RasterSamples* samples = nullptr;  // null: every pixel centre
 };
 // Records the compute rasterizer's set-up and large-triangle kernels for `view` over the drawn
 // objects' triangles, with `queue`: afterwards each pixel of the visibility buffer holds the

@@ -28,6 +28,7 @@
 #pragma once
 #include <memory>
 
+#include "core/buffer.h"
 #include "passes/common/whitted_settings.h"
 #include "pipeline/param_table.h"
 #include "raster/rasterizer.h"
@@ -150,6 +151,10 @@ class InterleavedPass : public SettingsPass<InterleavedSettings> {
   };
   MotionCarry motionCarry(const FrameContext& ctx, const std::vector<float>& taus, const View& v,
                           bool motion) const;
+  // Both passes' frame on the GPU (interleaved_gpu.cpp): visibility by the compute rasterizer
+  // (interleaved_raster) or traced (interleaved_rt, !tracesPrimaryRays()), shading, resolve,
+  // motion. Returns the rasterizer's counters, one a pair and view, read after the submission.
+  std::vector<const uint32_t*> renderOnGpu(FrameContext& ctx);
   // For the viewer, when something reads them: sample_time_lens and tile_layout (the host's).
   void writeViewerBuffers(FrameContext& ctx, const Pairs& p, const View& v);
 
@@ -173,6 +178,8 @@ class InterleavedPass : public SettingsPass<InterleavedSettings> {
 
   std::unique_ptr<SampleLayout> layout_;
   uint64_t layoutKey_ = 0, layoutVersion_ = 0;
+  std::vector<Buffer> packed_;  // the layout as the kernels read it (renderOnGpu)
+  uint64_t packedVersion_ = 0;
   VisibilityBuffer vis_;
   std::vector<Vec3> colour_, position_;  // per sample: shaded colour, surface point
   std::vector<uint8_t> active_;

@@ -1,20 +1,25 @@
-// interleaved_rt on the GPU (shaders/interleaved.comp): the CPU's pairs, tiles and sample layout
-// (the layout moved to the device when it changes), each pair's samples traced and shaded with
-// the scene at the pair's time (the GPU's BVH has no time: between pairs of a shutter with moving
-// objects the host moves them and refits, one submission a pair), then the resolve and the
-// motion buffers.
+// interleaved_rt and interleaved_raster on the GPU (shaders/interleaved.comp): the CPU's pairs,
+// tiles and sample layout (the layout moved to the device when it changes); for the raster, each
+// pair's samples drawn by the compute rasterizer in sample mode; each pair's samples traced (rt)
+// and shaded with the scene at the pair's time (the GPU's BVH has no time: between pairs of a
+// shutter with moving objects the host moves them and refits, one submission a pair), then the
+// resolve and the motion buffers.
 #include <cstring>
 #include <vector>
 
 #include "gpu/gpu_camera.h"
 #include "gpu/shaders/interleaved_args.h"
 #include "gpu/shaders/interleaved_spv.h"
+#include "gpu/shaders/raster_args.h"
 #include "gpu/shaders/whitted_args.h"
 #include "passes/common/gpu_shadow_maps.h"
+#include "passes/common/gpu_visible_surfaces.h"
 #include "passes/common/gpu_whitted.h"
+#include "passes/interleaved/interleaved_raster.h"
 #include "passes/interleaved/interleaved_rt.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
+#include "raster/rasterizer.h"
 #include "scene/scene.h"
 
 namespace tandem {
@@ -25,23 +30,32 @@ void putMatrix(float out[16], const Mat4& m) {
   std::memcpy(out, &m.m[0][0], 16 * sizeof(float));
 }
 
-// The layout as the kernels read it: per sample x, y and the pair's bits; the samples in pair
-// order.
-void packLayout(const SampleLayout& L, Buffer& layout, Buffer& ids) {
-  layout = Buffer(int(L.sampleCount()), 1, 3);
-  for (size_t i = 0; i < L.sampleCount(); ++i) {
+// The layout as the kernels read it: per sample its position (float and fixed point) and pair;
+// the samples in pair order; each pair's cells' starts.
+void packLayout(const SampleLayout& L, std::vector<Buffer>& out) {
+  out.assign(5, Buffer());
+  const size_t n = L.sampleCount();
+  out[0] = Buffer(int(n), 1, 2);  // pos
+  out[1] = Buffer(int(n), 1, 1);  // pair
+  out[2] = Buffer(int(n), 1, 2);  // fixed
+  for (size_t i = 0; i < n; ++i) {
     const uint32_t pair = L.pair[i];
-    layout.data[3 * i] = L.pos[i].x;
-    layout.data[3 * i + 1] = L.pos[i].y;
-    std::memcpy(&layout.data[3 * i + 2], &pair, sizeof pair);
+    out[0].data[2 * i] = L.pos[i].x;
+    out[0].data[2 * i + 1] = L.pos[i].y;
+    std::memcpy(&out[1].data[i], &pair, sizeof pair);
+    std::memcpy(&out[2].data[2 * i], &L.fx[i], sizeof(int32_t));
+    std::memcpy(&out[2].data[2 * i + 1], &L.fy[i], sizeof(int32_t));
   }
-  ids = Buffer(int(L.ids.size()), 1, 1);
-  std::memcpy(ids.data.data(), L.ids.data(), L.ids.size() * sizeof(uint32_t));
+  out[3] = Buffer(int(L.ids.size()), 1, 1);
+  std::memcpy(out[3].data.data(), L.ids.data(), L.ids.size() * sizeof(uint32_t));
+  out[4] = Buffer(int(L.cellStart.size()), 1, 1);
+  std::memcpy(out[4].data.data(), L.cellStart.data(), L.cellStart.size() * sizeof(uint32_t));
 }
+constexpr const char* kLayoutParts[5] = {":pos", ":pair", ":fixed", ":ids", ":start"};
 
 }  // namespace
 
-void InterleavedRTPass::executeGpu(FrameContext& ctx) {
+std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
   GpuFrame& gpu = *ctx.gpu;
   GpuCommands& cmd = gpu.commands();
   const InterleavedSettings& s = settings();
@@ -49,6 +63,8 @@ void InterleavedRTPass::executeGpu(FrameContext& ctx) {
   const TileShape& shape = p.tiles->shape;
   const int n = s.samples;
   const bool whittedShading = s.shading == InterleavedSettings::Shading::Whitted;
+  const bool raster = !tracesPrimaryRays();
+  const bool perPixel = s.shadingRate == InterleavedSettings::ShadingRate::Pixel;
   InterleavedArgs a{};
   const ShadowMaps* maps =
       whittedShading ? shadowMapsFor(ctx, *this, s.whitted, nullptr, true) : nullptr;
@@ -58,7 +74,9 @@ void InterleavedRTPass::executeGpu(FrameContext& ctx) {
   a.maxDepth = ws.maxDepth;
   a.importanceCutoff = ws.importanceCutoff;
   a.shadowCull = ws.shadowCull;
-  a.flags = (whittedShading ? TD_IL_WHITTED : 0u) | (s.time() ? TD_IL_TIME : 0u);
+  a.flags = (whittedShading ? TD_IL_WHITTED : 0u) | (s.time() ? TD_IL_TIME : 0u) |
+            (raster ? TD_IL_RASTER : 0u) | (perPixel ? TD_IL_PER_PIXEL : 0u) |
+            (s.lens() ? TD_IL_LENS : 0u);
   a.hdr = ctx.deviceOutput(*this, Slots::hdr);
   a.velocity = ctx.deviceOutput(*this, Slots::velocity);
   a.depth = ctx.deviceOutput(*this, Slots::viewDepth);
@@ -88,26 +106,32 @@ void InterleavedRTPass::executeGpu(FrameContext& ctx) {
   bool moving = false;
   for (const FrameObject& fo : ctx.frame.objects) moving |= fo.stepPositions.size() >= 2;
   moving = moving && s.time();
+  std::vector<uint64_t> rasterCounts;  // the rasterizer's counters, a pair a view
   const GpuKernel& k = gpu.kernel("interleaved", kInterleavedSpv, sizeof(kInterleavedSpv) / 4,
                                   sizeof(InterleavedPush));
   const auto rows = [](uint64_t entries) { return uint32_t((entries + 4095) / 4096); };
   for (const View& v : ctx.views) {
     const int W = v.width(), H = v.height();
     const SampleLayout& L = layoutFor(ctx, *p.tiles, W, H);
-    if (layoutVersion() != packedVersion_) {
-      packLayout(L, layoutBuffer_, idsBuffer_);
+    if (packedVersion_ != layoutVersion() || packed_.size() != 5) {
+      packLayout(L, packed_);
       packedVersion_ = layoutVersion();
-      gpu.hostWrote(name() + ":layout");
-      gpu.hostWrote(name() + ":ids");
+      for (const char* part : kLayoutParts) gpu.hostWrote(name() + part);
     }
-    gpu.upload(name() + ":layout", layoutBuffer_);
-    gpu.upload(name() + ":ids", idsBuffer_);
-    a.sampleData = gpu.read(name() + ":layout").address;
-    a.ids = gpu.read(name() + ":ids").address;
+    uint64_t parts[5];
+    for (int b = 0; b < 5; ++b) {
+      const std::string key = name() + kLayoutParts[b];
+      gpu.upload(key, packed_[size_t(b)]);
+      parts[b] = gpu.read(key).address;
+    }
+    a.samplePos = parts[0];
+    a.samplePair = parts[1];
+    a.ids = parts[3];
     const size_t samples = L.sampleCount();
     a.colour = gpu.scratch(name() + ":colour", samples * 3 * sizeof(float)).address;
     a.position = gpu.scratch(name() + ":position", samples * 3 * sizeof(float)).address;
     a.object = gpu.scratch(name() + ":object", samples * sizeof(uint32_t)).address;
+    a.rep = perPixel ? gpu.scratch(name() + ":rep", samples * sizeof(uint32_t)).address : 0;
     a.viewX = v.x, a.viewY = v.y, a.width = W, a.height = H;
     a.spread = ctx.pixelSpread(v) / std::sqrt(float(s.spp)) * s.textureFootprint;
     const std::vector<Camera> cams = pairCameras(v, p);
@@ -132,11 +156,54 @@ void InterleavedRTPass::executeGpu(FrameContext& ctx) {
     a.carry = gpu.constants(carry.data(), carry.size() * sizeof(IlCarry));
     putMatrix(a.openViewProj, v.camera.viewProjUnjittered);
     putMatrix(a.closeViewProj, v.shutterCamera.viewProjUnjittered);
-    for (int j = 0; j < n; ++j) {
-      a.scene = gpu.scene(moving ? ctx.frame.at(p.taus[size_t(j)]) : ctx.frame).sceneAddress();
+    const auto sceneAt = [&](int j) {
+      return gpu.scene(moving ? ctx.frame.at(p.taus[size_t(j)]) : ctx.frame).sceneAddress();
+    };
+    if (raster) {  // 1. every pair's samples drawn (the CPU draws all before shading)
+      const GpuBuffer& vis = gpu.scratch(name() + ":visibility", samples * sizeof(uint64_t));
+      a.visibility = vis.address;
+      cmd.fill(vis, 0, samples * sizeof(uint64_t), 0);
+      cmd.barrier();
+      size_t triangles = 0;
+      for (const Object& o : ctx.scene->objects)
+        triangles += ctx.scene->meshes[size_t(o.mesh)].triangleCount();
+      const RasterQueue queue = rasterQueue(gpu, name() + ":queue", triangles);
+      std::vector<uint32_t> draw(std::max<size_t>(ctx.frame.objects.size(), 1), 0);
+      for (int j = 0; j < n; ++j) {
+        const uint64_t scene = sceneAt(j);
+        for (size_t o = 0; o < ctx.frame.objects.size(); ++o)
+          draw[o] =
+              boundsOutsideFrustum(cams[size_t(j)].viewProj, ctx.frame.objects[o].bounds) ? 0 : 1;
+        RasterSamples rs;
+        rs.start = parts[4] + uint64_t(j) * uint64_t(L.cells() + 1) * sizeof(uint32_t);
+        rs.ids = parts[3];
+        rs.fixedPos = parts[2];
+        rs.pos = parts[0];
+        rs.cellW = L.shape.tw;
+        rs.cellH = L.shape.th;
+        rs.cellsX = L.cellsX;
+        rs.cellsY = L.cellsY;
+        rasterCounts.push_back(recordRasterizer(
+            gpu, *ctx.scene, scene, queue,
+            RasterView{&cams[size_t(j)], ctx.pixelSpread(v), &draw, &vis, false, &rs}));
+        cmd.barrier();
+      }
+      if (perPixel) {
+        InterleavedPush push{gpu.constants(&a, sizeof a), TD_IL_REPRESENT, 0, 0, uint32_t(samples)};
+        cmd.dispatch(k, 64, rows(samples), 1, &push);
+        cmd.barrier();
+      }
+    }
+    for (int j = 0; j < n; ++j) {  // 2. each pair's samples traced (rt) and shaded
+      a.scene = sceneAt(j);
       const uint32_t begin = L.passBegin(j), count = L.passEnd(j) - begin;
       InterleavedPush push{gpu.constants(&a, sizeof a), TD_IL_SHADE, uint32_t(j), begin, count};
       if (count > 0) gpu.dispatchInterruptibly(k, 64, rows(count), &push);
+    }
+    if (perPixel) {
+      cmd.barrier();
+      InterleavedPush push{gpu.constants(&a, sizeof a), TD_IL_COPY, 0, 0, uint32_t(samples)};
+      cmd.dispatch(k, 64, rows(samples), 1, &push);
     }
     cmd.barrier();
     InterleavedPush push{gpu.constants(&a, sizeof a), TD_IL_RESOLVE, 0, 0, 0};
@@ -152,6 +219,31 @@ void InterleavedRTPass::executeGpu(FrameContext& ctx) {
   gpu.afterSubmit([this, &ctx, counts, pixels, whittedShading] {
     ctx.passRays += counts[TD_COUNT_RAYS];
     if (whittedShading) reportGpuShadows(ctx, *this, counts, pixels);
+  });
+  std::vector<const uint32_t*> out;
+  for (uint64_t c : rasterCounts) out.push_back(static_cast<const uint32_t*>(gpu.constantsData(c)));
+  return out;
+}
+
+void InterleavedRTPass::executeGpu(FrameContext& ctx) {
+  renderOnGpu(ctx);
+}
+
+void InterleavedRasterPass::executeGpu(FrameContext& ctx) {
+  const std::vector<const uint32_t*> counts = renderOnGpu(ctx);
+  ctx.gpu->afterSubmit([this, &ctx, counts] {
+    double setUp = 0, most = 0, least = 1e300;
+    for (const uint32_t* c : counts) {
+      const double binned = c[TD_RASTER_BINNED];
+      setUp += binned;
+      most = std::max(most, binned);
+      least = std::min(least, binned);
+    }
+    using C = InterleavedRasterCounters;
+    ctx.report(*this, C::setUpPerPass, counts.empty() ? 0.0 : setUp / double(counts.size()));
+    ctx.report(*this, C::setUpMax, most);
+    ctx.report(*this, C::setUpMin, std::min(least, most));
+    ctx.report(*this, C::staticSetUpOnce, 0.0);  // every pass draws every object
   });
 }
 

@@ -22,6 +22,9 @@ class InterleavedRasterPass : public InterleavedPass {
            "whose tile slot carries it (Foster 2015)";
   }
   std::vector<CounterDesc> counters() const override;
+  // The compute rasterizer in sample mode, each pass drawing every object (no static share).
+  bool hasGpu() const override { return true; }
+  void executeGpu(FrameContext& ctx) override;
 
  protected:
   void visibility(FrameContext& ctx, const SampleLayout& layout, const std::vector<Camera>& cams,

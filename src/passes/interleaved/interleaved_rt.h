@@ -1,7 +1,6 @@
 // interleaved_rt: the visibility of interleaved sampling by ray tracing, each sample's primary ray
 // at its pair's time and lens point (interleaved.h: what the samples are).
 #pragma once
-#include "core/buffer.h"
 #include "passes/interleaved/interleaved.h"
 
 namespace tandem {
@@ -26,10 +25,6 @@ class InterleavedRTPass : public InterleavedPass {
                   const std::vector<float>& taus, const uint8_t* active,
                   VisibilityBuffer& vis) override;
   bool tracesPrimaryRays() const override { return true; }
-
- private:
-  Buffer layoutBuffer_, idsBuffer_;  // the sample layout as the kernels read it
-  uint64_t packedVersion_ = 0;
 };
 
 }  // namespace tandem
