@@ -60,8 +60,11 @@ row rt-dof scenes/dof_fg.json
 # Peres 2022's foveated stereo path tracing (both eyes, W x H each), every pass on the GPU.
 row foveated-base scenes/foveated_pink_room.json
 row foveated-nh3ld-temporal scenes/foveated_pink_room.json
-# Interleaved sampling with ray-traced visibility, the motion-blur baseline, the post-process.
+# Interleaved sampling (traced and rasterized), the motion-blur baseline, the post-process, the
+# hybrid.
 row interleaved-rt scenes/interleaved_motion.json --shutter 0.1
+row interleaved-raster scenes/interleaved_motion.json --shutter 0.1
+row postfx-motion-blur scenes/interleaved_motion.json --shutter 0.1
 row accumulation-motion-blur scenes/interleaved_motion.json --shutter 0.1
 row hybrid-motion-blur scenes/interleaved_motion.json --shutter 0.1
 

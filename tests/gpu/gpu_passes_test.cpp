@@ -112,8 +112,8 @@ TEST(GpuTonemap, MatchesTheCpuPassValueForValue) {
 // Whole pipelines on the GPU, and with some passes there, give the CPU's image on the built-in
 // scenes (PSNR >= 45 dB, as every deterministic GPU pass must), and each buffer crosses once a
 // frame, as its own timing row with its bytes: `deferred` runs there whole (only its output comes
-// back); `interleaved-raster` rasterizes its sample sets on the CPU (interleaved_raster has no GPU
-// version yet) and tonemaps on the GPU (hdr goes up).
+// back); `interleaved-rt` with `shading_rate = pixel` (which its GPU version leaves to the CPU)
+// traces on the CPU and tonemaps on the GPU (hdr goes up).
 TEST(GpuPipeline, PipelinesMatchTheCpuAndMoveEachBufferOnce) {
   REQUIRE_GPU(dev);
   for (const char* name : {"cornell", "spheres", "atrium"})
@@ -121,12 +121,17 @@ TEST(GpuPipeline, PipelinesMatchTheCpuAndMoveEachBufferOnce) {
       Scene scene = loadScene(name);
       const CameraDesc cam = defaultCamera(scene);
       RenderSettings rs{.width = 160, .height = 90};
-      const auto pipeline = [&] { return Pipeline::load(mixed ? "interleaved-raster" : "deferred"); };
+      const auto pipeline = [&] {
+        Pipeline p = Pipeline::load(mixed ? "interleaved-rt" : "deferred");
+        if (mixed) p.setParam("interleaved_rt.shading_rate=pixel", "test");
+        return p;
+      };
       Renderer cpu(scene, pipeline(), rs);
       rs.gpu = dev;
       Renderer gpu(scene, pipeline(), rs);
       gpu.context().keepAllOutputs = false;  // as render and bench: only the output comes back
-      const std::string what = std::string(name) + (mixed ? ", interleaved-raster" : ", deferred");
+      const std::string what =
+          std::string(name) + (mixed ? ", interleaved-rt per pixel" : ", deferred");
       for (int f = 0; f < 2; ++f) {
         cpu.renderFrame(f, cam);
         const FrameTimings ft = gpu.renderFrame(f, cam);
