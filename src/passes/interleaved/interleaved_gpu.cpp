@@ -53,6 +53,88 @@ void packLayout(const SampleLayout& L, std::vector<Buffer>& out) {
 }
 constexpr const char* kLayoutParts[5] = {":pos", ":pair", ":fixed", ":ids", ":start"};
 
+// The shading's arguments: Whitted's settings and the frame's shadow maps on the device.
+void shadingArgs(FrameContext& ctx, const InterleavedPass& pass, InterleavedArgs& a) {
+  const InterleavedSettings& s = pass.settings();
+  const bool whittedShading = s.shading == InterleavedSettings::Shading::Whitted;
+  const ShadowMaps* maps =
+      whittedShading ? shadowMapsFor(ctx, pass, s.whitted, nullptr, true) : nullptr;
+  a.shadowMaps = maps ? gpuShadowMaps(ctx, *maps) : 0;
+  const WhittedSettings ws = s.whitted.settings();
+  a.whittedFlags = gpuWhittedFlags(ws, maps != nullptr);
+  a.maxDepth = ws.maxDepth;
+  a.importanceCutoff = ws.importanceCutoff;
+  a.shadowCull = ws.shadowCull;
+  a.flags |= (whittedShading ? TD_IL_WHITTED : 0u) | (s.time() ? TD_IL_TIME : 0u) |
+             (s.lens() ? TD_IL_LENS : 0u);
+}
+
+// The resolve's filter: its reach and its 1D weight, tabulated as InterleavedPass::resolve
+// tabulates it.
+void filterArgs(GpuFrame& gpu, const InterleavedSettings& s, InterleavedArgs& a) {
+  a.reach = int(std::ceil(s.filterRadius - 0.5f));
+  a.radius = s.filterRadius;
+  std::vector<float> table(TD_IL_TABLE + 2);
+  const bool bh = s.filter == InterleavedSettings::Filter::BlackmanHarris;
+  for (int i = 0; i <= TD_IL_TABLE + 1; ++i)
+    table[size_t(i)] = i > TD_IL_TABLE ? 0.0f : bh ? blackmanHarris(float(i) / TD_IL_TABLE) : 1.0f;
+  a.weights = gpu.constants(table.data(), table.size() * sizeof(float));
+  a.toTable = float(TD_IL_TABLE) / s.filterRadius;
+}
+
+// Each pair's constants for view v (IlPair[n] and IlCarry[n * objects] into `a`): its camera
+// and time, and for motion its cameras of this and last frame and its objects' carry matrices.
+void fillPairs(GpuFrame& gpu, const std::vector<float>& taus, const std::vector<Camera>& cams,
+               const std::vector<std::vector<std::pair<Mat4, Mat4>>>& carryTo,
+               const std::vector<std::vector<Mat4>>& carryPrev, const std::vector<Camera>& nowCams,
+               const std::vector<Camera>& prevCams, size_t objects, InterleavedArgs& a) {
+  const size_t n = taus.size();
+  std::vector<IlPair> pairs(n);
+  std::vector<IlCarry> carry(n * objects);
+  for (size_t j = 0; j < n; ++j) {
+    pairs[j].camera = gpuCamera(cams[j], 0.0f);
+    pairs[j].tau = taus[j];
+    if (a.motion) {
+      putMatrix(pairs[j].nowViewProj, nowCams[j].viewProjUnjittered);
+      putMatrix(pairs[j].prevViewProj, prevCams[j].viewProjUnjittered);
+    }
+    for (size_t o = 0; o < carryTo[j].size(); ++o) {
+      IlCarry& c = carry[j * objects + o];
+      putMatrix(c.open, carryTo[j][o].first);
+      putMatrix(c.close, carryTo[j][o].second);
+      putMatrix(c.prev, carryPrev[j][o]);
+    }
+  }
+  a.pairs = gpu.constants(pairs.data(), pairs.size() * sizeof(IlPair));
+  a.carry = gpu.constants(carry.data(), carry.size() * sizeof(IlCarry));
+}
+
+// Pass j's samples drawn by the compute rasterizer in sample mode into `vis` (the scene at
+// `sceneAddress`); the address of its counters.
+uint64_t drawPassSamples(FrameContext& ctx, const SampleLayout& L, const uint64_t parts[5], int j,
+                         const Camera& cam, uint64_t sceneAddress, float pixelSpread,
+                         const GpuBuffer& vis, const std::string& queueKey) {
+  GpuFrame& gpu = *ctx.gpu;
+  size_t triangles = 0;
+  for (const Object& o : ctx.scene->objects)
+    triangles += ctx.scene->meshes[size_t(o.mesh)].triangleCount();
+  const RasterQueue queue = rasterQueue(gpu, queueKey, triangles);
+  std::vector<uint32_t> draw(std::max<size_t>(ctx.frame.objects.size(), 1), 0);
+  for (size_t o = 0; o < ctx.frame.objects.size(); ++o)
+    draw[o] = boundsOutsideFrustum(cam.viewProj, ctx.frame.objects[o].bounds) ? 0 : 1;
+  RasterSamples rs;
+  rs.start = parts[4] + uint64_t(j) * uint64_t(L.cells() + 1) * sizeof(uint32_t);
+  rs.ids = parts[3];
+  rs.fixedPos = parts[2];
+  rs.pos = parts[0];
+  rs.cellW = L.shape.tw;
+  rs.cellH = L.shape.th;
+  rs.cellsX = L.cellsX;
+  rs.cellsY = L.cellsY;
+  return recordRasterizer(gpu, *ctx.scene, sceneAddress, queue,
+                          RasterView{&cam, pixelSpread, &draw, &vis, false, &rs});
+}
+
 }  // namespace
 
 std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
@@ -66,32 +148,15 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
   const bool raster = !tracesPrimaryRays();
   const bool perPixel = s.shadingRate == InterleavedSettings::ShadingRate::Pixel;
   InterleavedArgs a{};
-  const ShadowMaps* maps =
-      whittedShading ? shadowMapsFor(ctx, *this, s.whitted, nullptr, true) : nullptr;
-  a.shadowMaps = maps ? gpuShadowMaps(ctx, *maps) : 0;
-  const WhittedSettings ws = s.whitted.settings();
-  a.whittedFlags = gpuWhittedFlags(ws, maps != nullptr);
-  a.maxDepth = ws.maxDepth;
-  a.importanceCutoff = ws.importanceCutoff;
-  a.shadowCull = ws.shadowCull;
-  a.flags = (whittedShading ? TD_IL_WHITTED : 0u) | (s.time() ? TD_IL_TIME : 0u) |
-            (raster ? TD_IL_RASTER : 0u) | (perPixel ? TD_IL_PER_PIXEL : 0u) |
-            (s.lens() ? TD_IL_LENS : 0u);
+  shadingArgs(ctx, *this, a);
+  a.flags |= (raster ? TD_IL_RASTER : 0u) | (perPixel ? TD_IL_PER_PIXEL : 0u);
   a.hdr = ctx.deviceOutput(*this, Slots::hdr);
   a.velocity = ctx.deviceOutput(*this, Slots::velocity);
   a.depth = ctx.deviceOutput(*this, Slots::viewDepth);
   a.motion = ctx.deviceOutputIfConsumed(*this, Slots::motion);
   a.mask =
       ctx.optionalInput(*this, Slots::sampleMask) ? ctx.deviceInput(*this, Slots::sampleMask) : 0;
-  a.reach = int(std::ceil(s.filterRadius - 0.5f));
-  a.radius = s.filterRadius;
-  // The filter's 1D weight, tabulated as InterleavedPass::resolve tabulates it.
-  std::vector<float> table(TD_IL_TABLE + 2);
-  const bool bh = s.filter == InterleavedSettings::Filter::BlackmanHarris;
-  for (int i = 0; i <= TD_IL_TABLE + 1; ++i)
-    table[size_t(i)] = i > TD_IL_TABLE ? 0.0f : bh ? blackmanHarris(float(i) / TD_IL_TABLE) : 1.0f;
-  a.weights = gpu.constants(table.data(), table.size() * sizeof(float));
-  a.toTable = float(TD_IL_TABLE) / s.filterRadius;
+  filterArgs(gpu, s, a);
   a.frameWidth = uint32_t(ctx.width);
   a.sx = shape.sx;
   a.sy = shape.sy;
@@ -136,24 +201,8 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
     a.spread = ctx.pixelSpread(v) / std::sqrt(float(s.spp)) * s.textureFootprint;
     const std::vector<Camera> cams = pairCameras(v, p);
     const MotionCarry mc = motionCarry(ctx, p.taus, v, a.motion != 0);
-    std::vector<IlPair> pairs(static_cast<size_t>(n));
-    std::vector<IlCarry> carry(size_t(n) * animated.size());
-    for (size_t j = 0; j < size_t(n); ++j) {
-      pairs[j].camera = gpuCamera(cams[j], 0.0f);
-      pairs[j].tau = p.taus[j];
-      if (a.motion) {
-        putMatrix(pairs[j].nowViewProj, mc.nowCams[j].viewProjUnjittered);
-        putMatrix(pairs[j].prevViewProj, mc.prevCams[j].viewProjUnjittered);
-      }
-      for (size_t o = 0; o < ctx.scene->objects.size(); ++o) {
-        IlCarry& c = carry[j * animated.size() + o];
-        putMatrix(c.open, mc.carry[j][o].first);
-        putMatrix(c.close, mc.carry[j][o].second);
-        putMatrix(c.prev, mc.carryPrev[j][o]);
-      }
-    }
-    a.pairs = gpu.constants(pairs.data(), pairs.size() * sizeof(IlPair));
-    a.carry = gpu.constants(carry.data(), carry.size() * sizeof(IlCarry));
+    fillPairs(gpu, p.taus, cams, mc.carry, mc.carryPrev, mc.nowCams, mc.prevCams, animated.size(),
+              a);
     putMatrix(a.openViewProj, v.camera.viewProjUnjittered);
     putMatrix(a.closeViewProj, v.shutterCamera.viewProjUnjittered);
     const auto sceneAt = [&](int j) {
@@ -164,28 +213,9 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
       a.visibility = vis.address;
       cmd.fill(vis, 0, samples * sizeof(uint64_t), 0);
       cmd.barrier();
-      size_t triangles = 0;
-      for (const Object& o : ctx.scene->objects)
-        triangles += ctx.scene->meshes[size_t(o.mesh)].triangleCount();
-      const RasterQueue queue = rasterQueue(gpu, name() + ":queue", triangles);
-      std::vector<uint32_t> draw(std::max<size_t>(ctx.frame.objects.size(), 1), 0);
       for (int j = 0; j < n; ++j) {
-        const uint64_t scene = sceneAt(j);
-        for (size_t o = 0; o < ctx.frame.objects.size(); ++o)
-          draw[o] =
-              boundsOutsideFrustum(cams[size_t(j)].viewProj, ctx.frame.objects[o].bounds) ? 0 : 1;
-        RasterSamples rs;
-        rs.start = parts[4] + uint64_t(j) * uint64_t(L.cells() + 1) * sizeof(uint32_t);
-        rs.ids = parts[3];
-        rs.fixedPos = parts[2];
-        rs.pos = parts[0];
-        rs.cellW = L.shape.tw;
-        rs.cellH = L.shape.th;
-        rs.cellsX = L.cellsX;
-        rs.cellsY = L.cellsY;
-        rasterCounts.push_back(recordRasterizer(
-            gpu, *ctx.scene, scene, queue,
-            RasterView{&cams[size_t(j)], ctx.pixelSpread(v), &draw, &vis, false, &rs}));
+        rasterCounts.push_back(drawPassSamples(ctx, L, parts, j, cams[size_t(j)], sceneAt(j),
+                                               ctx.pixelSpread(v), vis, name() + ":queue"));
         cmd.barrier();
       }
       if (perPixel) {
