@@ -32,6 +32,19 @@ std::vector<float> lightKey(const Scene& s) {
 
 }  // namespace
 
+bool solidCaster(const Material& m) {
+  const Vec3 through =
+      (Vec3(1.0f) - vmin(m.diffuse, Vec3(1.0f))) * (1.0f - m.opacity) * m.transmissionFilter;
+  return m.castsShadows && (through.x + through.y + through.z) / 3.0f < 0.5f;
+}
+
+std::vector<uint8_t> ShadowMaps::solidOf(const std::vector<uint8_t>& casters) const {
+  std::vector<uint8_t> out(casters.size(), 0);
+  for (size_t o = 0; o < casters.size(); ++o)
+    out[o] = casters[o] && o < solidCaster_.size() && solidCaster_[o] ? 1 : 0;
+  return out;
+}
+
 int budgetedShadowMapSize(const Scene& scene, int requested) {
   double faces = 0;
   for (const Light& l : scene.lights)
@@ -86,6 +99,9 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
     opaqueCaster_[o] = m.castsShadows && m.opacity >= 1.0f && m.alphaMode == AlphaMode::Opaque &&
                        (!sweep_ || fs.objects[o].stepPositions.empty());
   }
+  solidCaster_.assign(scene.objects.size(), 0);
+  for (size_t o = 0; o < scene.objects.size(); ++o)
+    solidCaster_[o] = solidCaster(scene.materials[size_t(scene.objects[o].material)]) ? 1 : 0;
   if (staticStale) ++redraws_;
   std::vector<ShadowMapDevice::Job> jobs;
   std::vector<ShadowMapDevice::Job>* deviceJobs = device_ ? &jobs : nullptr;
@@ -93,7 +109,7 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
   mapped_ = 0;
   for (const std::vector<Face>& faces : faces_) mapped_ += faces.empty() ? 0 : 1;
   if (!anyMoving) {
-    if (device_) device_->draw(fs, jobs, false, sweep_, opaqueCaster_);
+    if (device_) device_->draw(fs, jobs, false, sweep_, opaqueCaster_, solidCaster_);
     return;
   }
   ++movingRedraws_;
@@ -108,6 +124,7 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
     lights.clear();
     for (size_t i = 0; i < n; ++i) lights.push_back(i);
   }
+  const std::vector<uint8_t> movingSolid = solidOf(moving);
   std::vector<Face*> all;
   for (const size_t i : lights)
     for (size_t k = 0; k < faces_[i].size(); ++k) {
@@ -126,12 +143,12 @@ void ShadowMaps::update(const FrameScene& fs, int requested, const std::vector<u
       restoreStatic(face, dirty);
       if (!now.empty())
         raster_.render(fs, face.camera, face.map,
-                       Rasterizer::Subset{&moving, /*keep=*/true, /*bothFaces=*/true});
+                       Rasterizer::Subset{&movingSolid, /*keep=*/true, /*bothFaces=*/true});
       face.dirty = dirty;
       all.push_back(&face);
     }
   if (device_) {
-    device_->draw(fs, jobs, true, sweep_, opaqueCaster_);
+    device_->draw(fs, jobs, true, sweep_, opaqueCaster_, solidCaster_);
     return;
   }
   tbb::parallel_for(size_t(0), all.size(), [&](size_t k) {
@@ -221,6 +238,7 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
       }
       casters = &mask;
     }
+    const std::vector<uint8_t> solid = jobs ? std::vector<uint8_t>() : solidOf(*casters);
     std::vector<CameraDesc> views;
     if (l.type == LightType::Directional) {
       CameraDesc c;
@@ -262,7 +280,7 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
         continue;
       }
       raster_.render(fs, face.camera, face.map,
-                     Rasterizer::Subset{casters, /*keep=*/false, /*bothFaces=*/true});
+                     Rasterizer::Subset{&solid, /*keep=*/false, /*bothFaces=*/true});
       const Camera& c = face.camera;
       ShadowFace& lf = face.lookup;  // its depth pointer is taken at lookup time
       lf.width = face.map.width;

@@ -31,6 +31,12 @@ constexpr double kMaxShadowTexels = 128.0 * 1024 * 1024;
 // asked, or smaller (a multiple of 32, at least 32) when the faces would exceed kMaxShadowTexels.
 int budgetedShadowMapSize(const Scene& scene, int requested);
 
+// Whether objects of material m go into the depth maps: it casts shadows and one of its
+// surfaces lets less than half the light through, as a shadow ray weighs it ((1 - diffuse) x
+// (1 - opacity) x transmission filter, averaged over RGB). A binary depth map can hold only
+// all or nothing: this is the nearer of the two to the traced transmittance.
+bool solidCaster(const Material& m);
+
 // A device that draws and keeps the maps in place of the CPU (the GPU's compute rasterizer:
 // passes/common/gpu_shadow_maps.h). ShadowMaps plans what to draw as it does for its own maps; the
 // device draws it and answers the lookups (ShadowMaps' own classify and visibility are for maps
@@ -50,8 +56,11 @@ class ShadowMapDevice {
   // Records the jobs in order, then the texels of each job's rectangle that hold an opaque caster
   // (`opaqueCasters`, per object). `sweep`: objects moving while the shutter is open are drawn into
   // the conservative maps as their box over the shutter.
+  // `solidCasters` (per object): drawn into the depth maps (the conservative maps take every
+  // caster of a job).
   virtual void draw(const FrameScene& fs, const std::vector<Job>& jobs, bool keepStatic, bool sweep,
-                    const std::vector<uint8_t>& opaqueCasters) = 0;
+                    const std::vector<uint8_t>& opaqueCasters,
+                    const std::vector<uint8_t>& solidCasters) = 0;
 };
 
 class ShadowMaps {
@@ -139,6 +148,8 @@ class ShadowMaps {
   void markOpaque(Face& face, const TexelRect& r) const;
   // The texels the boxes cover in f (with a margin; all of f when one reaches behind the light).
   static TexelRect footprint(const Face& f, const std::vector<Bounds3>& boxes);
+  // The casters of `casters` (per object) that go into the depth maps.
+  std::vector<uint8_t> solidOf(const std::vector<uint8_t>& casters) const;
   // The static casters' maps back in r.
   static void restoreStatic(Face& f, const TexelRect& r);
 
@@ -149,6 +160,9 @@ class ShadowMaps {
   // Per object: its shadow is opaque and where the maps drew it (no transmission, no alpha
   // mask, casts shadows, still while the shutter is open). Only these make a pixel "shadowed".
   std::vector<uint8_t> opaqueCaster_;
+  // Per object: drawn into the depth maps that visibility() filters (solidCaster): a caster
+  // that lets most light through (glass) is left out, as a shadow ray passes it almost unhindered.
+  std::vector<uint8_t> solidCaster_;
   bool sweep_ = false;          // the shutter was open when the conservative maps were drawn
   std::vector<uint8_t> casts_;  // per light: it casts shadows
   int resolution_ = 0, redraws_ = 0, movingRedraws_ = 0, mapped_ = 0;

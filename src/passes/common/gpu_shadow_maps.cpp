@@ -60,11 +60,13 @@ class GpuShadowMapDevice final : public ShadowMapDevice {
   }
 
   void draw(const FrameScene& fs, const std::vector<Job>& jobs, bool keepStatic, bool sweep,
-            const std::vector<uint8_t>& opaqueCasters) override;
+            const std::vector<uint8_t>& opaqueCasters,
+            const std::vector<uint8_t>& solidCasters) override;
 
  private:
   Face& makeFace(const Job& job, bool keepStatic);
-  void drawCasters(const FrameScene& fs, const Job& job, const Face& f, bool sweep);
+  void drawCasters(const FrameScene& fs, const Job& job, const Face& f, bool sweep,
+                   const std::vector<uint8_t>& solid);
   void texels(const Job& job, const Face& f, uint32_t mode, uint64_t opaqueCasters);
 
   static uint64_t nextId() {
@@ -121,16 +123,20 @@ void GpuShadowMapDevice::texels(const Job& job, const Face& f, uint32_t mode,
 }
 
 void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const Face& f,
-                                     bool sweep) {
+                                     bool sweep, const std::vector<uint8_t>& solid) {
   GpuFrame& g = gpu();
   GpuCommands& cmd = g.commands();
   const Camera& cam = job.camera;
   const size_t objects = fs.objects.size();
-  // The depth map: the casters' triangles, both faces, through the compute rasterizer (objects
-  // outside the face's frustum left out on the host, as the CPU's rasterizer leaves them).
+  // The depth map: the solid casters' triangles, both faces, through the compute rasterizer
+  // (objects outside the face's frustum left out on the host, as the CPU's rasterizer leaves
+  // them).
   std::vector<uint32_t> draw(std::max<size_t>(objects, 1), 0);
   for (size_t o = 0; o < objects; ++o)
-    draw[o] = job.casters[o] && !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 1 : 0;
+    draw[o] = job.casters[o] && o < solid.size() && solid[o] &&
+                      !boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds)
+                  ? 1
+                  : 0;
   const RasterQueue queue = rasterQueue(g, "shadow_maps:raster_queue", triangles_);
   recordRasterizer(g, *fs.scene, scene_, queue,
                    RasterView{&cam, 0.0f, &draw, f.depth, /*bothFaces=*/true});
@@ -198,7 +204,8 @@ void GpuShadowMapDevice::drawCasters(const FrameScene& fs, const Job& job, const
 }
 
 void GpuShadowMapDevice::draw(const FrameScene& fs, const std::vector<Job>& jobs, bool keepStatic,
-                              bool sweep, const std::vector<uint8_t>& opaqueCasters) {
+                              bool sweep, const std::vector<uint8_t>& opaqueCasters,
+                              const std::vector<uint8_t>& solidCasters) {
   if (jobs.empty()) return;
   GpuFrame& g = gpu();
   GpuCommands& cmd = g.commands();
@@ -225,7 +232,7 @@ void GpuShadowMapDevice::draw(const FrameScene& fs, const std::vector<Job>& jobs
         throw std::logic_error("shadow maps: moving casters drawn without a static copy");
       texels(job, *f, TD_TEXELS_RESTORE, opaqueAddress);
     }
-    if (!job.casters.empty()) drawCasters(fs, job, *f, sweep);
+    if (!job.casters.empty()) drawCasters(fs, job, *f, sweep, solidCasters);
     if (job.fresh && f->staticDepth) {
       const size_t bytes = size_t(f->width) * size_t(f->height) * sizeof(uint64_t);
       cmd.copy(*f->depth, *f->staticDepth, bytes);

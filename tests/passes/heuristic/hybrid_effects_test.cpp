@@ -17,6 +17,7 @@
 #include "passes/heuristic/reflection_probes.h"
 #include "pipeline/frame_context.h"
 #include "raster/shadow_maps.h"
+#include "rt/ray_tracer.h"
 #include "rt/whitted.h"
 #include "scene/builtin_scenes.h"
 #include "test_util.h"
@@ -324,6 +325,57 @@ TEST(ShadowMaps, OccluderShadowsThePointBelowIt) {
   for (size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(facingDown.visibility(i, {0.2f, 0, -0.3f}, up), 0.0f) << "light " << i;
     EXPECT_EQ(facingDown.visibility(i, {3.0f, 0, 2.0f}, up), 1.0f) << "light " << i;
+  }
+}
+
+// A caster the shadow rays pass (glass, a sheet that lets most light through, a material that
+// casts no shadow) leaves the maps' depth: the point below is lit in the maps exactly when the
+// traced transmittance through the roof keeps at least half the light (the binary map's nearer
+// answer). Opaque and mostly opaque roofs still shadow it.
+TEST(ShadowMaps, SeeThroughCastersLeaveTheDepthMaps) {
+  struct Case {
+    const char* name;
+    float opacity, diffuse;
+    bool casts;
+  };
+  const Case cases[] = {{"opaque", 1.0f, 0.5f, true},
+                        {"glass", 0.0f, 0.02f, true},
+                        {"mostly opaque", 0.7f, 0.2f, true},
+                        {"mostly clear", 0.2f, 0.2f, true},
+                        {"no shadow", 1.0f, 0.5f, false}};
+  for (const Case& c : cases) {
+    Scene s;
+    Material ground;
+    ground.doubleSided = true;
+    Material roof = ground;
+    roof.opacity = c.opacity;
+    roof.diffuse = Vec3(c.diffuse);
+    roof.castsShadows = c.casts;
+    const int plane = s.addMesh(makePlane());
+    Transform g, r;
+    g.scale = {10, 1, 10};
+    r.position = {0, 2, 0};
+    s.addObject("ground", plane, s.addMaterial(ground), g);
+    s.addObject("roof", plane, s.addMaterial(roof), r);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = {0, -1, 0};
+    s.lights = {sun};
+    FrameScene fs;
+    fs.update(s, 0, 0);
+    ShadowMaps maps;
+    maps.update(fs, 256);
+    RayTracer rt;
+    rt.update(fs);
+    const Vec3 below{0.2f, 0.0f, -0.3f};
+    Ray up;
+    up.origin = below + Vec3(0, 1e-3f, 0);
+    up.dir = {0, 1, 0};
+    up.tfar = 100;
+    const Vec3 t = rt.transmittance(up);
+    const bool mostlyThrough = (t.x + t.y + t.z) / 3.0f >= 0.5f;
+    EXPECT_EQ(maps.visibility(0, below, {0, 1, 0}), mostlyThrough ? 1.0f : 0.0f) << c.name;
+    EXPECT_EQ(solidCaster(s.materials[1]), !mostlyThrough) << c.name;
   }
 }
 
