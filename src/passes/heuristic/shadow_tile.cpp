@@ -66,6 +66,14 @@ class ShadowBatch {
       geo[k] = t_.geoNormal.rgb(xs_[k], ys_[k]);
       self[k] = int(t_.ids.at(xs_[k], ys_[k])[0]);
     }
+    if (t_.maps && t_.settings.shadows == ShadowMode::Maps) {
+      // The maps' lookups read positions and normals as structure of arrays, the same for
+      // every light.
+      for (int k = 0; k < n; ++k) {
+        soa_[0][k] = pos[k].x, soa_[1][k] = pos[k].y, soa_[2][k] = pos[k].z;
+        soa_[3][k] = geo[k].x, soa_[4][k] = geo[k].y, soa_[5][k] = geo[k].z;
+      }
+    }
     blockedLights_.clear();
     for (const uint32_t i : reached_)
       if (light(i, n, floor, pos, geo, self, rays)) blockedLights_.push_back(i);
@@ -108,28 +116,12 @@ class ShadowBatch {
       c[k] = asked[k] ? ShadowClass::Traced : ShadowClass::Culled;
     }
     const ShadowMode mode = t_.maps ? t_.settings.shadows : ShadowMode::Rays;
+    if (mode == ShadowMode::Maps) return mapsLight(i, n, asked);
     if (mode == ShadowMode::Classified)
       for (int k0 = 0; k0 < n; k0 += 8)
         t_.maps->classify(i, std::min(8, n - k0), pos + k0, geo + k0, self + k0, asked + k0,
                           c + k0);
     Vec3 vis[W];
-    if (mode == ShadowMode::Maps) {
-      // The lit fraction of every asked lane, 16 lanes a lookup (the SIMD kernel).
-      float px[W] = {}, py[W] = {}, pz[W] = {}, nx[W] = {}, ny[W] = {}, nz[W] = {}, use[W] = {},
-            lit[W];
-      for (int k = 0; k < n; ++k) {
-        px[k] = pos[k].x, py[k] = pos[k].y, pz[k] = pos[k].z;
-        nx[k] = geo[k].x, ny[k] = geo[k].y, nz[k] = geo[k].z;
-        use[k] = asked[k] ? 1.0f : 0.0f;
-        lit[k] = 1.0f;
-      }
-      t_.maps->visibilityBatch(i, px, py, pz, nx, ny, nz, use, n, lit);
-      for (int k = 0; k < n; ++k)
-        if (asked[k]) {
-          vis[k] = Vec3(lit[k]);
-          c[k] = lit[k] > 0.5f ? ShadowClass::Lit : ShadowClass::Shadowed;
-        }
-    }
     Ray r[8];
     bool active[8] = {};
     int lane[8], m = 0;
@@ -141,8 +133,7 @@ class ShadowBatch {
       m = 0;
     };
     for (int k = 0; k < n; ++k) {
-      if (mode != ShadowMode::Maps || !asked[k]) vis[k] = Vec3(1.0f);
-      if (c[k] == ShadowClass::Shadowed && mode != ShadowMode::Maps) vis[k] = Vec3(0.0f);
+      vis[k] = Vec3(c[k] == ShadowClass::Shadowed ? 0.0f : 1.0f);
       if (c[k] == ShadowClass::Traced) {
         SurfaceSample s;
         s.position = pos[k];
@@ -170,12 +161,39 @@ class ShadowBatch {
     return any;
   }
 
+  // Light i with the maps deciding every asked lane: the lit fraction of each, 16 lanes a lookup
+  // (the SIMD kernel), grey.
+  bool mapsLight(size_t i, int n, const bool* asked) {
+    float use[W] = {}, lit[W];
+    for (int k = 0; k < n; ++k) {
+      use[k] = asked[k] ? 1.0f : 0.0f;
+      lit[k] = 1.0f;
+    }
+    t_.maps->visibilityBatch(i, soa_[0], soa_[1], soa_[2], soa_[3], soa_[4], soa_[5], use, n, lit);
+    bool any = false;
+    float* blocked = &blocked_[3 * i * W];
+    for (int k = 0; k < n; ++k) {
+      const ShadowClass c = !asked[k]     ? ShadowClass::Culled
+                            : lit[k] > 0.5f ? ShadowClass::Lit
+                                            : ShadowClass::Shadowed;
+      counts_.culled += c == ShadowClass::Culled;
+      counts_.lit += c == ShadowClass::Lit;
+      counts_.shadowed += c == ShadowClass::Shadowed;
+      if (t_.classes) classes_[i * W + size_t(k)] = uint8_t(c);
+      const float b = asked[k] ? 1.0f - lit[k] : 0.0f;
+      blocked[k] = blocked[W + size_t(k)] = blocked[2 * W + size_t(k)] = b;
+      any |= b != 0.0f;
+    }
+    return any;
+  }
+
   const ShadowTile& t_;
   EffectTally* tally_;
   ShadowCounts& counts_;
   size_t lights_;
   ShadeBatch b_;
   int xs_[W], ys_[W];
+  alignas(64) float soa_[6][W];  // positions and geometric normals (Maps mode)
   std::vector<float> share_, blocked_;
   std::vector<uint8_t> classes_;
   std::vector<uint32_t> reached_, blockedLights_;
