@@ -173,7 +173,7 @@ class ShadowBatch {
     bool any = false;
     float* blocked = &blocked_[3 * i * W];
     for (int k = 0; k < n; ++k) {
-      const ShadowClass c = !asked[k]     ? ShadowClass::Culled
+      const ShadowClass c = !asked[k]       ? ShadowClass::Culled
                             : lit[k] > 0.5f ? ShadowClass::Lit
                                             : ShadowClass::Shadowed;
       counts_.culled += c == ShadowClass::Culled;
