@@ -468,8 +468,10 @@ void ShadowMaps::visibilityBatch(size_t i, const float* px, const float* py, con
   int face[16];
   unsigned seen = 0;
   for (int k = 0; k < count; ++k) {
+    face[k] = -1;  // (lanes not asked about need no face)
+    if (!(use[k] > 0)) continue;
     face[k] = cubeFace({px[k] - l.x, py[k] - l.y, pz[k] - l.z});
-    if (use[k] > 0) seen |= 1u << face[k];
+    seen |= 1u << face[k];
   }
   for (int f = 0; f < 6; ++f) {
     if (!(seen & (1u << f))) continue;

@@ -110,10 +110,17 @@ class ShadowBatch {
     bool asked[W];
     ShadowClass c[W];
     const bool casts = t_.scene.lights[i].castsShadows;
+    int askedLanes = 0;
     for (int k = 0; k < n; ++k) {
       const float sh = share_[i * W + size_t(k)];
       asked[k] = casts && sh > 0.0f && sh >= floor[k];
       c[k] = asked[k] ? ShadowClass::Traced : ShadowClass::Culled;
+      askedLanes += asked[k] ? 1 : 0;
+    }
+    // Every lane culled (classes_ holds Culled already): nothing to classify, trace or shade.
+    if (askedLanes == 0) {
+      counts_.culled += uint64_t(n);
+      return false;
     }
     const ShadowMode mode = t_.maps ? t_.settings.shadows : ShadowMode::Rays;
     if (mode == ShadowMode::Maps) return mapsLight(i, n, asked);
