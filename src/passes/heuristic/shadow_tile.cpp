@@ -47,13 +47,20 @@ class ShadowBatch {
     ys_[b_.count++] = y;
     if (b_.count == W) flush();
   }
+  // A whole batch read at once (GBufferReader::readSpan) from the W pixels (x .., y), the box
+  // around their positions with it: the same batch push() would have made of them.
+  void pushSpan(int x, int y, const Bounds3& lanes) {
+    for (int k = 0; k < W; ++k) xs_[k] = x + k, ys_[k] = y;
+    b_.count = W;
+    flush(&lanes);
+  }
 
-  void flush() {
+  void flush(const Bounds3* lanes = nullptr) {
     const int n = b_.count;
     if (n == 0) return;
     const uint64_t c0 = t_.timed ? cycleNow() : 0;
     // Only the lights that may reach a lane are weighed; the others are culled unseen.
-    cullLights(b_, t_.shading, reached_);
+    cullLights(b_, t_.shading, reached_, lanes);
     lightContributions(b_, t_.shading, share_.data(), W);
     counts_.culled += uint64_t(n) * (lights_ - reached_.size());
     if (t_.classes) std::fill(classes_.begin(), classes_.end(), uint8_t(ShadowClass::Culled));
@@ -212,9 +219,23 @@ void classifiedShadowTile(const ShadowTile& t, const View& v, int x0, int y0, in
                           int64_t rank, EffectTally* tally, ShadowCounts& counts) {
   ShadowBatch batch(t, tally, counts);
   const bool perspective = v.camera.desc.projection == Projection::Perspective;
+  const Vec3 eye = perspective ? v.camera.eye : -v.camera.forward;  // readSpan's eye directions
+  auto wanted = [&](int x, int y) { return (t.mask.at(x, y)[kShadow] > 0.5f) != t.unselected; };
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
-      if ((t.mask.at(x, y)[kShadow] > 0.5f) == t.unselected) continue;
+      // W pixels of a row that all want their shadow, with no batch begun: read in one go
+      // (falls through to the pixels one by one where one shows the sky).
+      if (batch.batch().count == 0 && rank < 0 && x + W <= x1) {
+        bool all = true;
+        for (int k = 0; k < W && all; ++k) all = wanted(x + k, y);
+        Bounds3 lanes;
+        if (all && t.g.readSpan(x, y, W, batch.batch(), perspective, eye, lanes)) {
+          batch.pushSpan(x, y, lanes);
+          x += W - 1;
+          continue;
+        }
+      }
+      if (!wanted(x, y)) continue;
       if (rank >= 0 && nodeRank(t.order, t.ids.at(x, y)[0], kShadow) != uint32_t(rank)) continue;
       ShadeBatch& b = batch.batch();
       const int l = b.count;
