@@ -45,10 +45,22 @@ std::vector<uint8_t> ShadowMaps::solidOf(const std::vector<uint8_t>& casters) co
   return out;
 }
 
+bool cubeShadowMap(const Light& l) {
+  return l.type != LightType::Directional && !(l.type == LightType::Spot && l.outerConeDeg < 80.0f);
+}
+
+int shadowFaceSize(const Light& l, int resolution) {
+  if (l.type == LightType::Directional) return 2 * resolution;
+  return cubeShadowMap(l) ? std::max(resolution / 2, 16) : resolution;
+}
+
 int budgetedShadowMapSize(const Scene& scene, int requested) {
+  // In maps of `requested` texels a side; a cube's six faces count in full (their texels and
+  // the lookups' companions), a directional map as the four it holds.
   double faces = 0;
   for (const Light& l : scene.lights)
-    if (l.castsShadows) faces += l.type == LightType::Point ? 6 : 1;
+    if (l.castsShadows)
+      faces += cubeShadowMap(l) ? 6.0 : l.type == LightType::Directional ? 4.0 : 1.0;
   if (faces == 0) return requested;
   const int fit = int(std::sqrt(kMaxShadowTexels / faces)) / 32 * 32;
   return std::min(requested, std::max(fit, 32));
@@ -252,7 +264,7 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
       views.push_back(c);
     } else {
       const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-      const bool spot = l.type == LightType::Spot && l.outerConeDeg < 80.0f;
+      const bool spot = !cubeShadowMap(l);
       for (int f = 0; f < (spot ? 1 : 6); ++f) {
         const Vec3 dir = spot ? l.direction : axes[f];
         CameraDesc c;
@@ -265,8 +277,8 @@ void ShadowMaps::drawStatic(const FrameScene& fs, const std::vector<uint8_t>& st
         views.push_back(c);
       }
     }
-    // Cube faces at half the size: six of them cover what one map does for a spot.
-    const int size = views.size() == 6 ? std::max(resolution_ / 2, 16) : resolution_;
+    // (shadowFaceSize: a cube's faces at half the side, a directional map at twice.)
+    const int size = shadowFaceSize(l, resolution_);
     faces_[i].resize(views.size());
     for (size_t k = 0; k < views.size(); ++k) {
       Face& face = faces_[i][k];

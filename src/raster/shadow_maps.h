@@ -27,6 +27,12 @@ enum class ShadowClass : uint8_t { Culled = 0, Lit = 1, Shadowed = 2, Traced = 3
 // Every map face's texels together stay within this many (about 0.75 GiB of maps and their
 // companions): a scene with many lights gets coarser maps instead of running out of memory.
 constexpr double kMaxShadowTexels = 128.0 * 1024 * 1024;
+// Texels a side of light l's faces for a map size of `resolution`. A directional light's one map
+// spans the whole scene, so it gets twice the side; a cube's six faces (point lights, spots of
+// 80 degrees or more) half the side, as together they cover what one spot map does.
+int shadowFaceSize(const Light& l, int resolution);
+// Whether light l's map is a cube of six faces (point lights, spots of 80 degrees or more).
+bool cubeShadowMap(const Light& l);
 // The map size (texels a side) `requested` becomes for the scene's shadow-casting lights: as
 // asked, or smaller (a multiple of 32, at least 32) when the faces would exceed kMaxShadowTexels.
 int budgetedShadowMapSize(const Scene& scene, int requested);

@@ -16,6 +16,10 @@ namespace tandem {
 namespace {
 
 constexpr int kMapSize = 256;
+// The size whose sun face (twice the side, 2048 texels) holds triangles of a million texels:
+// queued in bands, as lavapipe ends a loop after 65535 iterations (the balcony slabs' tops were
+// lost before).
+constexpr int kLargeMapSize = 1024;
 
 // The share of texels where a and b agree to `tol` (relative to 1).
 double sameShare(const float* a, const std::vector<float>& b, float tol) {
@@ -58,13 +62,13 @@ void compareMaps(const ShadowMaps& cpu, const ShadowMaps& gpu, const std::string
 
 // `moving`: the scene has an animated caster, drawn again over the static copy after frame 0.
 void compareScene(const std::shared_ptr<GpuDevice>& dev, const std::string& name, int frames,
-                  bool moving) {
+                  bool moving, int mapSize = kMapSize) {
   const Scene scene = loadScene(name);
   RenderSettings rs{.width = 96, .height = 54};
-  const auto load = [] {
+  const auto load = [mapSize] {
     Pipeline p = Pipeline::load("rt-only");
     p.setParam("rt_whitted.shadows=classified", "test");
-    p.setParam("rt_whitted.shadow_map_size=" + std::to_string(kMapSize), "test");
+    p.setParam("rt_whitted.shadow_map_size=" + std::to_string(mapSize), "test");
     return p;
   };
   Renderer cpu(scene, load(), rs);
@@ -74,8 +78,8 @@ void compareScene(const std::shared_ptr<GpuDevice>& dev, const std::string& name
   for (int f = 0; f < frames; ++f) {
     cpu.renderFrame(f * 8, cam);  // the animated sphere moves between these frames
     gpu.renderFrame(f * 8, cam);
-    const ShadowMaps* c = cpu.context().heldShadowMaps(kMapSize, false);
-    const ShadowMaps* g = gpu.context().heldShadowMaps(kMapSize, true);
+    const ShadowMaps* c = cpu.context().heldShadowMaps(mapSize, false);
+    const ShadowMaps* g = gpu.context().heldShadowMaps(mapSize, true);
     ASSERT_TRUE(c && g) << name;
     ASSERT_TRUE(g->device()) << name;
     compareMaps(*c, *g, name + ", frame " + std::to_string(f));
@@ -90,6 +94,16 @@ TEST(GpuShadowMaps, DeviceMapsEqualTheCpus) {
   REQUIRE_GPU(dev);
   compareScene(dev, "spheres", 3, true);  // a sun, two point lights' cubes, a moving caster
   compareScene(dev, "atrium", 1, false);  // a spot light besides
+  expectNoValidationMessages(*dev);
+}
+
+TEST(GpuShadowMaps, LargeFacesEqualTheCpus) {
+  REQUIRE_GPU(dev);
+  const Scene atrium = loadScene("atrium");
+  const Light& sun = atrium.lights[0];
+  ASSERT_EQ(sun.type, LightType::Directional);
+  ASSERT_EQ(shadowFaceSize(sun, kLargeMapSize), 2048);
+  compareScene(dev, "atrium", 1, false, kLargeMapSize);
   expectNoValidationMessages(*dev);
 }
 

@@ -3,8 +3,8 @@
 // operation: each triangle clipped to the front of the near plane, projected, and every texel its
 // area touches (not only those whose centre it covers) given the nearest depth its plane reaches
 // there, never nearer than its nearest corner; the nearest over all triangles kept by atomicMax.
-// In the set-up phase a thread draws a triangle whose texel box is small and queues a large one; in
-// the queue phase a workgroup draws each queued triangle 8x8 texels at a time.
+// In the set-up phase a thread draws a triangle whose texel box is small and queues a large one in
+// bands of rows; in the queue phase a workgroup draws each queued band 8x8 texels at a time.
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -34,6 +34,7 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Queue {
 };
 
 const int kDirectTexels = 128;  // a box up to this many texels is drawn by its set-up thread
+const int kBandRows = 32;       // a queued triangle's rows per workgroup
 
 ConservativeArgs A;
 
@@ -133,20 +134,27 @@ void drawProjected(vec3 a, vec3 b, vec3 c, uint object) {
   // Clamped as floats first: a corner projected far off the map stays in range.
   const int x0 = int(max(floor(lo), 0.0)), x1 = int(min(floor(hi), float(A.width - 1)));
   const int y0 = int(max(floor(bot), 0.0)), y1 = int(min(floor(top), float(A.height - 1)));
+  int first = y0;  // the rows from here on are drawn by this thread
   if ((x1 - x0 + 1) * (y1 - y0 + 1) > kDirectTexels) {
+    // Queued in bands of kBandRows rows, each drawn by a workgroup of its own: a large triangle
+    // spreads over many workgroups, and no loop runs long (lavapipe ends a loop after 65535
+    // iterations, counted over a workgroup's whole run).
     Queue q = Queue(A.queue);
-    const uint slot = atomicAdd(q.count, 1u);
-    if (slot < A.queueCapacity) {
-      ConservativeTriangle t;
-      t.a = float[](a.x, a.y, a.z), t.b = float[](b.x, b.y, b.z), t.c = float[](c.x, c.y, c.z);
-      t.object = object;
-      t.x0 = x0, t.y0 = y0, t.x1 = x1, t.y1 = y1;
-      q.t[slot] = t;
-      return;
+    const int bands = (y1 - y0) / kBandRows + 1;
+    const uint slot = atomicAdd(q.count, uint(bands));
+    ConservativeTriangle t;
+    t.a = float[](a.x, a.y, a.z), t.b = float[](b.x, b.y, b.z), t.c = float[](c.x, c.y, c.z);
+    t.object = object;
+    t.x0 = x0, t.x1 = x1;
+    for (int k = 0; k < bands && slot + uint(k) < A.queueCapacity; ++k) {
+      t.y0 = y0 + kBandRows * k, t.y1 = min(t.y0 + kBandRows - 1, y1);
+      q.t[slot + uint(k)] = t;
+      first = t.y1 + 1;
     }
+    if (first > y1) return;  // (a full queue leaves the rest here)
   }
   const Setup s = setUp(a, b, c);
-  for (int y = y0; y <= y1; ++y)
+  for (int y = first; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) drawTexel(s, object, x, y);
 }
 

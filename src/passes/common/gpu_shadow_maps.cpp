@@ -25,7 +25,9 @@ namespace tandem {
 namespace {
 
 constexpr size_t kQueueHeader = 16;  // a queue's count, padded
-constexpr uint32_t kConservativeQueueGroups = 256;
+// Workgroups that share out the queued bands (each band a few hundred loop iterations: lavapipe
+// ends a loop after 65535, counted over a workgroup's run).
+constexpr uint32_t kConservativeQueueGroups = 1024;
 
 uint32_t groupsOf(size_t n, uint32_t size) {
   return uint32_t((n + size - 1) / size);

@@ -44,7 +44,9 @@ const ParamTable<WhittedParams>& whittedTable() {
           .add(&S::shadowMapSize, {.name = "shadow_map_size",
                                    .min = 64,
                                    .max = 8192,
-                                   .doc = "shadow map resolution for classified and map shadows"});
+                                   .doc = "shadow map resolution for classified and map shadows (a "
+                                          "sun's map twice the side, a point light's cube faces "
+                                          "half)"});
   return table;
 }
 

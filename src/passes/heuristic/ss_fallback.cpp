@@ -43,7 +43,11 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
                                     "raster shadow maps",
                              .choices = {"off", "shadow_map"}})
           .add(&S::shadowMapSize,
-               {.name = "shadow_map_size", .min = 64, .max = 8192, .doc = "shadow map resolution"})
+               {.name = "shadow_map_size",
+                .min = 64,
+                .max = 8192,
+                .doc = "shadow map resolution (a sun's map twice the side, a point "
+                       "light's cube faces half)"})
           .add(&S::shadowCull,
                {.name = "shadow_cull",
                 .min = 0,

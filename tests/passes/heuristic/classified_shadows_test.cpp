@@ -439,6 +439,15 @@ TEST(ShadowMapBudget, ManyLightsGetSmallerMapsNotMoreMemory) {
   EXPECT_EQ(size % 32, 0);
   EXPECT_LE(6000.0 * size * size, kMaxShadowTexels);
   EXPECT_GT(6000.0 * (size + 32) * (size + 32), kMaxShadowTexels);
+  // A sun's one map has twice the side: it counts as four.
+  Scene sunny = builtin("cornell");
+  Light sun;
+  sun.type = LightType::Directional;
+  sunny.lights.assign(100, sun);
+  const int sunSize = budgetedShadowMapSize(sunny, 8192);
+  EXPECT_EQ(shadowFaceSize(sun, sunSize), 2 * sunSize);
+  EXPECT_LE(100.0 * 4.0 * sunSize * sunSize, kMaxShadowTexels);
+  EXPECT_GT(100.0 * 4.0 * (sunSize + 32) * (sunSize + 32), kMaxShadowTexels);
   for (Light& l : s.lights) l.castsShadows = false;  // no maps at all
   EXPECT_EQ(budgetedShadowMapSize(s, 1024), 1024);
   // A thousand point lights render through the hybrid (maps for classified shadows and the
