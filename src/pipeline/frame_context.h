@@ -14,6 +14,7 @@
 #include "core/profiler.h"
 #include "raster/shadow_maps.h"
 #include "rt/ray_tracer.h"
+#include "rt/sampler.h"
 #include "scene/frame_scene.h"
 #include "scene/view.h"
 
@@ -30,6 +31,9 @@ struct FrameContext {
   int frameIndex = 0;
   int64_t serial = -1;  // counts executed frames (frameIndex may repeat, e.g. a static shot)
   uint64_t seed = 0;
+  // The random stream of the frame executed (rt/sampler.h frameSeed of seed and serial): every
+  // stochastic pass seeds from it, the same on the CPU and the GPU.
+  uint64_t frameSeed() const { return tandem::frameSeed(seed, serial); }
   Vec2 jitter{0, 0};              // this frame's projection jitter in pixels (View::jitter)
   float textureFootprint = 1.0f;  // RenderSettings::textureFootprint
   bool historyReset = true;       // history inputs are empty this frame (first frame or a reset)

@@ -40,6 +40,14 @@ uint32_t sobolDim1(uint32_t i);
 constexpr uint32_t hashCombine(uint32_t seed, uint32_t v) {
   return seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2));
 }
+// The one per-frame seed: frame `frame` of a run seeded `seed` (the run's seed times the golden
+// ratio, plus the frame times another odd constant, so seeds and frames never share a stream).
+// Passes take it through FrameContext::frameSeed (the frame executed: a still shot's frames
+// differ); references seed by the shot's frame number so a frame's truth does not depend on
+// what was rendered before it.
+constexpr uint64_t frameSeed(uint64_t seed, int64_t frame) {
+  return seed * 0x9E3779B97F4A7C15ull + uint64_t(frame) * 0xD1B54A32D192ED03ull;
+}
 
 class SobolSampler {
  public:

@@ -85,11 +85,11 @@ void PTReferencePass::render(
   ref.integrator = s.integrator;
   ref.whitted.maxDepth = s.whittedDepth;
   ref.progress = s.progress;
-  ref.seed = ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.frameIndex);
+  ref.seed = frameSeed(ctx.seed, ctx.frameIndex);
   const bool accumulate = s.accumulate;
   if (accumulate) {
     // Samples continue by index, so the frame number must not change the sequence.
-    ref.seed = ctx.seed * 0x9E3779B97F4A7C15ull;
+    ref.seed = frameSeed(ctx.seed, 0);
     // History resets (scene, size, pipeline, lens, max_depth) clear sums_; a moved camera or
     // moved geometry starts over too (scene time matters only through moved geometry).
     if (ctx.anyCameraMoved() || ctx.frame.geometryVersion != geometryVersion_) sums_.clear();

@@ -213,20 +213,19 @@ void RTDofPass::execute(FrameContext& ctx) {
   const Buffer* depth = ctx.optionalInput(*this, Slots::depth);
   const bool reuse = settings().reuseRaster && sharp && depth;
   // New lens samples every executed frame (a static shot repeats its frame index).
-  const LensRays job{
-      ctx,
-      std::move(cams),
-      mask,
-      *ctx.scene,
-      wf.rt,
-      wf.whitted,
-      lens,
-      scale,
-      ctx.pixelSpread(ctx.views.front()) * scale,
-      nearT,
-      ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.serial) * 0xD1B54A32D192ED03ull,
-      reuse ? sharp : nullptr,
-      reuse ? depth : nullptr};
+  const LensRays job{ctx,
+                     std::move(cams),
+                     mask,
+                     *ctx.scene,
+                     wf.rt,
+                     wf.whitted,
+                     lens,
+                     scale,
+                     ctx.pixelSpread(ctx.views.front()) * scale,
+                     nearT,
+                     ctx.frameSeed(),
+                     reuse ? sharp : nullptr,
+                     reuse ? depth : nullptr};
   std::atomic<uint64_t> reusedTotal{0};
   parallelTiles(w, h, [&](int x0, int y0, int x1, int y1) {
     const int tw = x1 - x0;

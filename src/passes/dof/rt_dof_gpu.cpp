@@ -62,8 +62,7 @@ void RTDofPass::executeGpu(FrameContext& ctx) {
   a.frameHeight = uint32_t(ctx.height);
   a.viewCount = uint32_t(views.size());
   // New lens samples every executed frame, as on the CPU.
-  const uint64_t seed =
-      ctx.seed * 0x9E3779B97F4A7C15ull + uint64_t(ctx.serial) * 0xD1B54A32D192ED03ull;
+  const uint64_t seed = ctx.frameSeed();
   a.seedLo = uint32_t(seed);
   a.seedHi = uint32_t(seed >> 32);
   const Camera& cam = ctx.views.front().camera;

@@ -72,7 +72,7 @@ void FoveatedPTPass::execute(FrameContext& ctx) {
   const ShadingContext shading = ShadingContext::from(*ctx.scene);
   const LightGrid* grid = prepare(ctx, shading);
   const DiffuseGI gi(rt, *ctx.scene, shading, grid);
-  const uint64_t seed = hashCombine(uint32_t(ctx.seed), uint32_t(ctx.serial + 1));
+  const uint64_t seed = ctx.frameSeed();
   const size_t listed = size_t(coords.width) * (coords.height > 0 ? 1 : 0);
   const size_t eyes = ctx.views.size();
   std::atomic<uint64_t> rays{0}, samples{0};

@@ -36,7 +36,9 @@ void FoveatedPTPass::executeGpu(FrameContext& ctx) {
   a.listed = coords.height > 0 ? uint32_t(coords.width) : 0u;
   a.viewCount = uint32_t(ctx.views.size());
   a.frameWidth = uint32_t(ctx.width);
-  a.seedLo = hashCombine(uint32_t(ctx.seed), uint32_t(ctx.serial + 1));  // FoveatedPTPass::execute
+  const uint64_t seed = ctx.frameSeed();  // FoveatedPTPass::execute
+  a.seedLo = uint32_t(seed);
+  a.seedHi = uint32_t(seed >> 32);
   const uint64_t args = gpu.constants(&a, sizeof a);
   const GpuKernel& k =
       gpu.kernel("foveated_pt", kFoveatedPtSpv, sizeof(kFoveatedPtSpv) / 4, sizeof args);
