@@ -13,6 +13,7 @@
 #include "pipeline/renderer.h"
 #include "raster/gbuffer.h"
 #include "scene/loaders.h"
+#include "scene/primitives.h"
 #include "scene/scene_camera.h"
 
 namespace tandem {
@@ -70,6 +71,38 @@ TEST(GpuRaster, BothEyesOfAStereoFrame) {
   const Scene scene = loadScene("atrium");
   compareFrames(dev, "deferred", scene, defaultCamera(scene), "atrium stereo",
                 StereoDesc{.enabled = true});
+  expectNoValidationMessages(*dev);
+}
+
+// Two triangles whose pixel boxes span a 2048 x 2080 frame, 66560 tiles of 8x8 each: drawn by
+// raster_queue in bands of rows. Drawn a workgroup a triangle, lavapipe (which ends a loop after
+// 65535 iterations) left the last rows of each unwritten: the sky showed through.
+TEST(GpuRaster, LargeTrianglesEqualTheCpus) {
+  REQUIRE_GPU(dev);
+  Scene scene;
+  Material grey;
+  grey.diffuse = {0.5f, 0.5f, 0.5f};
+  Transform wall;
+  wall.rotationDeg = {90, 0, 0};  // the plane's normal +y turned to face the camera on +z
+  wall.scale = {50, 1, 50};
+  scene.addObject("wall", scene.addMesh(makePlane()), scene.addMaterial(grey), wall);
+  CameraDesc cam;
+  cam.position = {0, 0, 5};
+  cam.lookAt = {0, 0, 0};
+  RenderSettings rs{.width = 2048, .height = 2080};
+  Renderer cpu(scene, Pipeline::load("deferred-gbuffer"), rs);
+  rs.gpu = dev;
+  Renderer gpu(scene, Pipeline::load("deferred-gbuffer"), rs);
+  cpu.renderFrame(0, cam);
+  gpu.renderFrame(0, cam);
+  const Buffer &c = cpu.context().input("object_id"), &g = gpu.context().input("object_id");
+  size_t covered = 0;
+  for (float id : c.data) covered += id == 0.0f ? 1 : 0;
+  EXPECT_GE(double(covered), 0.99 * double(c.pixelCount())) << "the wall fills the CPU's frame";
+  ASSERT_EQ(c.data.size(), g.data.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < c.data.size(); ++i) differ += c.data[i] != g.data[i] ? 1 : 0;
+  EXPECT_EQ(differ, 0u) << "pixels whose object differs";
   expectNoValidationMessages(*dev);
 }
 

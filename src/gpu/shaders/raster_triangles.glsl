@@ -28,6 +28,7 @@ layout(push_constant, scalar) uniform Push { uint64_t args; };
 
 const float kGuardBand = 4.0;
 const int kDirectPixels = 128;  // a box up to this many pixels is drawn by its set-up thread
+const int kBandRows = 32;       // a queued triangle's pixel rows per queue entry
 
 shared uint groupCounts[TD_RASTER_COUNT_N];
 
@@ -198,15 +199,26 @@ void rasterize(uint triangle, int object, RasterArgs a) {
     t.pad = 0u;
     atomicAdd(groupCounts[TD_RASTER_BINNED], 1u);
     if (boxSize(t, a) > kDirectPixels) {
+      // Queued in bands of kBandRows pixel rows, each drawn by a workgroup: a large triangle
+      // spreads over many workgroups, and no workgroup's loop runs long (lavapipe ends a loop
+      // after 65535 iterations, counted over a workgroup's whole run: a 4K frame's ceiling lost
+      // its lower rows). Sample mode takes each band's cells (a cell row two bands share is
+      // tested by both: a depth test twice gives the same key).
       RasterQueue q = RasterQueue(a.queue);
-      const uint slot = atomicAdd(q.count, 1u);
-      if (slot < a.queueCapacity) {
-        q.t[slot] = t;
-        atomicAdd(groupCounts[TD_RASTER_QUEUED], 1u);
-        continue;
+      const int y0 = t.py0, y1 = t.py1;
+      const int bands = (y1 - y0) / kBandRows + 1;
+      const uint slot = atomicAdd(q.count, uint(bands));
+      int first = y0;  // the rows from here on are drawn by this thread
+      for (int k = 0; k < bands && slot + uint(k) < a.queueCapacity; ++k) {
+        t.py0 = y0 + kBandRows * k, t.py1 = min(t.py0 + kBandRows - 1, y1);
+        q.t[slot + uint(k)] = t;
+        first = t.py1 + 1;
       }
+      if (first > y0) atomicAdd(groupCounts[TD_RASTER_QUEUED], 1u);
+      if (first > y1) continue;
+      t.py0 = first, t.py1 = y1;  // (a full queue leaves the rest here)
     }
-    drawBox(t, a);  // small, or the queue is full
+    drawBox(t, a);  // small, or the rest of a full queue's
   }
 }
 
