@@ -41,7 +41,8 @@ constexpr uint32_t hashCombine(uint32_t seed, uint32_t v) {
   return seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2));
 }
 // The one per-frame seed: frame `frame` of a run seeded `seed` (the run's seed times the golden
-// ratio, plus the frame times another odd constant, so seeds and frames never share a stream).
+// ratio, plus the frame times another odd constant: nearby seeds and frames land far apart, and
+// the sampler hashes it further).
 // Passes take it through FrameContext::frameSeed (the frame executed: a still shot's frames
 // differ); references seed by the shot's frame number so a frame's truth does not depend on
 // what was rendered before it.
