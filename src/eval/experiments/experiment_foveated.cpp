@@ -70,7 +70,8 @@ Resolution resolutionNamed(const std::string& n) {
 }
 
 // The thesis' three configurations and, beyond it, NH3LD with the periphery accumulated over
-// frames (periphery_accumulation) and NH3LD with its level counts from the measured noise. Every
+// frames (foveated-nh3ld-temporal: periphery_accumulation, the selection rotating each frame, the
+// levels from the measured noise) and NH3LD with its level counts from the measured noise. Every
 // row but the labelled ones filters only what direct_light's noise-free direct light leaves
 // (nh_denoise.split = direct).
 struct Config {
@@ -86,6 +87,10 @@ const PipelineEdit kVarianceWeight = editPass<NHDenoisePass>(
     [](NHDenoiseSettings& d) { d.colorWeight = NHDenoiseSettings::ColorWeight::Variance; });
 const PipelineEdit kNoSplit =
     editPass<NHDenoisePass>([](NHDenoiseSettings& d) { d.split = NHDenoiseSettings::Split::None; });
+const PipelineEdit kFixedLevels = editPass<NHDenoisePass>(
+    [](NHDenoiseSettings& d) { d.levelsFrom = NHDenoiseSettings::LevelsFrom::Fixed; });
+const PipelineEdit kFixedSelection =
+    editPass<FoveationPass>([](FoveationSettings& f) { f.rotate = false; });
 const PipelineEdit kUniformLights = editPass<FoveatedPTPass>(
     [](FoveatedPTSettings& p) { p.lightSelection = FoveatedPTSettings::LightSelection::Uniform; });
 
@@ -119,11 +124,12 @@ const std::vector<Config>& configs() {
        "nh3ld-uniform",
        {kUniformLights, kNoSplit},
        7},
-      // Both of the above beyond-the-thesis options of NH3LD together.
+      // The accumulating NH3LD with the thesis' selection, the same map every frame (its unlisted
+      // pixels never sampled while the camera stands still).
       {"foveated-nh3ld-temporal",
-       "NH3LD + temporal, levels from variance",
-       "nh3ld-temporal-variance",
-       {kLevelsFromVariance},
+       "NH3LD + temporal, the thesis' fixed selection",
+       "nh3ld-temporal-fixed",
+       {kFixedSelection},
        0,
        true},
       // The thesis' filter on the grid's estimate: the whole estimate filtered.
@@ -138,10 +144,17 @@ const std::vector<Config>& configs() {
        {kNoSplit},
        10},
       {"foveated-nh3ld-temporal",
-       "NH3LD + temporal, levels from variance, no direct split",
-       "nh3ld-temporal-variance-nosplit",
-       {kLevelsFromVariance, kNoSplit},
+       "NH3LD + temporal, no direct split",
+       "nh3ld-temporal-nosplit",
+       {kNoSplit},
        10,
+       true},
+      // The accumulating NH3LD with the thesis' selection and level counts (2 / 3 / 5).
+      {"foveated-nh3ld-temporal",
+       "NH3LD + temporal, the thesis' fixed selection and levels",
+       "nh3ld-temporal-thesis",
+       {kFixedSelection, kFixedLevels},
+       0,
        true}};
   return c;
 }

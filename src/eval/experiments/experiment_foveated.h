@@ -8,9 +8,11 @@
 //    without foveation or denoising (reference integrator diffuse-gi, `referenceSpp`), over the
 //    whole dual image and separately in the fovea (inner layer) and the periphery (outer layer);
 //  - Figures 17 and 18: same-crop comparisons and FLIP heat maps side by side;
-//  - beyond the thesis: NH3LD with the periphery accumulated over frames (timed along the path,
-//    its quality after `temporalFrames` frames of the still camera), and NH3LD with each
-//    region's level count from its measured noise (nh_denoise levels_from = variance);
+//  - beyond the thesis: NH3LD with the periphery accumulated over frames, its selection rotating
+//    each frame and its level counts from the measured noise (foveated-nh3ld-temporal; timed
+//    along the path, its quality after `temporalFrames` frames of the still camera, also with
+//    the thesis' fixed selection and levels), and NH3LD with each region's level count from its
+//    measured noise (nh_denoise levels_from = variance);
 //  - the accumulating configuration along a moving camera (Base, NH3LD, NH3LD + temporal at the
 //    last of the first `temporalFrames` frames of each path, against its own reference).
 // Quality is measured at a smaller size (`qualityWidth` x `qualityHeight` per eye, radii scaled

@@ -1,5 +1,6 @@
 #include "passes/foveated/foveation.h"
 
+#include "core/parallel.h"
 #include "core/profiler.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
@@ -56,7 +57,12 @@ const ParamTable<FoveationSettings>& FoveationPass::tableFor() const {
           .add(&S::scaleRadii, {.name = "scale_radii",
                                 .doc = "radii are for 1080 rows: scale them to the eye's height"})
           .add(&S::seed,
-               {.name = "seed", .min = 0, .max = 1e9, .doc = "seed of the selection toss"});
+               {.name = "seed", .min = 0, .max = 1e9, .doc = "seed of the selection toss"})
+          .add(&S::rotate,
+               {.name = "rotate",
+                .doc = "beyond the thesis: the selection toss turns by the golden ratio each "
+                       "frame, so a pixel listed with probability q is sampled on a share q of "
+                       "the frames (with periphery_accumulation the whole periphery over a few)"});
   return table;
 }
 
@@ -93,12 +99,19 @@ bool FoveationPass::update(FrameContext& ctx) {
   if (settings().gaze == FoveationSettings::Gaze::Trace && ctx.scene &&
       !ctx.scene->gazeTrace.empty())
     d.gaze = sampleGazeTrace(ctx.scene->gazeTrace, ctx.frame.time);
+  if (settings().rotate) d.rotation = uint32_t(ctx.serial);
   d.validate("pass foveation");
-  const bool rebuild =
-      !valid_ || !(d == built_) || map_.width != eye.width() || map_.height != eye.height();
+  const bool resized = !valid_ || map_.width != eye.width() || map_.height != eye.height();
+  FoveationDesc unturned = built_;
+  unturned.rotation = d.rotation;
+  const bool rebuild = resized || !(d == built_);
   if (rebuild) {
     const auto t0 = Clock::now();
-    map_ = computeFoveation(eye.width(), eye.height(), d);
+    // Only the toss turned: the layers stand, the pixels are listed again.
+    if (!resized && unturned == d)
+      reselectFoveation(map_, d);
+    else
+      map_ = computeFoveation(eye.width(), eye.height(), d);
     built_ = d;
     valid_ = true;
     ctx.passParts.push_back({"distribution", msSince(t0), 0});
@@ -123,13 +136,15 @@ void FoveationPass::write(FrameContext& ctx) {
   }
   mask.fill(0.0f);
   layer.fill(2.0f);
+  // (Rows in parallel: a rotating selection writes them every frame.)
   for (const View& v : ctx.views)
-    for (int y = 0; y < std::min(v.height(), map_.height); ++y)
+    parallelRows(std::min(v.height(), map_.height), [&](int y) {
       for (int x = 0; x < std::min(v.width(), map_.width); ++x) {
         const size_t i = size_t(y) * size_t(map_.width) + size_t(x);
         mask.at(x + v.x, y + v.y)[0] = map_.spp[i] ? 1.0f : 0.0f;
         layer.at(x + v.x, y + v.y)[0] = float(map_.layer[i]);
       }
+    });
   written_ = mask.data.data();
 }
 

@@ -24,6 +24,7 @@ struct FoveationSettings {
   float gazeX = 0.5f, gazeY = 0.5f;
   bool scaleRadii = true;
   int seed = 0;
+  bool rotate = false;
 };
 
 // The channels of fov_coords, one record per listed pixel: its coordinates in the eye's image and

@@ -1,9 +1,11 @@
 #include "passes/foveated/foveation_map.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "rt/sampler.h"
 
 namespace tandem {
@@ -21,7 +23,7 @@ void FoveationDesc::validate(const std::string& where) const {
 bool FoveationDesc::operator==(const FoveationDesc& o) const {
   return r0 == o.r0 && r1 == o.r1 && p == o.p && outerP == o.outerP && spp[0] == o.spp[0] &&
          spp[1] == o.spp[1] && spp[2] == o.spp[2] && gaze.x == o.gaze.x && gaze.y == o.gaze.y &&
-         seed == o.seed && full == o.full;
+         seed == o.seed && rotation == o.rotation && full == o.full;
 }
 
 int64_t FoveationMap::totalSamples() const {
@@ -54,6 +56,16 @@ float toss(uint64_t seed, uint32_t pixel) {
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   z ^= z >> 31;
   return float(z >> 40) * (1.0f / 16777216.0f);
+}
+
+// Pixel i's toss turned by `rotation` golden-ratio steps: for a fixed pixel the turned tosses
+// are the golden-ratio sequence from its toss, which falls below q on a share q of the frames
+// with the gaps between them as even as a sequence allows.
+float turnedToss(uint64_t seed, uint32_t pixel, uint32_t rotation) {
+  const float u = toss(seed, pixel);
+  if (rotation == 0) return u;
+  const double t = double(u) + double(rotation) * 0.61803398874989484820;
+  return float(t - std::floor(t));
 }
 
 // The k pixels nearest g (by squared distance of their centres, ties by index). Only pixels
@@ -107,14 +119,9 @@ FoveationMap computeFoveation(int width, int height, const FoveationDesc& desc) 
   m.width = width;
   m.height = height;
   const size_t n = size_t(width) * size_t(height);
-  m.layer.assign(n, 2);
-  m.spp.assign(n, 0);
+  m.layer.assign(n, desc.full ? 0 : 2);
   const Vec2 g(desc.gaze.x * float(width), desc.gaze.y * float(height));
-  if (desc.full) {
-    m.layer.assign(n, 0);
-    m.spp.assign(n, uint16_t(desc.spp[0]));
-    m.layers[0] = {0, int64_t(n), int64_t(n), desc.spp[0]};
-  } else {
+  if (!desc.full) {
     // The first round(area) pixels by distance from the gaze (ties by pixel order) are inside.
     const size_t k0 = size_t(std::llround(discAreaInRect(g, desc.r0, width, height)));
     const size_t k1 = std::max(k0, size_t(std::llround(discAreaInRect(g, desc.r1, width, height))));
@@ -124,31 +131,61 @@ FoveationMap computeFoveation(int width, int height, const FoveationDesc& desc) 
     for (uint32_t i : inner) m.layer[i] = 0;
     m.layers[0].radius = desc.r0;
     m.layers[1].radius = desc.r1;
-    const float outer = desc.outerProbability(), span = std::max(desc.r1 - desc.r0, 1e-6f);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const size_t i = size_t(y) * size_t(width) + size_t(x);
-        const int L = m.layer[i];
-        float prob = 1.0f;
-        if (L == 1) {
-          const Vec2 r = Vec2(x + 0.5f, y + 0.5f) - g;
-          const float d = std::sqrt(r.x * r.x + r.y * r.y);
-          const float t = std::clamp((d - desc.r0) / span, 0.0f, 1.0f);
-          prob = 1.0f - (1.0f - desc.p) * t;  // linear decay from 1 at r0 to p at r1
-        } else if (L == 2) {
-          prob = outer;
-        }
-        m.layers[L].area++;
-        if (prob >= 1.0f || toss(desc.seed, uint32_t(i)) < prob) {
-          m.spp[i] = uint16_t(desc.spp[L]);
-          m.layers[L].listed++;
-        }
-      }
-    for (int L = 0; L < 3; ++L) m.layers[L].spp = desc.spp[L];
   }
-  for (size_t i = 0; i < n; ++i)
-    if (m.spp[i]) m.coords.push_back(uint32_t(i));
+  reselectFoveation(m, desc);
   return m;
+}
+
+void reselectFoveation(FoveationMap& m, const FoveationDesc& desc) {
+  const int width = m.width, height = m.height;
+  const size_t n = size_t(width) * size_t(height);
+  m.spp.resize(n);
+  const Vec2 g(desc.gaze.x * float(width), desc.gaze.y * float(height));
+  const float outer = desc.outerProbability(), span = std::max(desc.r1 - desc.r0, 1e-6f);
+  // Rows in parallel (a rotating selection is tossed again every frame), each counting its
+  // pixels per layer; the listed ones are then gathered in row order.
+  using Counts = std::vector<std::array<int64_t, 3>>;
+  Counts area = Counts(size_t(height)), listed = Counts(size_t(height));
+  parallelRows(height, [&](int y) {
+    std::array<int64_t, 3>&a = area[size_t(y)], &l = listed[size_t(y)];
+    a = l = {0, 0, 0};
+    for (int x = 0; x < width; ++x) {
+      const size_t i = size_t(y) * size_t(width) + size_t(x);
+      const int L = m.layer[i];
+      float prob = 1.0f;
+      if (L == 1) {  // (a full map's pixels are all inner)
+        const Vec2 r = Vec2(x + 0.5f, y + 0.5f) - g;
+        const float d = std::sqrt(r.x * r.x + r.y * r.y);
+        const float t = std::clamp((d - desc.r0) / span, 0.0f, 1.0f);
+        prob = 1.0f - (1.0f - desc.p) * t;  // linear decay from 1 at r0 to p at r1
+      } else if (L == 2) {
+        prob = outer;
+      }
+      ++a[size_t(L)];
+      const bool in = prob >= 1.0f || turnedToss(desc.seed, uint32_t(i), desc.rotation) < prob;
+      m.spp[i] = in ? uint16_t(desc.spp[L]) : uint16_t(0);
+      l[size_t(L)] += in;
+    }
+  });
+  std::vector<size_t> first(size_t(height) + 1, 0);
+  for (int L = 0; L < 3; ++L) m.layers[L].area = m.layers[L].listed = 0;
+  for (int y = 0; y < height; ++y) {
+    const std::array<int64_t, 3>&a = area[size_t(y)], &l = listed[size_t(y)];
+    for (int L = 0; L < 3; ++L) {
+      m.layers[L].area += a[size_t(L)];
+      m.layers[L].listed += l[size_t(L)];
+    }
+    first[size_t(y) + 1] = first[size_t(y)] + size_t(l[0] + l[1] + l[2]);
+  }
+  for (int L = 0; L < 3; ++L) m.layers[L].spp = desc.spp[L];
+  m.coords.resize(first.back());
+  parallelRows(height, [&](int y) {
+    size_t k = first[size_t(y)];
+    for (int x = 0; x < width; ++x) {
+      const size_t i = size_t(y) * size_t(width) + size_t(x);
+      if (m.spp[i]) m.coords[k++] = uint32_t(i);
+    }
+  });
 }
 
 }  // namespace tandem

@@ -25,6 +25,10 @@ struct FoveationDesc {
   int spp[3] = {4, 3, 2};    // samples per listed pixel: inner, middle, outer
   Vec2 gaze{0.5f, 0.5f};     // gaze point, fraction of the eye's viewport (0,0 top left)
   uint64_t seed = 0;
+  // The selection toss turned by rotation x the golden ratio (mod 1): 0 is the thesis' map; a
+  // distribution that rotates each frame takes the frame's number, so a pixel listed with
+  // probability q is listed on a share q of the frames, evenly spread over them.
+  uint32_t rotation = 0;
   bool full = false;  // Base: no foveation, every pixel listed with spp[0] samples
   float outerProbability() const { return outerP < 0 ? p : outerP; }
   // Throws InputError naming `where` and the field for r1 < r0, p or outer_p outside [0,1],
@@ -55,5 +59,10 @@ struct FoveationMap {
 double discAreaInRect(Vec2 c, double r, int w, int h);
 
 FoveationMap computeFoveation(int width, int height, const FoveationDesc& desc);
+
+// The selection of `m` (computed for a desc equal to `desc` but for its rotation) tossed again
+// for desc.rotation: the layers kept, the listed pixels, their counts and coordinates renewed.
+// The same map computeFoveation gives for `desc`, without ranking the pixels again.
+void reselectFoveation(FoveationMap& m, const FoveationDesc& desc);
 
 }  // namespace tandem

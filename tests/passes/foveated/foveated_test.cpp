@@ -234,6 +234,46 @@ TEST(Foveation, FullAtPOneDeterministicAndSameForBothEyes) {
       }
 }
 
+// A rotating toss (foveation.rotate) keeps the layers and each frame's listed share, lists every
+// pixel of probability q on a share q of the frames with no long gap, and reselecting a map gives
+// what computing it afresh gives.
+TEST(Foveation, RotatingTossSpreadsTheSelectionOverFrames) {
+  FoveationDesc d;
+  d.r0 = 40;
+  d.r1 = 80;
+  const FoveationMap first = computeFoveation(320, 240, d);
+  FoveationMap turned = first;
+  std::vector<int> listed(first.spp.size(), 0), lastFrame(first.spp.size(), -1),
+      longestGap(first.spp.size(), 0);
+  const int frames = 8;
+  for (int k = 1; k <= frames; ++k) {
+    d.rotation = uint32_t(k);
+    reselectFoveation(turned, d);
+    const FoveationMap fresh = computeFoveation(320, 240, d);
+    ASSERT_EQ(turned.coords, fresh.coords);
+    ASSERT_EQ(turned.layer, first.layer);
+    EXPECT_NE(turned.coords, first.coords);
+    EXPECT_NEAR(double(turned.layers[2].listed) / double(turned.layers[2].area), 0.5, 0.02);
+    for (size_t i = 0; i < turned.spp.size(); ++i) {
+      if (turned.spp[i] == 0) continue;
+      ++listed[i];
+      if (lastFrame[i] >= 0) longestGap[i] = std::max(longestGap[i], k - lastFrame[i]);
+      lastFrame[i] = k;
+    }
+  }
+  for (size_t i = 0; i < listed.size(); ++i) {
+    if (first.layer[i] == 0) {
+      ASSERT_EQ(listed[i], frames);
+    } else if (first.layer[i] == 2) {
+      // The golden-ratio sequence puts 4 +- 1 of 8 points in any interval of length 1/2, and
+      // never leaves one alone for more than 3 steps.
+      ASSERT_GE(listed[i], 3) << i;
+      ASSERT_LE(listed[i], 5) << i;
+      ASSERT_LE(longestGap[i], 3) << i;
+    }
+  }
+}
+
 // À-Trous leaves a constant image constant, whatever the mask and guides (weights normalise).
 TEST(Atrous, ConstantImageIsIdentity) {
   const int w = 64, h = 48;
@@ -566,14 +606,17 @@ TEST(Foveation, GazeTraceRebuildsOnlyWhenTheGazeMoves) {
   EXPECT_EQ(rebuilt, (std::vector<double>{1, 0, 1, 0}));
 }
 
-// Periphery accumulation: with a still camera the middle and outer layers average their frames
-// (the error of the accumulated estimate falls well below one frame's), the fovea keeps this
-// frame's samples unchanged, and where the surface under a pixel changes the history restarts.
+// Periphery accumulation: with a still camera and the thesis' fixed selection (no rotation) the
+// middle and outer layers average their frames (the error of the accumulated estimate falls well
+// below one frame's), the fovea keeps this frame's samples unchanged, and where the surface under
+// a pixel changes the history restarts.
 TEST(Foveated, PeripheryAccumulationAveragesOutsideTheFovea) {
   const Scene s = flatLitPlane();
   const int w = 96, h = 72;
   const ShadingContext shading = ShadingContext::from(s);
-  Renderer r(s, Pipeline::load("foveated-nh3ld-temporal"), RenderSettings{.width = w, .height = h});
+  Pipeline p = Pipeline::load("foveated-nh3ld-temporal");
+  p.setParam("foveation.rotate=false", "test");
+  Renderer r(s, std::move(p), RenderSettings{.width = w, .height = h});
   const CameraDesc cam = topCamera();
   for (int f = 0; f < 8; ++f) r.renderFrame(0, cam);
   const FrameContext& ctx = r.context();
@@ -605,6 +648,54 @@ TEST(Foveated, PeripheryAccumulationAveragesOutsideTheFovea) {
   moved.lookAt = moved.lookAt + Vec3(3.5f, 0, 0);
   r.renderFrame(0, moved);
   EXPECT_LT(r.context().counters.at("periphery_accumulation/mean_frames"), 1.2);
+}
+
+// The rotating selection (foveated-nh3ld-temporal's default) with a still camera: after 8 frames
+// every pixel of the middle and outer layers has an estimate (those unlisted this frame their
+// history, marked in pt_accum_mask), each pixel's history counts the frames it was listed on,
+// the mean near the layers' listed share of 8, and the error of the whole periphery, listed or
+// not, falls well below one frame's.
+TEST(Foveated, RotatingSelectionCoversThePeripheryOverFrames) {
+  const Scene s = flatLitPlane();
+  const int w = 96, h = 72;
+  const ShadingContext shading = ShadingContext::from(s);
+  Renderer r(s, Pipeline::load("foveated-nh3ld-temporal"), RenderSettings{.width = w, .height = h});
+  const CameraDesc cam = topCamera();
+  std::vector<int> listedFrames(size_t(w * h), 0);
+  for (int f = 0; f < 8; ++f) {
+    r.renderFrame(0, cam);
+    const Buffer& mask = r.context().input("fov_mask");
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) listedFrames[size_t(y * w + x)] += mask.at(x, y)[0] > 0;
+  }
+  const FrameContext& ctx = r.context();
+  const Buffer& noisy = ctx.input("pt_noisy");
+  const Buffer& accum = ctx.input("pt_accum");
+  const Buffer& accumMask = ctx.input("pt_accum_mask");
+  const Buffer& history = ctx.input("pt_history");
+  const Buffer& layer = ctx.input("fov_layer");
+  const Buffer& mask = ctx.input("fov_mask");
+  const Buffer& pos = ctx.input("position");
+  double errAccum = 0, errFrame = 0, frames = 0;
+  int n = 0, listed = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (layer.at(x, y)[0] == 0) continue;
+      ASSERT_GT(accumMask.at(x, y)[0], 0.0f) << x << ", " << y;
+      ASSERT_EQ(history.at(x, y)[HistoryChannels::kFrames], float(listedFrames[size_t(y * w + x)]))
+          << x << ", " << y;
+      frames += listedFrames[size_t(y * w + x)];
+      const float exact = exactFloorRadiance(shading, pos.rgb(x, y));
+      errAccum += std::pow(accum.at(x, y)[0] - exact, 2);
+      ++n;
+      if (mask.at(x, y)[0] == 0) continue;
+      errFrame += std::pow(noisy.at(x, y)[0] - exact, 2);
+      ++listed;
+    }
+  ASSERT_GT(listed, 100);
+  EXPECT_LT(listed, n);  // some periphery pixels are unlisted this frame
+  EXPECT_NEAR(ctx.counters.at("periphery_accumulation/mean_frames"), frames / n, 1e-6);
+  EXPECT_LT(errAccum / n, 0.4 * errFrame / listed);  // 4 to 8 frames each
 }
 
 // Periphery accumulation while the camera pans 0.4 px per frame: the history follows the surface
