@@ -165,6 +165,7 @@ void main() {
     const vec3 op = get3(g.optical, pixel);
     if ((op.x > 0.0 && m.y < 0.5) || (op.z < 1.0 && m.z < 0.5))
       atomicAdd(Counts(a.areas).v[id], 1u);
+    if (op.x > 0.0 || op.z < 1.0) atomicAdd(Counts(a.areas).v[a.objectCount + uint(id)], 1u);
     return;
   }
   float out_[kChannels];

@@ -5,7 +5,8 @@
 #include "shared.h"
 
 // What the kernel does: count each object's pixels that show an untraced reflection or
-// refraction (the probes' areas), or write the fallback buffer.
+// refraction and its reflective or transparent pixels (the probes' areas), or write the fallback
+// buffer.
 #define TD_FALLBACK_COUNT 0
 #define TD_FALLBACK_WRITE 1
 // FallbackSettings::Mode
@@ -34,7 +35,7 @@ struct FallbackArgs {
   TD_ADDR hdr, mask, result;  // mask: heuristic_mask; result: the 11-channel fallback buffer
   TD_ADDR shadowMaps;         // GpuShadowMapsHeader, 0 without shadow-map shadows
   TD_ADDR probes;             // GpuProbe per object (mode probe)
-  TD_ADDR areas;              // per object a uint (TD_FALLBACK_COUNT)
+  TD_ADDR areas;              // 2 x objects uints: untraced, then all (TD_FALLBACK_COUNT)
   TD_INT viewX, viewY, frameWidth, phase;
   TD_INT mode, steps;
   TD_FLOAT thickness, shadowCull;

@@ -134,16 +134,15 @@ Vec3 marchScreen(const Frame& f, const View& v, Vec3 p, Vec3 r, int steps, float
 }  // namespace
 
 void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingContext& shading) {
-  // A probe for every reflective or transparent object that shows an untraced effect.
+  // A probe for every reflective or transparent object in view, those that show an untraced
+  // effect first.
   const auto t0 = Clock::now();
   const Scene& scene = *ctx.scene;
   const Buffer& optical = ctx.input(*this, Slots::optical);
   const Buffer& objectId = ctx.input(*this, Slots::objectId);
   const Buffer& mask = ctx.input(*this, Slots::heuristicMask);
-  // At most max_probes of them, the largest on screen (the others show the sky): each probe
-  // costs six draws of the scene and its memory.
-  tbb::enumerable_thread_specific<std::vector<uint32_t>> areas(
-      std::vector<uint32_t>(scene.objects.size(), 0));
+  const size_t n = scene.objects.size();
+  tbb::enumerable_thread_specific<std::vector<uint32_t>> areas(std::vector<uint32_t>(2 * n, 0));
   parallelRange(objectId.pixelCount(), [&](size_t b, size_t e) {
     std::vector<uint32_t>& local = areas.local();
     for (size_t i = b; i < e; ++i) {
@@ -151,12 +150,14 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
       if (id < 0) continue;
       const float *op = &optical.data[OpticalChannels::kCount * i],
                   *m = &mask.data[size_t(kEffectCount) * i];
-      if ((op[OpticalChannels::kReflectivity] > 0 && m[kReflection] < 0.5f) ||
-          (op[OpticalChannels::kOpacity] < 1 && m[kRefraction] < 0.5f))
+      const bool reflective = op[OpticalChannels::kReflectivity] > 0,
+                 transparent = op[OpticalChannels::kOpacity] < 1;
+      if ((reflective && m[kReflection] < 0.5f) || (transparent && m[kRefraction] < 0.5f))
         ++local[size_t(id)];
+      if (reflective || transparent) ++local[n + size_t(id)];
     }
   });
-  std::vector<uint32_t> area(scene.objects.size(), 0);
+  std::vector<uint32_t> area(2 * n, 0);
   for (const std::vector<uint32_t>& local : areas)
     for (size_t o = 0; o < area.size(); ++o) area[o] += local[o];
   updateProbes(ctx, shading, area, probes_);
@@ -166,14 +167,25 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
 void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingContext& shading,
                                            const std::vector<uint32_t>& area,
                                            ReflectionProbes& probes) {
+  // The heuristic's selection changes from frame to frame while the objects in view stay: an
+  // object traced now is wanted too, so that its probe is there (drawn once; probes do not depend
+  // on the camera) the frame the selection leaves it out, instead of drawn in that frame.
+  const size_t n = area.size() / 2;
+  const uint32_t* untraced = area.data();
+  const uint32_t* inView = area.data() + n;
   std::vector<uint32_t> order;
-  for (size_t o = 0; o < area.size(); ++o)
-    if (area[o] > 0) order.push_back(uint32_t(o));
+  for (size_t o = 0; o < n; ++o)
+    if (inView[o] > 0) order.push_back(uint32_t(o));
   const FallbackSettings& s = settings();
   const size_t keep = std::min(order.size(), size_t(s.maxProbes));
+  // At most max_probes of them: those showing the most untraced pixels, then the largest in view
+  // (the others show the sky). Each probe costs six draws of the scene and its memory.
   std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
-                    [&](uint32_t a, uint32_t c) { return area[a] > area[c]; });
-  std::vector<uint8_t> wanted(area.size(), 0);
+                    [&](uint32_t a, uint32_t c) {
+                      return untraced[a] != untraced[c] ? untraced[a] > untraced[c]
+                                                        : inView[a] > inView[c];
+                    });
+  std::vector<uint8_t> wanted(n, 0);
   for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
   ctx.report(*this, FallbackCounters::probesDrawn,
              probes.update(ctx.frame, shading, wanted, s.probeSize, s.probeRefresh,
@@ -371,7 +383,7 @@ void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
   // lights that reach a surface in view, each object's untraced pixels.
   const uint32_t* lightFlags = shadows ? recordLightsInView(ctx, *this) : nullptr;
   if (s.mode == FallbackMode::Probe) {
-    const std::vector<uint32_t> zero(std::max<size_t>(scene.objects.size(), 1), 0);
+    const std::vector<uint32_t> zero(std::max<size_t>(2 * scene.objects.size(), 1), 0);
     a.areas = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
     run(TD_FALLBACK_COUNT);
   }
@@ -386,7 +398,7 @@ void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
     const auto* counted = static_cast<const uint32_t*>(gpu.constantsData(a.areas));
     drawProbesOnDevice(ctx, deviceProbes_);
     const uint32_t t0 = cmd.timestamp();
-    updateProbes(ctx, shading, std::vector<uint32_t>(counted, counted + scene.objects.size()),
+    updateProbes(ctx, shading, std::vector<uint32_t>(counted, counted + 2 * scene.objects.size()),
                  deviceProbes_);
     const uint32_t t1 = cmd.timestamp();
     gpu.afterSubmit([&ctx, &cmd, t0, t1] {

@@ -74,9 +74,10 @@ class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
   const ParamTable<FallbackSettings>& tableFor() const override;
 
  private:
-  // Brings the probes of the objects that show an untraced reflection or refraction up to date.
+  // Brings the probes of the reflective and transparent objects in view up to date.
   void updateProbes(FrameContext& ctx, const ShadingContext& shading);
-  // The same given each object's pixels that show one (the largest get probes in `probes`).
+  // The same given each object's pixels (`area`, 2 x objects): [0, objects) those that show an
+  // untraced reflection or refraction, [objects, 2 x objects) all reflective or transparent ones.
   void updateProbes(FrameContext& ctx, const ShadingContext& shading,
                     const std::vector<uint32_t>& area, ReflectionProbes& probes);
   ReflectionProbes probes_, deviceProbes_;  // the CPU's, the GPU's
