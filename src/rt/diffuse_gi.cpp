@@ -118,29 +118,36 @@ Vec3 DiffuseGI::reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, fl
   return sum + emitted(hs, wh) + albedo(hs) * oneLight(hs, nh, u2.x, time, rays);
 }
 
-Vec3 DiffuseGI::brightestDirect(const SurfaceSample& s, Vec3 wo, int count, float time,
-                                uint64_t& rays) const {
-  const Vec3 n = dot(s.normal, wo) < 0.0f ? -s.normal : s.normal;
-  // Each light's unshadowed contribution (no ray yet); the `count` largest are traced.
-  struct Candidate {
-    float luminance;
-    int light;
-    LightSample sample;
-  };
-  thread_local std::vector<Candidate> candidates;  // no allocation per pixel
-  candidates.clear();
+size_t DiffuseGI::brightestLights(const SurfaceSample& s, Vec3 n, int count,
+                                  std::vector<DirectCandidate>& out) const {
+  // The `count` best kept sorted as the lights go by (insertion: count is a handful, the lights
+  // many), the brighter first, ties to the lower index (lights come in ascending order).
+  out.clear();
+  const size_t k = size_t(std::max(count, 0));
+  if (k == 0) return 0;
   for (int i : lights_) {
     const LightSample ls = sampleLight(shading_.lights[size_t(i)], s.position);
     const float cosI = dot(n, ls.wi);
     if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
-    candidates.push_back({luminance(ls.radiance) * cosI, i, ls});
+    const DirectCandidate c{luminance(ls.radiance) * cosI, i, ls};
+    auto better = [](const DirectCandidate& a, const DirectCandidate& b) {
+      return a.luminance != b.luminance ? a.luminance > b.luminance : a.light < b.light;
+    };
+    if (out.size() == k && !better(c, out.back())) continue;
+    if (out.size() < k) out.push_back(c);
+    size_t j = out.size() - 1;
+    for (; j > 0 && better(c, out[j - 1]); --j) out[j] = out[j - 1];
+    out[j] = c;
   }
-  const size_t k = std::min(candidates.size(), size_t(std::max(count, 0)));
-  std::partial_sort(candidates.begin(), candidates.begin() + ptrdiff_t(k), candidates.end(),
-                    [](const Candidate& a, const Candidate& b) {
-                      return a.luminance != b.luminance ? a.luminance > b.luminance
-                                                        : a.light < b.light;
-                    });
+  return out.size();
+}
+
+Vec3 DiffuseGI::brightestDirect(const SurfaceSample& s, Vec3 wo, int count, float time,
+                                uint64_t& rays) const {
+  const Vec3 n = dot(s.normal, wo) < 0.0f ? -s.normal : s.normal;
+  // Each light's unshadowed contribution (no ray yet); the `count` largest are traced.
+  thread_local std::vector<DirectCandidate> candidates;  // no allocation per pixel
+  const size_t k = brightestLights(s, n, count, candidates);
   Vec3 sum(0.0f);
   for (size_t c = 0; c < k; ++c) {
     const LightSample& ls = candidates[c].sample;
@@ -151,6 +158,37 @@ Vec3 DiffuseGI::brightestDirect(const SurfaceSample& s, Vec3 wo, int count, floa
     sum += ls.radiance * (dot(n, ls.wi) / kPi);
   }
   return sum;
+}
+
+void DiffuseGI::brightestDirect8(const SurfaceSample* s, const Vec3* wo, int n, int count,
+                                 float time, Vec3* out, uint64_t& rays) const {
+  thread_local std::vector<DirectCandidate> candidates[8];
+  Vec3 normal[8];
+  size_t k[8] = {}, most = 0;
+  for (int j = 0; j < n; ++j) {
+    normal[j] = dot(s[j].normal, wo[j]) < 0.0f ? -s[j].normal : s[j].normal;
+    k[j] = brightestLights(s[j], normal[j], count, candidates[j]);
+    most = std::max(most, k[j]);
+    out[j] = Vec3(0.0f);
+  }
+  // Rank by rank, each surface's c-th brightest light in one packet: neighbouring pixels' rays
+  // towards the same light are coherent. Each sum runs in rank order, as brightestDirect's.
+  for (size_t c = 0; c < most; ++c) {
+    Ray r[8];
+    bool traced[8] = {}, blocked[8] = {};
+    for (int j = 0; j < n; ++j) {
+      if (c >= k[j] || !scene_.lights[size_t(candidates[j][c].light)].castsShadows) continue;
+      r[j] = shadowRayTowards(s[j], candidates[j][c].sample, time);
+      traced[j] = true;
+      ++rays;
+    }
+    rt_.occluded8(r, traced, blocked);
+    for (int j = 0; j < n; ++j) {
+      if (c >= k[j] || blocked[j]) continue;
+      const LightSample& ls = candidates[j][c].sample;
+      out[j] += ls.radiance * (dot(normal[j], ls.wi) / kPi);
+    }
+  }
 }
 
 Vec3 DiffuseGI::radiance(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,

@@ -42,6 +42,10 @@ class DiffuseGI {
   // light (other lights, the bounce) is left to the paths.
   Vec3 brightestDirect(const SurfaceSample& s, Vec3 wo, int count, float time,
                        uint64_t& rays) const;
+  // The same for up to 8 surfaces (n <= 8), their shadow rays traced as packets, the brightest
+  // light of each surface first: out[j] = brightestDirect(s[j], wo[j], ...).
+  void brightestDirect8(const SurfaceSample* s, const Vec3* wo, int n, int count, float time,
+                        Vec3* out, uint64_t& rays) const;
   // The whole outgoing radiance: emission + albedo x reflected().
   Vec3 radiance(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, float time,
                 uint64_t& rays) const;
@@ -59,6 +63,15 @@ class DiffuseGI {
   // Irradiance / π at s from one light chosen at random (its visibility tested), over the
   // light's selection probability.
   Vec3 oneLight(const SurfaceSample& s, Vec3 n, float u, float time, uint64_t& rays) const;
+  // brightestDirect's lights at s: each light's unshadowed contribution, the `count` largest
+  // first (ties to the lower index), in `out`; returns how many there are (<= count).
+  struct DirectCandidate {
+    float luminance;
+    int light;
+    LightSample sample;
+  };
+  size_t brightestLights(const SurfaceSample& s, Vec3 n, int count,
+                         std::vector<DirectCandidate>& out) const;
 
   const RayTracer& rt_;
   const Scene& scene_;

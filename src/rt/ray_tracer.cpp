@@ -281,6 +281,27 @@ bool RayTracer::occluded(const Ray& in) const {
   return r.tfar < 0;
 }
 
+void RayTracer::occluded8(const Ray* rays, const bool* active, bool* out) const {
+  QueryContext qc;
+  rtcInitIntersectContext(&qc.ctx);
+  qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  qc.frame = frame_;
+  alignas(32) int valid[8];
+  alignas(32) RTCRay8 r;
+  int count = 0;
+  for (int i = 0; i < 8; ++i) {
+    valid[i] = active[i] ? -1 : 0;
+    count += active[i] ? 1 : 0;
+    setRayLane(r, i, rays[active[i] ? i : 0]);
+    r.id[i] = unsigned(i);
+  }
+  if (count == 0) return;
+  rtcOccluded8(valid, scene_, &qc.ctx, &r);
+  countRays(uint64_t(count));
+  for (int i = 0; i < 8; ++i)
+    if (active[i]) out[i] = r.tfar[i] < 0;
+}
+
 Vec3 RayTracer::transmittance(const Ray& in, bool textured) const {
   ShadowLane lane;
   QueryContext qc;

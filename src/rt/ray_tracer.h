@@ -41,6 +41,9 @@ class RayTracer {
 
   Hit intersect(const Ray& r, bool cullBackfaces = false) const;
   bool occluded(const Ray& r) const;
+  // Up to 8 occlusion rays in one coherent Embree packet: out[i] = occluded(rays[i]) for the
+  // lanes with active[i] (others untouched).
+  void occluded8(const Ray* rays, const bool* active, bool* out) const;
   // Shadow ray (Walewski et al. 2019 Listing 8b): the product over occluders of transparency x (1 -
   // diffuse), skipping materials that do not cast shadows; 0 once an opaque occluder is met.
   // `textured`: the occluder's diffuse colour at the hit, textures included (what the G-buffer

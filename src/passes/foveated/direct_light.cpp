@@ -38,7 +38,18 @@ void DirectLightPass::execute(FrameContext& ctx) {
   for (const View& v : ctx.views)
     tbb::parallel_for(tbb::blocked_range<int>(0, v.height()), [&](const auto& rows) {
       uint64_t local = 0;
-      for (int ey = rows.begin(); ey != rows.end(); ++ey)
+      // Surfaces gathered 8 at a time along the row: their shadow rays go as packets.
+      SurfaceSample s[8];
+      Vec3 wo[8], lit[8];
+      int xs[8], ys[8], n = 0;
+      auto flush = [&] {
+        gi.brightestDirect8(s, wo, n, count, 0.0f, lit, local);
+        for (int j = 0; j < n; ++j)
+          out.setRgb(xs[j], ys[j],
+                     DiffuseGI::emitted(s[j], wo[j]) + DiffuseGI::albedo(s[j]) * lit[j]);
+        n = 0;
+      };
+      for (int ey = rows.begin(); ey != rows.end(); ++ey) {
         for (int ex = 0; ex < v.width(); ++ex) {
           const int x = ex + v.x, y = ey + v.y;
           if (g.sky(x, y)) {  // the sky, as foveated_pt sees it
@@ -47,12 +58,13 @@ void DirectLightPass::execute(FrameContext& ctx) {
             out.setRgb(x, y, ctx.scene->skyRadiance(d));
             continue;
           }
-          const SurfaceSample s = g.at(x, y);
-          const Vec3 wo = PrimarySurfaces::towardsViewer(v, s.position);
-          out.setRgb(x, y,
-                     DiffuseGI::emitted(s, wo) +
-                         DiffuseGI::albedo(s) * gi.brightestDirect(s, wo, count, 0.0f, local));
+          s[n] = g.at(x, y);
+          wo[n] = PrimarySurfaces::towardsViewer(v, s[n].position);
+          xs[n] = x, ys[n] = y;
+          if (++n == 8) flush();
         }
+        if (n > 0) flush();
+      }
       rays += local;
     });
   ctx.passRays += double(rays.load());
