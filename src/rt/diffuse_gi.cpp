@@ -118,29 +118,52 @@ Vec3 DiffuseGI::reflected(const SurfaceSample& s, Vec3 wo, SobolSampler& rng, fl
   return sum + emitted(hs, wh) + albedo(hs) * oneLight(hs, nh, u2.x, time, rays);
 }
 
+void DiffuseGI::considerLight(const SurfaceSample& s, Vec3 n, int i, size_t k,
+                              std::vector<DirectCandidate>& out) const {
+  const LightSample ls = sampleLight(shading_.lights[size_t(i)], s.position);
+  const float cosI = dot(n, ls.wi);
+  if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) return;
+  const DirectCandidate c{luminance(ls.radiance) * cosI, i, ls};
+  // The brighter first, ties to the lower index: a strict order, so the best k of a set of lights
+  // do not depend on the order they come in.
+  auto better = [](const DirectCandidate& a, const DirectCandidate& b) {
+    return a.luminance != b.luminance ? a.luminance > b.luminance : a.light < b.light;
+  };
+  if (out.size() == k && !better(c, out.back())) return;
+  if (out.size() < k) out.push_back(c);
+  size_t j = out.size() - 1;
+  for (; j > 0 && better(c, out[j - 1]); --j) out[j] = out[j - 1];
+  out[j] = c;
+}
+
 size_t DiffuseGI::brightestLights(const SurfaceSample& s, Vec3 n, int count,
                                   std::vector<DirectCandidate>& out) const {
   // The `count` best kept sorted as the lights go by (insertion: count is a handful, the lights
-  // many), the brighter first, ties to the lower index (lights come in ascending order).
+  // many).
   out.clear();
   const size_t k = size_t(std::max(count, 0));
-  if (k == 0) return 0;
-  for (int i : lights_) {
-    const LightSample ls = sampleLight(shading_.lights[size_t(i)], s.position);
-    const float cosI = dot(n, ls.wi);
-    if (cosI <= 0.0f || maxComponent(ls.radiance) <= 0.0f) continue;
-    const DirectCandidate c{luminance(ls.radiance) * cosI, i, ls};
-    auto better = [](const DirectCandidate& a, const DirectCandidate& b) {
-      return a.luminance != b.luminance ? a.luminance > b.luminance : a.light < b.light;
-    };
-    if (out.size() == k && !better(c, out.back())) continue;
-    if (out.size() < k) out.push_back(c);
-    size_t j = out.size() - 1;
-    for (; j > 0 && better(c, out[j - 1]); --j) out[j] = out[j - 1];
-    out[j] = c;
-  }
+  for (size_t i = 0; k > 0 && i < lights_.size(); ++i) considerLight(s, n, lights_[i], k, out);
   return out.size();
 }
+
+namespace {
+
+// At least the luminance x cosine that light l can give any point of `box` (what brightestLights
+// ranks by), with room for rounding; -1 where it gives none (beyond its range).
+float scoreBound(const PreparedLight& l, const Bounds3& box) {
+  if (std::min({l.power.x, l.power.y, l.power.z}) < 0.0f) return INFINITY;
+  const float power = luminance(l.power);
+  if (l.type == LightType::Directional) return power * 1.001f;
+  if (std::min({l.attConstant, l.attLinear, l.attQuadratic}) < 0.0f) return INFINITY;
+  // The nearest a point of the box can be: attenuation only falls with distance, and the
+  // cosine and a spot's cone are at most 1.
+  const Vec3 nearest = vmin(vmax(l.position, box.lo), box.hi);
+  const float d = length(nearest - l.position) * 0.999f;
+  if (l.range > 0 && d > l.range * 1.001f) return -1.0f;
+  return 1.001f * power / std::max(l.attConstant + l.attLinear * d + l.attQuadratic * d * d, 1e-8f);
+}
+
+}  // namespace
 
 Vec3 DiffuseGI::brightestDirect(const SurfaceSample& s, Vec3 wo, int count, float time,
                                 uint64_t& rays) const {
@@ -163,14 +186,43 @@ Vec3 DiffuseGI::brightestDirect(const SurfaceSample& s, Vec3 wo, int count, floa
 void DiffuseGI::brightestDirect8(const SurfaceSample* s, const Vec3* wo, int n, int count,
                                  float time, Vec3* out, uint64_t& rays) const {
   thread_local std::vector<DirectCandidate> candidates[8];
+  thread_local std::vector<float> bound;
+  thread_local std::vector<uint32_t> order;
   Vec3 normal[8];
-  size_t k[8] = {}, most = 0;
+  const size_t want = size_t(std::max(count, 0));
+  Bounds3 box;
   for (int j = 0; j < n; ++j) {
     normal[j] = dot(s[j].normal, wo[j]) < 0.0f ? -s[j].normal : s[j].normal;
-    k[j] = brightestLights(s[j], normal[j], count, candidates[j]);
-    most = std::max(most, k[j]);
+    candidates[j].clear();
     out[j] = Vec3(0.0f);
+    box.extend(s[j].position);
   }
+  if (want == 0) return;
+  // The lights that can give most to the box first: each surface's k-th best of them is a floor
+  // no light bounded below it (for every surface) can beat, so those are never looked at. The
+  // best k of the rest are what all the lights give (the order of a strict ranking).
+  const size_t m = lights_.size(), first = std::min(want, m);
+  bound.resize(m);
+  order.resize(m);
+  for (size_t i = 0; i < m; ++i) {
+    bound[i] = scoreBound(shading_.lights[size_t(lights_[i])], box);
+    order[i] = uint32_t(i);
+  }
+  std::partial_sort(order.begin(), order.begin() + ptrdiff_t(first), order.end(),
+                    [&](uint32_t a, uint32_t b) { return bound[a] > bound[b]; });
+  float floor = INFINITY;
+  for (int j = 0; j < n; ++j) {
+    for (size_t r = 0; r < first; ++r)
+      considerLight(s[j], normal[j], lights_[order[r]], want, candidates[j]);
+    floor = std::min(floor, candidates[j].size() == want ? candidates[j].back().luminance : 0.0f);
+  }
+  for (size_t r = first; r < m; ++r) {
+    if (bound[order[r]] < floor || bound[order[r]] < 0.0f) continue;
+    for (int j = 0; j < n; ++j)
+      considerLight(s[j], normal[j], lights_[order[r]], want, candidates[j]);
+  }
+  size_t k[8] = {}, most = 0;
+  for (int j = 0; j < n; ++j) most = std::max(most, k[j] = candidates[j].size());
   // Rank by rank, each surface's c-th brightest light in one packet: neighbouring pixels' rays
   // towards the same light are coherent. Each sum runs in rank order, as brightestDirect's.
   for (size_t c = 0; c < most; ++c) {

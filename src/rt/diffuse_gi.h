@@ -72,6 +72,9 @@ class DiffuseGI {
   };
   size_t brightestLights(const SurfaceSample& s, Vec3 n, int count,
                          std::vector<DirectCandidate>& out) const;
+  // Light i into `out` (the best `k` so far, in that order) when it lights s at all.
+  void considerLight(const SurfaceSample& s, Vec3 n, int i, size_t k,
+                     std::vector<DirectCandidate>& out) const;
 
   const RayTracer& rt_;
   const Scene& scene_;
