@@ -62,7 +62,8 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
                {.name = "max_probes",
                 .min = 0,
                 .max = 4096,
-                .doc = "most objects with a probe (the largest on screen; others show the sky)"})
+                .doc = "most objects with a probe (those showing the most untraced pixels, then "
+                       "the largest in view; others show the sky)"})
           .add(&S::probeRefresh,
                {.name = "probe_refresh",
                 .min = 0,
