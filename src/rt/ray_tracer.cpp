@@ -246,6 +246,23 @@ void setRayLane(RTCRay8& r, int i, const Ray& in) {
   r.mask[i] = ~0u;
   r.flags[i] = 0;
 }
+
+// The active lanes of `rays` as one coherent occlusion packet through `qc` (tfar < 0 where
+// something blocks); returns how many lanes were active (0: nothing traced).
+int occludedPacket(RTCScene scene, QueryContext& qc, const Ray* rays, const bool* active,
+                   RTCRay8& r) {
+  qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(32) int valid[8];
+  int count = 0;
+  for (int i = 0; i < 8; ++i) {
+    valid[i] = active[i] ? -1 : 0;
+    count += active[i] ? 1 : 0;
+    setRayLane(r, i, rays[active[i] ? i : 0]);
+    r.id[i] = unsigned(i);
+  }
+  if (count > 0) rtcOccluded8(valid, scene, &qc.ctx, &r);
+  return count;
+}
 }  // namespace
 
 Hit RayTracer::intersect(const Ray& in, bool cullBackfaces) const {
@@ -284,19 +301,10 @@ bool RayTracer::occluded(const Ray& in) const {
 void RayTracer::occluded8(const Ray* rays, const bool* active, bool* out) const {
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
-  qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   qc.frame = frame_;
-  alignas(32) int valid[8];
   alignas(32) RTCRay8 r;
-  int count = 0;
-  for (int i = 0; i < 8; ++i) {
-    valid[i] = active[i] ? -1 : 0;
-    count += active[i] ? 1 : 0;
-    setRayLane(r, i, rays[active[i] ? i : 0]);
-    r.id[i] = unsigned(i);
-  }
+  const int count = occludedPacket(scene_, qc, rays, active, r);
   if (count == 0) return;
-  rtcOccluded8(valid, scene_, &qc.ctx, &r);
   countRays(uint64_t(count));
   for (int i = 0; i < 8; ++i)
     if (active[i]) out[i] = r.tfar[i] < 0;
@@ -321,21 +329,12 @@ void RayTracer::transmittance8(const Ray* rays, const bool* active, Vec3* out,
   ShadowLane lanes[8];
   QueryContext qc;
   rtcInitIntersectContext(&qc.ctx);
-  qc.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   qc.frame = frame_;
   qc.shadow = lanes;
   qc.texturedShadows = textured;
-  alignas(32) int valid[8];
   alignas(32) RTCRay8 r;
-  int count = 0;
-  for (int i = 0; i < 8; ++i) {
-    valid[i] = active[i] ? -1 : 0;
-    count += active[i] ? 1 : 0;
-    setRayLane(r, i, rays[active[i] ? i : 0]);
-    r.id[i] = unsigned(i);
-  }
+  const int count = occludedPacket(scene_, qc, rays, active, r);
   if (count == 0) return;
-  rtcOccluded8(valid, scene_, &qc.ctx, &r);
   countRays(uint64_t(count));
   for (int i = 0; i < 8; ++i)
     if (active[i]) out[i] = r.tfar[i] < 0 ? Vec3(0.0f) : lanes[i].transmittance;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <random>
+#include <utility>
 
 #include "rt/diffuse_gi.h"
 #include "rt/ray_tracer.h"
@@ -73,19 +74,30 @@ std::vector<SurfaceSample> floorPoints(const FrameScene& fs, const RayTracer& rt
   return out;
 }
 
+// A scene made ready to trace, with its direct-light estimator.
+struct Traced {
+  explicit Traced(Scene scene) : s(std::move(scene)), shading(ShadingContext::from(s)) {
+    fs.update(s, 0, 0);
+    rt.update(fs);
+  }
+  Scene s;
+  FrameScene fs;
+  RayTracer rt;
+  ShadingContext shading;
+  DiffuseGI gi{rt, s, shading};
+};
+
 }  // namespace
 
 // Packets or single rays, every point gets the same light, bit for bit, for any count of lights,
 // from points far apart or close together, and some points are shadowed from some of their
 // lights (the rays decide something).
 TEST(BrightestDirect, PacketsGiveWhatSingleRaysGive) {
-  const Scene s = postsUnderLamps(true);
-  FrameScene fs;
-  fs.update(s, 0, 0);
-  RayTracer rt;
-  rt.update(fs);
-  const ShadingContext shading = ShadingContext::from(s);
-  const DiffuseGI gi(rt, s, shading);
+  const Traced t(postsUnderLamps(true));
+  const FrameScene& fs = t.fs;
+  const RayTracer& rt = t.rt;
+  const ShadingContext& shading = t.shading;
+  const DiffuseGI& gi = t.gi;
   for (const float spread : {20.0f, 0.3f}) {
     std::vector<Vec3> wo;
     const std::vector<SurfaceSample> pts = floorPoints(fs, rt, 203, wo, spread);  // not 8 x n
@@ -127,13 +139,11 @@ TEST(BrightestDirect, PacketsGiveWhatSingleRaysGive) {
 // With nothing in the way and one light asked for, a point gets exactly its brightest light's
 // share; with every light, all of them.
 TEST(BrightestDirect, TakesTheBrightestLightsFirst) {
-  const Scene s = postsUnderLamps(false);
-  FrameScene fs;
-  fs.update(s, 0, 0);
-  RayTracer rt;
-  rt.update(fs);
-  const ShadingContext shading = ShadingContext::from(s);
-  const DiffuseGI gi(rt, s, shading);
+  const Traced t(postsUnderLamps(false));
+  const FrameScene& fs = t.fs;
+  const RayTracer& rt = t.rt;
+  const ShadingContext& shading = t.shading;
+  const DiffuseGI& gi = t.gi;
   std::vector<Vec3> wo;
   const std::vector<SurfaceSample> pts = floorPoints(fs, rt, 40, wo);
   uint64_t rays = 0;
