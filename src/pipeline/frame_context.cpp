@@ -1,5 +1,7 @@
 #include "pipeline/frame_context.h"
 
+#include <algorithm>
+#include <bit>
 #include <stdexcept>
 
 #include "pipeline/gpu_frame.h"
@@ -18,6 +20,13 @@ RayTracer& FrameContext::rayTracer() {
   if (!rt_) rt_ = std::make_unique<RayTracer>();
   rt_->update(frame);
   return *rt_;
+}
+
+int FrameContext::shadowMapResolution(int size, bool fit) const {
+  if (!fit) return size;
+  int side = 1;
+  for (const View& v : views) side = std::max({side, v.width(), v.height()});
+  return std::max(int(std::bit_ceil(unsigned(side))), size);
 }
 
 ShadowMaps& FrameContext::shadowMaps(int resolution, const std::vector<uint8_t>* wanted) {

@@ -73,6 +73,10 @@ struct FrameContext {
 
   // The ray tracer, (re)built for the current frame's geometry on first use in a frame.
   RayTracer& rayTracer();
+  // The map resolution of a pass's shadow_map_size and shadow_map_fit: `size`, or with `fit` the
+  // smallest power of two at least the larger side of a view where that is more (a map spanning
+  // the view then has about a texel per pixel, or more).
+  int shadowMapResolution(int size, bool fit) const;
   // The frame's shadow maps at `resolution` (texels a side), drawn on first use and redrawn
   // only for what changed (shadow_maps.h). Every pass of a pipeline that asks for the same
   // resolution shares one set. `wanted`: the lights that need maps (ShadowMaps::update).

@@ -35,10 +35,11 @@ HWY_INLINE V Dot(V ax, V ay, V az, V bx, V by, V bz) {
 
 // Over whole vectors of D; a batch of one runs on a one-lane tag (scalar cost, same code).
 // perLight (optional): each light's unshadowed luminance per lane at perLight[li * plStride +
-// lane], zeroed by the caller.
+// lane], zeroed by the caller; terms (optional): its LightTerms at terms[(kLightTerms * li + t) *
+// plStride + lane], zeroed by the caller.
 template <class D>
 void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride,
-                float* perLight = nullptr, size_t plStride = 0) {
+                float* perLight = nullptr, size_t plStride = 0, float* terms = nullptr) {
   using F = ShadeBatch;
   using V = hn::Vec<D>;
   const size_t n = hn::Lanes(d);
@@ -132,17 +133,67 @@ void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis,
                               hn::Mul(hn::Set(d, 0.0722f * l.power.z), hn::MulAdd(sb, lobe, db)))));
         hn::BlendedStore(base, live, d, perLight + li * plStride + i);
       }
-      const V kr = hn::Mul(hn::Mul(k, hn::Set(d, l.power.x)), visR);
-      const V kg = hn::Mul(hn::Mul(k, hn::Set(d, l.power.y)), visG);
-      const V kb = hn::Mul(hn::Mul(k, hn::Set(d, l.power.z)), visB);
-      cr = hn::MulAdd(hn::MulAdd(sr, lobe, dr), kr, cr);
-      cg = hn::MulAdd(hn::MulAdd(sg, lobe, dg), kg, cg);
-      cb = hn::MulAdd(hn::MulAdd(sb, lobe, db), kb, cb);
+      const V pr = hn::Mul(k, hn::Set(d, l.power.x)), pg = hn::Mul(k, hn::Set(d, l.power.y)),
+              pb = hn::Mul(k, hn::Set(d, l.power.z));
+      const V xr = hn::MulAdd(sr, lobe, dr), xg = hn::MulAdd(sg, lobe, dg),
+              xb = hn::MulAdd(sb, lobe, db);
+      if (terms) {
+        float* t = terms + kLightTerms * li * plStride + i;
+        hn::BlendedStore(xr, live, d, t);
+        hn::BlendedStore(xg, live, d, t + plStride);
+        hn::BlendedStore(xb, live, d, t + 2 * plStride);
+        hn::BlendedStore(pr, live, d, t + 3 * plStride);
+        hn::BlendedStore(pg, live, d, t + 4 * plStride);
+        hn::BlendedStore(pb, live, d, t + 5 * plStride);
+      }
+      cr = hn::MulAdd(xr, hn::Mul(pr, visR), cr);
+      cg = hn::MulAdd(xg, hn::Mul(pg, visG), cg);
+      cb = hn::MulAdd(xb, hn::Mul(pb, visB), cb);
     }
     hn::BlendedStore(cr, live, d, b.f[F::OR] + i);
     hn::BlendedStore(cg, live, d, b.f[F::OG] + i);
     hn::BlendedStore(cb, live, d, b.f[F::OB] + i);
   }
+}
+
+// shadeBatch's sum from the terms lightContributions kept: the same products added in the same
+// order, so the same result to the bit, without evaluating a light again.
+template <class D>
+void ShadeTermsLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* terms,
+                     const float* vis, size_t stride) {
+  using F = ShadeBatch;
+  using V = hn::Vec<D>;
+  const size_t n = hn::Lanes(d);
+  const V zero = hn::Zero(d);
+  for (size_t i = 0; i < size_t(b.count); i += n) {
+    const auto live = hn::FirstN(d, size_t(b.count) - i);
+    auto load = [&](const float* p) { return hn::MaskedLoad(live, d, p); };
+    V cr = hn::MulAdd(hn::Set(d, ctx.ambient.x), load(b.f[F::AR] + i), load(b.f[F::ER] + i));
+    V cg = hn::MulAdd(hn::Set(d, ctx.ambient.y), load(b.f[F::AG] + i), load(b.f[F::EG] + i));
+    V cb = hn::MulAdd(hn::Set(d, ctx.ambient.z), load(b.f[F::AB] + i), load(b.f[F::EB] + i));
+    const size_t lightCount = b.lights ? b.lightCount : ctx.lights.size();
+    for (size_t k = 0; k < lightCount; ++k) {
+      const size_t li = b.lights ? b.lights[k] : k;
+      const float* row = vis + 3 * li * stride + i;
+      const V visR = load(row), visG = load(row + stride), visB = load(row + 2 * stride);
+      if (hn::AllTrue(d, hn::Le(hn::Max(hn::Max(visR, visG), visB), zero))) continue;
+      const float* t = terms + kLightTerms * li * stride + i;
+      cr = hn::MulAdd(load(t), hn::Mul(load(t + 3 * stride), visR), cr);
+      cg = hn::MulAdd(load(t + stride), hn::Mul(load(t + 4 * stride), visG), cg);
+      cb = hn::MulAdd(load(t + 2 * stride), hn::Mul(load(t + 5 * stride), visB), cb);
+    }
+    hn::BlendedStore(cr, live, d, b.f[F::OR] + i);
+    hn::BlendedStore(cg, live, d, b.f[F::OG] + i);
+    hn::BlendedStore(cb, live, d, b.f[F::OB] + i);
+  }
+}
+
+void ShadeTermsImpl(ShadeBatch& b, const ShadingContext& ctx, const float* terms, const float* vis,
+                    size_t stride) {
+  if (b.count == 1)
+    ShadeTermsLanes(hn::CappedTag<float, 1>(), b, ctx, terms, vis, stride);
+  else
+    ShadeTermsLanes(hn::ScalableTag<float>(), b, ctx, terms, vis, stride);
 }
 
 void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride) {
@@ -153,11 +204,11 @@ void ShadeBatchImpl(ShadeBatch& b, const ShadingContext& ctx, const float* vis, 
 }
 
 void LightContributionsImpl(ShadeBatch& b, const ShadingContext& ctx, float* perLight,
-                            size_t stride) {
+                            size_t stride, float* terms) {
   if (b.count == 1)
-    ShadeLanes(hn::CappedTag<float, 1>(), b, ctx, nullptr, 0, perLight, stride);
+    ShadeLanes(hn::CappedTag<float, 1>(), b, ctx, nullptr, 0, perLight, stride, terms);
   else
-    ShadeLanes(hn::ScalableTag<float>(), b, ctx, nullptr, 0, perLight, stride);
+    ShadeLanes(hn::ScalableTag<float>(), b, ctx, nullptr, 0, perLight, stride, terms);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -174,14 +225,26 @@ namespace tandem {
 
 HWY_EXPORT(ShadeBatchImpl);
 HWY_EXPORT(LightContributionsImpl);
+HWY_EXPORT(ShadeTermsImpl);
 
-void lightContributions(ShadeBatch& b, const ShadingContext& ctx, float* perLight, size_t stride) {
+void lightContributions(ShadeBatch& b, const ShadingContext& ctx, float* perLight, size_t stride,
+                        float* terms) {
   const size_t lights = b.lights ? b.lightCount : ctx.lights.size();
   for (size_t n = 0; n < lights; ++n) {
     const size_t li = b.lights ? b.lights[n] : n;
     std::fill(perLight + li * stride, perLight + li * stride + size_t(b.count), 0.0f);
+    if (terms)
+      for (size_t t = 0; t < size_t(kLightTerms); ++t) {
+        float* row = terms + (kLightTerms * li + t) * stride;
+        std::fill(row, row + size_t(b.count), 0.0f);
+      }
   }
-  HWY_DYNAMIC_DISPATCH(LightContributionsImpl)(b, ctx, perLight, stride);
+  HWY_DYNAMIC_DISPATCH(LightContributionsImpl)(b, ctx, perLight, stride, terms);
+}
+
+void shadeFromTerms(ShadeBatch& b, const ShadingContext& ctx, const float* terms,
+                    const float* lightVisibility, size_t stride) {
+  HWY_DYNAMIC_DISPATCH(ShadeTermsImpl)(b, ctx, terms, lightVisibility, stride);
 }
 
 void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisibility,

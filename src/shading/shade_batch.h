@@ -91,10 +91,22 @@ void cullLights(ShadeBatch& b, const ShadingContext& ctx, std::vector<uint32_t>&
 void shadeBatch(ShadeBatch& b, const ShadingContext& ctx, const float* lightVisibility = nullptr,
                 size_t visStride = ShadeBatch::kMax);
 
+// A light's terms at a lane as shading weighs them: the BRDF colour (diffuse / pi plus the
+// specular lobe, RGB) and the light's cosine-weighted irradiance (RGB).
+constexpr size_t kLightTerms = 6;
+
 // The same shading with no visibility (b's result: the unshadowed radiance), also writing each
 // evaluated light's unshadowed luminance per lane to perLight[light * stride + lane] (>= 0; 0
-// where the light does not reach). Culling of shadow queries weighs lights by it.
+// where the light does not reach). Culling of shadow queries weighs lights by it. `terms`
+// (optional): each evaluated light's terms too, at terms[(kLightTerms * light + t) * stride +
+// lane] (lights * kLightTerms * stride floats), for shadeFromTerms.
 void lightContributions(ShadeBatch& b, const ShadingContext& ctx, float* perLight,
-                        size_t stride = ShadeBatch::kMax);
+                        size_t stride = ShadeBatch::kMax, float* terms = nullptr);
+
+// shadeBatch(b, ctx, lightVisibility, stride) for the lights b points at, all of which
+// lightContributions evaluated into `terms` for the same lanes: the same result to the bit,
+// without evaluating the lights again.
+void shadeFromTerms(ShadeBatch& b, const ShadingContext& ctx, const float* terms,
+                    const float* lightVisibility, size_t stride = ShadeBatch::kMax);
 
 }  // namespace tandem

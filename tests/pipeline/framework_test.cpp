@@ -198,6 +198,34 @@ TEST(BufferContract, ReducedExtentRoundTripsThroughAovAndViewer) {
 }
 
 // History survives frames and is dropped by every reset trigger.
+// shadow_map_fit: the maps' side follows the frame's larger side (the next power of two) where
+// that is more than shadow_map_size, per view (a stereo frame's eyes, not the pair).
+TEST(ShadowMapResolution, FitsTheLargerSideOfAView) {
+  auto frameOf = [](std::vector<std::pair<int, int>> sizes) {
+    FrameContext ctx;
+    CameraDesc d;
+    d.lookAt = {0, 0, -1};
+    int x = 0;
+    for (auto [w, h] : sizes) {
+      View v;
+      v.camera = Camera::make(d, w, h);
+      v.x = x;
+      x += w;
+      ctx.views.push_back(v);
+    }
+    return ctx;
+  };
+  const FrameContext hd = frameOf({{1280, 720}}), small = frameOf({{96, 54}}),
+                     stereo = frameOf({{600, 500}, {600, 500}}), exact = frameOf({{1024, 512}});
+  EXPECT_EQ(hd.shadowMapResolution(1024, true), 2048);
+  EXPECT_EQ(hd.shadowMapResolution(1024, false), 1024);
+  EXPECT_EQ(hd.shadowMapResolution(4096, true), 4096);
+  EXPECT_EQ(small.shadowMapResolution(1024, true), 1024);
+  EXPECT_EQ(small.shadowMapResolution(64, true), 128);
+  EXPECT_EQ(stereo.shadowMapResolution(256, true), 1024);  // an eye's 600 columns, not 1200
+  EXPECT_EQ(exact.shadowMapResolution(512, true), 1024);
+}
+
 TEST(TemporalHooks, HistoryResetsOnEveryTrigger) {
   Scene s = makeCornellScene(), other = makeSpheresScene();
   auto counterPipeline = [] {

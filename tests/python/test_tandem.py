@@ -86,6 +86,7 @@ def test_settings_are_checked_as_set_is():
 
 def test_budget_zero_traces_no_secondary_rays():
     r = tandem.Renderer("spheres", pipeline="hybrid-heuristic", width=64, height=36)
+    r.set("heuristic.shadows=budget")  # shadows traced with their objects (the paper's rule)
     r.set("heuristic.budget", 0)
     r.render()
     c = r.counters()
@@ -94,6 +95,11 @@ def test_budget_zero_traces_no_secondary_rays():
     r.render()
     c = r.counters()
     assert c["heuristic/selected"] > 0 and c["rt_secondary/shadow_rays_per_pixel"] > 0
+    # The default leaves every shadow to ss_fallback's maps: a budget buys no shadow ray.
+    r.set("heuristic.shadows=maps")
+    r.render()
+    c = r.counters()
+    assert c["heuristic/selected"] > 0 and c["rt_secondary/shadow_rays_per_pixel"] == 0
 
 
 def test_counters_are_read_by_declared_name():

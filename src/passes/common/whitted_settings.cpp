@@ -46,7 +46,11 @@ const ParamTable<WhittedParams>& whittedTable() {
                                    .max = 8192,
                                    .doc = "shadow map resolution for classified and map shadows (a "
                                           "sun's map twice the side, a point light's cube faces "
-                                          "half)"});
+                                          "half)"})
+          .add(&S::shadowMapFit,
+               {.name = "shadow_map_fit",
+                .doc = "shadow maps sized to the frame: the smallest power of two at least its "
+                       "larger side where that is more than shadow_map_size"});
   return table;
 }
 
@@ -93,11 +97,12 @@ const ShadowMaps* shadowMapsFor(FrameContext& ctx, const Pass& pass, const Whitt
                                 const std::vector<uint8_t>* wanted, bool device) {
   if (w.shadows == ShadowMode::Rays) return nullptr;
   const ShadowMaps* maps = nullptr;
+  const int size = ctx.shadowMapResolution(w.shadowMapSize, w.shadowMapFit);
   if (device) {
-    maps = &deviceShadowMaps(ctx, pass, w.shadowMapSize, wanted);  // its part: the GPU's time
+    maps = &deviceShadowMaps(ctx, pass, size, wanted);  // its part: the GPU's time
   } else {
     const auto t0 = Clock::now();
-    maps = &ctx.shadowMaps(w.shadowMapSize, wanted);
+    maps = &ctx.shadowMaps(size, wanted);
     ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   }
   reportShadowMaps(ctx, pass, *maps);

@@ -21,6 +21,7 @@ struct WhittedParams {
   ShadowMode shadows = ShadowMode::Classified;
   float shadowCull = 0.004f;
   int shadowMapSize = 1024;
+  bool shadowMapFit = false;  // FrameContext::shadowMapResolution
   WhittedSettings settings() const;
 };
 const ParamTable<WhittedParams>& whittedTable();

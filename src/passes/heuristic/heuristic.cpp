@@ -204,10 +204,11 @@ const ParamTable<HeuristicSettings>& HeuristicPass::tableFor() const {
           .add(&S::shadows,
                {.name = "shadows",
                 .doc = "shadows: selected with their object within the budget (Walewski et al. "
-                       "2019), or every "
-                       "visible object's traced (classified shadows), the budget left to "
-                       "reflections and refractions",
-                .choices = {"budget", "all"}})
+                       "2019); every visible object's traced (classified shadows), the budget "
+                       "left to reflections and refractions; or none traced, all from "
+                       "ss_fallback's shadow maps, the whole budget for reflections and "
+                       "refractions",
+                .choices = {"budget", "all", "maps"}})
           .add(&S::budgetMs,
                {.name = "budget_ms",
                 .min = 0,
@@ -307,7 +308,7 @@ void HeuristicPass::refreshBounds(const FrameContext& ctx) {
 std::vector<HeuristicNode> HeuristicPass::priceNodes(const Scene& scene,
                                                      const std::vector<uint32_t>& pixels) {
   const HeuristicSettings& s = settings();
-  const bool shadowsApart = s.shadows == HeuristicSettings::Shadows::All;
+  const bool shadowsApart = s.shadows != HeuristicSettings::Shadows::Budget;
   if (s.budgetMs <= 0)
     return heuristicNodes(scene, evaluated_, s.perEffect, s.importance, nullptr, shadowsApart);
   // Objects and effects not measured yet are priced at the mean measured cost per pixel of that
@@ -371,6 +372,8 @@ std::vector<uint8_t> HeuristicPass::select(const FrameContext& ctx,
   }
   if (s.shadows == HeuristicSettings::Shadows::All)
     for (const ObjectHeuristic& h : evaluated_) selected[size_t(h.object)] |= 1u << kShadow;
+  if (s.shadows == HeuristicSettings::Shadows::Maps)  // (the nodes priced without them)
+    for (uint8_t& bits : selected) bits &= uint8_t(~(1u << kShadow));
   return selected;
 }
 
@@ -378,7 +381,9 @@ void HeuristicPass::writeMask(const FrameContext& ctx, const Buffer& ids,
                               const std::vector<uint8_t>& selected, double partialR2,
                               Buffer& mask) const {
   const float partialObject = partial_.id >= 0 ? float(nodeObject(partial_.id)) : -2.0f;
-  const uint8_t partialBits = partial_.id >= 0 ? nodeBits(partial_.id) : 0;
+  uint8_t partialBits = partial_.id >= 0 ? nodeBits(partial_.id) : 0;
+  if (settings().shadows == HeuristicSettings::Shadows::Maps)
+    partialBits &= uint8_t(~(1u << kShadow));
   parallelRange(
       mask.pixelCount(),
       [&](size_t b, size_t e) {

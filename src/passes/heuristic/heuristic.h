@@ -122,7 +122,11 @@ class BudgetCalibration {
 };
 
 struct HeuristicSettings {
-  enum class Shadows { Budget, All };
+  // Budget: a selected object's shadows are traced with it, within T (Walewski et al. 2019).
+  // All: every visible object's shadows traced (classified shadows), T left to reflections and
+  // refractions. Maps: no shadow traced, all from ss_fallback's maps, T spent on reflections and
+  // refractions alone (where a stand-in differs most from the rays).
+  enum class Shadows { Budget, All, Maps };
   double budget = 2e6;       // T (cost units)
   double importance = 1000;  // I
   bool selectAll = false;

@@ -38,6 +38,7 @@ class ShadowBatch {
         counts_(counts),
         lights_(t.scene.lights.size()),
         share_(lights_ * W),
+        terms_(kLightTerms * lights_ * W),
         blocked_(3 * lights_ * W),
         classes_(t.classes ? lights_ * W : 0) {}
 
@@ -61,7 +62,7 @@ class ShadowBatch {
     const uint64_t c0 = t_.timed ? cycleNow() : 0;
     // Only the lights that may reach a lane are weighed; the others are culled unseen.
     cullLights(b_, t_.shading, reached_, lanes);
-    lightContributions(b_, t_.shading, share_.data(), W);
+    lightContributions(b_, t_.shading, share_.data(), W, terms_.data());
     counts_.culled += uint64_t(n) * (lights_ - reached_.size());
     if (t_.classes) std::fill(classes_.begin(), classes_.end(), uint8_t(ShadowClass::Culled));
     float floor[W];
@@ -87,7 +88,8 @@ class ShadowBatch {
     if (!blockedLights_.empty()) {
       b_.lights = blockedLights_.data();
       b_.lightCount = blockedLights_.size();
-      shadeBatch(b_, t_.shading, blocked_.data(), W);
+      shadeFromTerms(b_, t_.shading, terms_.data(), blocked_.data(),
+                     W);  // no light evaluated twice
     }
     const uint64_t ticks = t_.timed ? cycleNow() - c0 : 0;
     for (int k = 0; k < n; ++k) {
@@ -208,7 +210,7 @@ class ShadowBatch {
   ShadeBatch b_;
   int xs_[W], ys_[W];
   alignas(64) float soa_[6][W];  // positions and geometric normals (Maps mode)
-  std::vector<float> share_, blocked_;
+  std::vector<float> share_, terms_, blocked_;
   std::vector<uint8_t> classes_;
   std::vector<uint32_t> reached_, blockedLights_;
 };

@@ -48,6 +48,10 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
                 .max = 8192,
                 .doc = "shadow map resolution (a sun's map twice the side, a point "
                        "light's cube faces half)"})
+          .add(&S::shadowMapFit,
+               {.name = "shadow_map_fit",
+                .doc = "shadow maps sized to the frame: the smallest power of two at least its "
+                       "larger side where that is more than shadow_map_size"})
           .add(&S::shadowCull,
                {.name = "shadow_cull",
                 .min = 0,
@@ -292,7 +296,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
     const auto t0 = Clock::now();
     // Maps only for the lights that reach a surface in view: no other is ever asked about here.
     const std::vector<uint8_t> inView = lightsInView(ctx.views, g, shading);
-    shadowMaps = &ctx.shadowMaps(s.shadowMapSize, &inView);
+    shadowMaps = &ctx.shadowMaps(ctx.shadowMapResolution(s.shadowMapSize, s.shadowMapFit), &inView);
     ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
   }
   if (mode == FallbackMode::Probe) updateProbes(ctx, shading);
@@ -391,7 +395,8 @@ void ScreenSpaceFallbackPass::executeGpu(FrameContext& ctx) {
   if (shadows || s.mode == FallbackMode::Probe) cmd.checkpoint();
   if (shadows) {
     const std::vector<uint8_t> inView = wantedLights(lightFlags, scene.lights.size());
-    const ShadowMaps& maps = deviceShadowMaps(ctx, *this, s.shadowMapSize, &inView);
+    const ShadowMaps& maps = deviceShadowMaps(
+        ctx, *this, ctx.shadowMapResolution(s.shadowMapSize, s.shadowMapFit), &inView);
     a.shadowMaps = gpuShadowMaps(ctx, maps);
     ctx.report(*this, FallbackCounters::shadowMapRedraws, maps.redraws());
   }

@@ -28,6 +28,7 @@ struct FallbackSettings {
   Mode mode = Mode::Probe;
   Shadows shadows = Shadows::ShadowMap;
   int shadowMapSize = 1024;
+  bool shadowMapFit = true;   // FrameContext::shadowMapResolution
   float shadowCull = 0.004f;  // as rt_secondary's shadow_cull (WhittedParams)
   int probeSize = 128;
   int maxProbes = 32;

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "eval/metrics/metrics.h"
+#include "passes/heuristic/effect_channels.h"
 #include "raster/shadow_maps.h"
 #include "rt/whitted.h"
 #include "scene/builtin_scenes.h"
@@ -412,6 +413,37 @@ TEST(ClassifiedShadows, HeuristicTracesEveryShadowWhenAskedTo) {
   auto more = render(s, "hybrid-heuristic", {"heuristic.shadows=all"}, 96, 54);
   EXPECT_GT(more->context().counters.at("heuristic/selected"), 0.0);
   EXPECT_EQ(r->context().counters.at("heuristic/selected"), 0.0);
+}
+
+// heuristic.shadows = maps (what hybrid-heuristic ships with): no shadow is traced, ss_fallback's
+// maps shadow every visible pixel, and the budget that bought shadows in the paper's rule buys
+// more reflections and refractions.
+TEST(ClassifiedShadows, HeuristicLeavesEveryShadowToTheMapsWhenAskedTo) {
+  const Scene s = builtin("spheres");
+  auto maps =
+      render(s, "hybrid-heuristic", {"heuristic.shadows=maps", "heuristic.budget=1000"}, 96, 54);
+  auto paper =
+      render(s, "hybrid-heuristic", {"heuristic.shadows=budget", "heuristic.budget=1000"}, 96, 54);
+  const Buffer& mask = maps->context().input("heuristic_mask");
+  const Buffer& paperMask = paper->context().input("heuristic_mask");
+  const Buffer& fallback = maps->context().input("fallback");
+  const Buffer& ids = maps->context().input("object_id");
+  size_t effects = 0, paperEffects = 0, paperShadows = 0;
+  for (size_t i = 0; i < ids.pixelCount(); ++i) {
+    const float* m = &mask.data[3 * i];
+    const float* pm = &paperMask.data[3 * i];
+    EXPECT_EQ(m[kShadow], 0.0f) << i;
+    if (ids.data[i] >= 0) {
+      EXPECT_EQ(fallback.data[i * fallback::kChannels + fallback::kCoversShadow], 1.0f) << i;
+    }
+    effects += m[kReflection] > 0.5f || m[kRefraction] > 0.5f;
+    paperEffects += pm[kReflection] > 0.5f || pm[kRefraction] > 0.5f;
+    paperShadows += pm[kShadow] > 0.5f;
+  }
+  EXPECT_GT(paperShadows, 0u);  // the paper's rule spends some of the budget on shadows
+  EXPECT_GT(effects, paperEffects);
+  EXPECT_GT(maps->context().counters.at("heuristic/selected"),
+            paper->context().counters.at("heuristic/selected"));
 }
 
 namespace {

@@ -127,8 +127,9 @@ TEST(HybridEffects, FeedbackIsTypedRecords) {
 TEST(HybridEffects, ModesAgreeAtTheExtremes) {
   Scene s = makeSpheresScene();
   auto all = test::renderOnce(s, "hybrid-all", 96, 54, s.camera);
-  auto perEffect = makeRenderer(s, "hybrid-heuristic",
-                                {"heuristic.select_all=1", "heuristic.per_effect=1"}, 96, 54);
+  auto perEffect = makeRenderer(
+      s, "hybrid-heuristic",
+      {"heuristic.select_all=1", "heuristic.per_effect=1", "heuristic.shadows=budget"}, 96, 54);
   perEffect->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(all->output(), perEffect->output()));
   auto none = makeRenderer(s, "hybrid-heuristic",
