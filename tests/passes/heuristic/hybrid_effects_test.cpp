@@ -121,15 +121,17 @@ TEST(HybridEffects, FeedbackIsTypedRecords) {
   EXPECT_EQ(none->deadlineMs, 0.0);
 }
 
-// Per-effect selection with everything selected is the paper's hybrid-all, pixel for pixel; a
+// Per-effect selection with everything selected (shadows with their objects, rt_secondary's
+// recursion as deep as the pass's default) is the paper's hybrid-all, pixel for pixel; a
 // zero budget with the fallbacks off (the paper's rule) ray traces nothing and leaves the
 // deferred image.
 TEST(HybridEffects, ModesAgreeAtTheExtremes) {
   Scene s = makeSpheresScene();
   auto all = test::renderOnce(s, "hybrid-all", 96, 54, s.camera);
-  auto perEffect = makeRenderer(
-      s, "hybrid-heuristic",
-      {"heuristic.select_all=1", "heuristic.per_effect=1", "heuristic.shadows=budget"}, 96, 54);
+  auto perEffect = makeRenderer(s, "hybrid-heuristic",
+                                {"heuristic.select_all=1", "heuristic.per_effect=1",
+                                 "heuristic.shadows=budget", "rt_secondary.max_depth=10"},
+                                96, 54);
   perEffect->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(all->output(), perEffect->output()));
   auto none = makeRenderer(s, "hybrid-heuristic",
