@@ -35,8 +35,8 @@ HWY_INLINE V Dot(V ax, V ay, V az, V bx, V by, V bz) {
 
 // Over whole vectors of D; a batch of one runs on a one-lane tag (scalar cost, same code).
 // perLight (optional): each light's unshadowed luminance per lane at perLight[li * plStride +
-// lane], zeroed by the caller; terms (optional): its LightTerms at terms[(kLightTerms * li + t) *
-// plStride + lane], zeroed by the caller.
+// lane], zeroed by the caller; terms (optional): its kLightTerms terms (shade_batch.h) at
+// terms[(kLightTerms * li + t) * plStride + lane], zeroed by the caller.
 template <class D>
 void ShadeLanes(D d, ShadeBatch& b, const ShadingContext& ctx, const float* vis, size_t visStride,
                 float* perLight = nullptr, size_t plStride = 0, float* terms = nullptr) {

@@ -88,8 +88,8 @@ class ShadowBatch {
     if (!blockedLights_.empty()) {
       b_.lights = blockedLights_.data();
       b_.lightCount = blockedLights_.size();
-      shadeFromTerms(b_, t_.shading, terms_.data(), blocked_.data(),
-                     W);  // no light evaluated twice
+      // From the terms the culling evaluated: no light is evaluated twice.
+      shadeFromTerms(b_, t_.shading, terms_.data(), blocked_.data(), W);
     }
     const uint64_t ticks = t_.timed ? cycleNow() - c0 : 0;
     for (int k = 0; k < n; ++k) {
