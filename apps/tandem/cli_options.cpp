@@ -183,6 +183,7 @@ void addRenderOptions(CLI::App* app, RenderOptions& o) {
 Pipeline loadPipelineFor(const RenderOptions& o) {
   Pipeline p = Pipeline::load(o.pipeline);
   for (const std::string& a : o.set) p.setParam(a, "--set");
+  p.checkShadows("--set");  // once all are applied: their order does not matter
   return p;
 }
 

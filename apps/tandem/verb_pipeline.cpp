@@ -27,6 +27,7 @@ VerbRunner addPipelineVerb(CLI::App& app) {
       throw InputError("command line", "--dot", "must name a .dot or .gv file");
     Pipeline p = Pipeline::load(a->name);
     for (const std::string& s : a->sets) p.setParam(s, "--set");
+    p.checkShadows("--set");
     std::fputs(describePipeline(p).c_str(), stdout);
     if (!a->dot.empty()) {
       writeTextFile(a->dot, pipelineDot(p));

@@ -62,6 +62,11 @@ class Pass {
   // phrase ("with ...", "unless ...") completing "runs on the GPU too" (docs).
   virtual std::string gpuCondition() const { return ""; }
   virtual void executeGpu(FrameContext& ctx) { execute(ctx); }
+  // Where the frame's shadows come from (Pipeline::checkShadows keeps a light from being shadowed
+  // twice): a pass whose hdr is shaded with the shadow maps already, and a pass that takes a
+  // shadow from light it holds unshadowed (eq. 4's L - (1 - S): traced or fallback shadows).
+  virtual bool shadesMapShadows() const { return false; }
+  virtual bool addsShadows() const { return false; }
   // Asks for what the next frame needs (default: nothing).
   virtual void request(FrameRequest&) const {}
   // Forget everything carried from earlier frames (camera cut, resize, scene reload, pipeline

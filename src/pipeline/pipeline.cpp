@@ -224,6 +224,22 @@ void Pipeline::validate(const std::string& source) const {
   }
   if (!available.count(output))
     throw InputError(source, "output", "buffer '" + output + "' is not produced by any pass");
+  checkShadows(source);
+}
+
+void Pipeline::checkShadows(const std::string& source) const {
+  const Pass* shaded = nullptr;
+  for (const auto& p : passes)
+    if (p->enabled && p->shadesMapShadows()) shaded = p.get();
+  if (!shaded) return;
+  for (size_t i = 0; i < passes.size(); ++i) {
+    const Pass& p = *passes[i];
+    if (p.enabled && p.addsShadows())
+      throw InputError(source, "passes[" + std::to_string(i) + "] (" + p.name() + ")",
+                       "takes shadows from light that '" + shaded->name() +
+                           "' shades with shadow maps already (set " + p.name() +
+                           ".shadows to maps or off, or " + shaded->name() + ".shadows to off)");
+  }
 }
 
 std::vector<std::string> Pipeline::historyBuffers() const {
@@ -497,6 +513,7 @@ FrameTimings Pipeline::execute(FrameContext& ctx) {
   pollInterrupt();  // before a frame: a stop never leaves one half drawn
   FrameTimings ft;
   auto frameStart = Clock::now();
+  checkShadows("pipeline '" + name + "'");  // an edit since loading may have doubled them
   ++ctx.serial;
   ctx.counters.clear();
   // An edit of an invalidating parameter starts every pass's history over.

@@ -38,6 +38,9 @@ class Pipeline {
   // channel count, kind and extent (an optional input may be produced by none), and the output
   // buffer exists. Throws InputError naming `source`, the pass and the buffer.
   void validate(const std::string& source) const;
+  // InputError when a pass shades with shadow maps and another takes shadows from the same light
+  // again (validate, the CLI after its --set assignments, and each frame check it).
+  void checkShadows(const std::string& source) const;
   // Buffers some pass reads as last frame's value (kept by execute() for the next frame).
   std::vector<std::string> historyBuffers() const;
   // What the enabled passes ask of the next frame (jitter).

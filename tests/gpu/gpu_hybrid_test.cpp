@@ -173,6 +173,10 @@ TEST(GpuHybrid, HeuristicHybridMatchesTheCpu) {
                   {small, std::string("ss_fallback.mode=") + mode});
   compareHybrid(dev, "hybrid-heuristic", featureScene(), featureCamera(), "features", "classified",
                 {small});
+  // The map shadows in ss_fallback and blend instead of in deferred shading.
+  compareHybrid(dev, "hybrid-heuristic", featureScene(), featureCamera(),
+                "features, fallback shadows", "classified",
+                {small, "deferred_shading.shadows=off", "ss_fallback.shadows=shadow_map"});
   expectNoValidationMessages(*dev);
 }
 

@@ -86,6 +86,7 @@ def test_settings_are_checked_as_set_is():
 
 def test_budget_zero_traces_no_secondary_rays():
     r = tandem.Renderer("spheres", pipeline="hybrid-heuristic", width=64, height=36)
+    r.set("deferred_shading.shadows=off")  # unshadowed: the shadows come from rays
     r.set("heuristic.shadows=budget")  # shadows traced with their objects (the paper's rule)
     r.set("heuristic.budget", 0)
     r.render()

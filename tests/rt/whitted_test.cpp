@@ -356,6 +356,7 @@ TEST(Whitted, PaperRulesAtMaxDepthAndOutsideTheMask) {
   // Nothing selected: every buffer 0 (Listing 8a), or a neutral shadow on request.
   Pipeline p = Pipeline::load("hybrid-heuristic");
   p.setParam("heuristic.budget=0", "test");
+  p.setParam("deferred_shading.shadows=off", "test");
   p.setParam("heuristic.shadows=budget", "test");  // the paper's rule: nothing at all traced
   Renderer none(s, std::move(p), RenderSettings{.width = 16, .height = 16});
   none.renderFrame(0, cam);

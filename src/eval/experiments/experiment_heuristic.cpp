@@ -14,6 +14,7 @@
 #include "core/json_fields.h"
 #include "eval/experiments/experiment_report.h"
 #include "eval/metrics/metrics.h"
+#include "passes/common/deferred_shading.h"
 #include "passes/heuristic/heuristic.h"
 #include "passes/heuristic/rt_secondary.h"
 #include "passes/heuristic/ss_fallback.h"
@@ -163,8 +164,13 @@ struct RunSettings {
   // Unselected effects are absent (no fallbacks).
   PipelineEdit noFallback = editPass<ScreenSpaceFallbackPass>(
       [](FallbackSettings& f) { f.mode = FallbackSettings::Mode::Off; });
-  PipelineEdit noShadowMaps = editPass<ScreenSpaceFallbackPass>(
-      [](FallbackSettings& f) { f.shadows = FallbackSettings::Shadows::Off; });
+  // No shadow maps: neither deferred shading's nor the fallback's.
+  PipelineEdit noShadowMaps = [](Pipeline& p) {
+    editPass<DeferredShadingPass>(
+        [](DeferredSettings& d) { d.shadows = DeferredSettings::Shadows::Off; })(p);
+    editPass<ScreenSpaceFallbackPass>(
+        [](FallbackSettings& f) { f.shadows = FallbackSettings::Shadows::Off; })(p);
+  };
   // Shadows selected with their object (the pipeline traces them all).
   PipelineEdit paperShadows = editPass<HeuristicPass>(
       [](HeuristicSettings& h) { h.shadows = HeuristicSettings::Shadows::Budget; });

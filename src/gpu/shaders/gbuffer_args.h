@@ -31,9 +31,12 @@ struct GBufferArgs {
   TD_INT viewX, viewY, frameWidth, pad;
 };
 
-// A pass shading the G-buffer into `hdr` (3 floats a pixel).
+// A pass shading the G-buffer into `hdr` (3 floats a pixel); shadowMaps (a
+// GpuShadowMapsHeader, 0: unshadowed) and shadowCull: deferred_shading's map shadows.
 struct GBufferShadeArgs {
   TD_ADDR scene, view, targets, hdr;
   TD_INT viewX, viewY, frameWidth, pad;
+  TD_ADDR shadowMaps;
+  TD_FLOAT shadowCull, pad1;
 };
 #endif

@@ -3,6 +3,11 @@
 #include <algorithm>
 
 #include "gpu/shaders/deferred_shading_spv.h"
+#include "passes/common/gpu_shadow_maps.h"
+#include "passes/common/lights_in_view.h"
+#include "passes/common/whitted_settings.h"
+#include "passes/heuristic/shadow_tile.h"
+#include "pipeline/frame_context.h"
 #include "pipeline/gbuffer_io.h"
 #include "pipeline/gpu_frame.h"
 #include "pipeline/gpu_gbuffer.h"
@@ -11,11 +16,92 @@
 
 namespace tandem {
 
+const ParamTable<DeferredSettings>& DeferredShadingPass::tableFor() const {
+  using S = DeferredSettings;
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .add(&S::shadows, {.name = "shadows",
+                             .doc = "off (Listing 5: unshadowed; traced or fallback shadows come "
+                                    "later) or the frame's raster shadow maps",
+                             .choices = {"off", "shadow_map"}})
+          .add(&S::shadowMapSize,
+               {.name = "shadow_map_size",
+                .min = 64,
+                .max = 8192,
+                .doc = "shadow map resolution (a sun's map twice the side, a point "
+                       "light's cube faces half)"})
+          .add(&S::shadowMapFit,
+               {.name = "shadow_map_fit",
+                .doc = "shadow maps sized to the frame: the smallest power of two at least its "
+                       "larger side where that is more than shadow_map_size"})
+          .add(&S::shadowCull, {.name = "shadow_cull",
+                                .min = 0,
+                                .max = 1,
+                                .doc = "no shadow for a light below this share of a pixel's "
+                                       "irradiance (0: every light that reaches it)"});
+  return table;
+}
+
 std::vector<BufferSlot> DeferredShadingPass::inputs() const {
   return gbufferSampleSlots();
 }
 
+std::vector<CounterDesc> DeferredShadingPass::counters() const {
+  return {{DeferredCounters::shadowMapRedraws,
+           "shadow maps redrawn so far (with shadows = shadow_map)"}};
+}
+
+void DeferredShadingPass::executeShadowed(FrameContext& ctx) {
+  const DeferredSettings& s = settings();
+  const GBufferReader g = gbufferSource(ctx, *this);
+  Buffer& hdr = ctx.output(*this, Slots::hdr);
+  const Buffer& ids = ctx.input(*this, Slots::objectId);
+  const Scene& scene = *ctx.scene;
+  const ShadingContext shading = ShadingContext::from(scene);
+  const auto t0 = Clock::now();
+  // Maps only for the lights that reach a surface in view: no other is ever asked about.
+  const std::vector<uint8_t> inView = lightsInView(ctx.views, g, shading);
+  ShadowMaps& maps =
+      ctx.shadowMaps(ctx.shadowMapResolution(s.shadowMapSize, s.shadowMapFit), &inView);
+  ctx.passParts.push_back({"shadow_maps", msSince(t0), 0});
+  WhittedSettings ws;
+  ws.shadows = ShadowMode::Maps;
+  ws.shadowCull = s.shadowCull;
+  // Each pixel's light weighed once per light, the maps deciding every light that reaches the
+  // cull floor, L - (1 - S) written: what ss_fallback's map shadows and blend made of it.
+  const ShadowTile job{.g = g,
+                       .mask = nullptr,
+                       .ids = ids,
+                       .geoNormal = ctx.input(*this, Slots::geoNormal),
+                       .scene = scene,
+                       .shading = shading,
+                       .rt = nullptr,
+                       .maps = &maps,
+                       .settings = ws,
+                       .shadow = hdr,
+                       .classes = nullptr,
+                       .classLight = -1,
+                       .timed = false,
+                       .order = nullptr,
+                       .shadowChannel = 0,
+                       .shadedRadiance = true};
+  parallelViewTiles(ctx.views, [&](const View& v, int x0, int y0, int x1, int y1) {
+    const Camera& cam = v.jitteredCamera;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        if (ids.at(x, y)[0] >= 0) continue;
+        Vec3 o, d;
+        cam.generateRay(float(x - v.x) + 0.5f, float(y - v.y) + 0.5f, o, d);
+        hdr.setRgb(x, y, scene.skyRadiance(d));
+      }
+    ShadowCounts counts;  // nothing traced: the maps' shares are not reported
+    classifiedShadowTile(job, v, x0, y0, x1, y1, -1, nullptr, counts);
+  });
+  ctx.report(*this, DeferredCounters::shadowMapRedraws, maps.redraws());
+}
+
 void DeferredShadingPass::execute(FrameContext& ctx) {
+  if (settings().shadows == DeferredSettings::Shadows::ShadowMap) return executeShadowed(ctx);
   const GBufferReader g = gbufferSource(ctx, *this);
   Buffer& hdr = ctx.output(*this, Slots::hdr);
   const Scene& scene = *ctx.scene;
@@ -66,6 +152,18 @@ void DeferredShadingPass::executeGpu(FrameContext& ctx) {
   a.targets = gbufferDeviceSources(ctx, *this);
   a.hdr = ctx.deviceOutput(*this, Slots::hdr);
   a.frameWidth = ctx.width;
+  if (settings().shadows == DeferredSettings::Shadows::ShadowMap) {
+    // The lights that reach a surface in view, back after a checkpoint, then their maps.
+    const uint32_t* lightFlags = recordLightsInView(ctx, *this);
+    gpu.commands().checkpoint();
+    const std::vector<uint8_t> inView = wantedLights(lightFlags, ctx.scene->lights.size());
+    const DeferredSettings& s = settings();
+    const ShadowMaps& maps = deviceShadowMaps(
+        ctx, *this, ctx.shadowMapResolution(s.shadowMapSize, s.shadowMapFit), &inView);
+    a.shadowMaps = gpuShadowMaps(ctx, maps);
+    a.shadowCull = s.shadowCull;
+    ctx.report(*this, DeferredCounters::shadowMapRedraws, maps.redraws());
+  }
   const GpuKernel& k = gpu.kernel("deferred_shading", kDeferredShadingSpv,
                                   sizeof(kDeferredShadingSpv) / 4, sizeof(GBufferShadeArgs));
   for (const View& v : ctx.views) {

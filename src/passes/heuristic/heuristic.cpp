@@ -205,9 +205,9 @@ const ParamTable<HeuristicSettings>& HeuristicPass::tableFor() const {
                {.name = "shadows",
                 .doc = "shadows: selected with their object within the budget (Walewski et al. "
                        "2019); every visible object's traced (classified shadows), the budget "
-                       "left to reflections and refractions; or none traced, all from "
-                       "ss_fallback's shadow maps, the whole budget for reflections and "
-                       "refractions",
+                       "left to reflections and refractions; or none traced, all from the "
+                       "shadow maps (deferred_shading's or ss_fallback's), the whole budget for "
+                       "reflections and refractions",
                 .choices = {"budget", "all", "maps"}})
           .add(&S::budgetMs,
                {.name = "budget_ms",

@@ -124,8 +124,9 @@ class BudgetCalibration {
 struct HeuristicSettings {
   // Budget: a selected object's shadows are traced with it, within T (Walewski et al. 2019).
   // All: every visible object's shadows traced (classified shadows), T left to reflections and
-  // refractions. Maps: no shadow traced, all from ss_fallback's maps, T spent on reflections and
-  // refractions alone (where a stand-in differs most from the rays).
+  // refractions. Maps: no shadow traced, all from the shadow maps (deferred shading's or
+  // ss_fallback's), T spent on reflections and refractions alone (where a stand-in differs most
+  // from the rays).
   enum class Shadows { Budget, All, Maps };
   double budget = 2e6;       // T (cost units)
   double importance = 1000;  // I
@@ -160,6 +161,10 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
     static constexpr const char* rtStats = "rt_stats";
   };
   std::string type() const override { return "heuristic"; }
+  // Shadows it selects are traced and taken from deferred shading's unshadowed light.
+  bool addsShadows() const override {
+    return settings().shadows != HeuristicSettings::Shadows::Maps;
+  }
   std::string description() const override {
     return "Per-object relevancy/cost selection under budget T (Walewski et al. 2019 §3.2)";
   }

@@ -326,7 +326,7 @@ void RTSecondaryPass::execute(FrameContext& ctx) {
                            settings().outsideMaskShadow,
                            timed,
                            tiled};
-  const ShadowTile tileJob{g,     mask,       ids,      ctx.input(*this, Slots::geoNormal),
+  const ShadowTile tileJob{g,     &mask,      ids,      ctx.input(*this, Slots::geoNormal),
                            scene, shading,    &rt,      shadowMaps,
                            ws,    job.shadow, classOut, classLight,
                            timed, order};

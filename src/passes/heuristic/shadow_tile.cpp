@@ -63,6 +63,9 @@ class ShadowBatch {
     // Only the lights that may reach a lane are weighed; the others are culled unseen.
     cullLights(b_, t_.shading, reached_, lanes);
     lightContributions(b_, t_.shading, share_.data(), W, terms_.data());
+    Vec3 unshadowed[W];
+    if (t_.shadedRadiance)
+      for (int k = 0; k < n; ++k) unshadowed[k] = b_.result(k);
     counts_.culled += uint64_t(n) * (lights_ - reached_.size());
     if (t_.classes) std::fill(classes_.begin(), classes_.end(), uint8_t(ShadowClass::Culled));
     float floor[W];
@@ -96,7 +99,8 @@ class ShadowBatch {
       const Vec3 s =
           blockedLights_.empty() ? Vec3(1.0f) : shadowFromBlocked(b_, k, t_.shading.ambient);
       float* out = t_.shadow.at(xs_[k], ys_[k]);
-      out[t_.shadowChannel] = s.x, out[t_.shadowChannel + 1] = s.y, out[t_.shadowChannel + 2] = s.z;
+      const Vec3 v = t_.shadedRadiance ? unshadowed[k] - (Vec3(1.0f) - s) : s;
+      out[t_.shadowChannel] = v.x, out[t_.shadowChannel + 1] = v.y, out[t_.shadowChannel + 2] = v.z;
       if (t_.coverChannel >= 0) out[t_.coverChannel] = 1.0f;
       if (t_.classes)
         t_.classes->setRgb(xs_[k], ys_[k],
@@ -222,7 +226,9 @@ void classifiedShadowTile(const ShadowTile& t, const View& v, int x0, int y0, in
   ShadowBatch batch(t, tally, counts);
   const bool perspective = v.camera.desc.projection == Projection::Perspective;
   const Vec3 eye = perspective ? v.camera.eye : -v.camera.forward;  // readSpan's eye directions
-  auto wanted = [&](int x, int y) { return (t.mask.at(x, y)[kShadow] > 0.5f) != t.unselected; };
+  auto wanted = [&](int x, int y) {
+    return !t.mask || (t.mask->at(x, y)[kShadow] > 0.5f) != t.unselected;
+  };
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       // W pixels of a row that all want their shadow, with no batch begun: read in one go

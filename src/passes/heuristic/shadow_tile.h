@@ -23,7 +23,8 @@ struct EffectTally {
 
 struct ShadowTile {
   const GBufferReader& g;
-  const Buffer &mask, &ids, &geoNormal;
+  const Buffer* mask;  // null: every surface pixel (deferred shading with map shadows)
+  const Buffer &ids, &geoNormal;
   const Scene& scene;
   const ShadingContext& shading;
   const RayTracer* rt;     // null with settings.shadows = Maps (nothing is traced)
@@ -38,6 +39,9 @@ struct ShadowTile {
   // `shadow` and 1 at `coverChannel` (>= 0) where it was.
   bool unselected = false;
   int shadowChannel = 0, coverChannel = -1;
+  // deferred_shading with map shadows: the shaded radiance with S applied, L - (1 - S) (eq. 4, as
+  // blend would take it), written at `shadowChannel` instead of S.
+  bool shadedRadiance = false;
 };
 
 // (traced, lit, shadowed) shares of lane j's lights that reach it (classes of 8-bit ShadowClass
@@ -45,7 +49,8 @@ struct ShadowTile {
 Vec3 classShares(const uint8_t* classes, size_t lights, size_t stride, int j, int only);
 
 // Writes S for the pixels of [x0, x1) x [y0, y1) in view v whose heuristic mask selects shadows
-// (of node rank `rank` only, when >= 0: a deadline's work item) and that show a surface; counts
+// (every one without a mask; of node rank `rank` only, when >= 0: a deadline's work item) and
+// that show a surface; counts
 // into tally (per object) and counts.
 void classifiedShadowTile(const ShadowTile& t, const View& v, int x0, int y0, int x1, int y1,
                           int64_t rank, EffectTally* tally, ShadowCounts& counts);

@@ -313,7 +313,7 @@ void ScreenSpaceFallbackPass::execute(FrameContext& ctx) {
   ws.shadowCull = s.shadowCull;
   ShadowCounts counts;  // not reported: ss_fallback traces nothing
   const ShadowTile shadowJob{.g = g,
-                             .mask = mask,
+                             .mask = &mask,
                              .ids = ctx.input(*this, Slots::objectId),
                              .geoNormal = geoNormal,
                              .scene = scene,

@@ -8,10 +8,11 @@
 // best) looks up a small cube map drawn from the object's centre (reflection_probes.h). Unselected
 // shadows come from the frame's raster shadow maps (raster/shadow_maps.h, shared with classified
 // shadows at the same size) through rt_secondary's classified shadow tile (shadow_tile.h) with the
-// maps deciding every pair: the same culling of negligible lights, the same shading of S. Both
-// "off" is the paper's rule, for its tables. Inputs: the G-buffer sample slots, hdr,
-// heuristic_mask. Output: fallback = reflection RGB, refraction RGB, shadow RGB (eq. 4's S), then
-// flags: 1 where reflection/refraction were written, 1 where the shadow was.
+// maps deciding every pair: the same culling of negligible lights, the same shading of S
+// (hybrid-heuristic shades them in deferred_shading instead, its lights weighed once, and turns
+// them off here). Both "off" is the paper's rule, for its tables. Inputs: the G-buffer sample
+// slots, hdr, heuristic_mask. Output: fallback = reflection RGB, refraction RGB, shadow RGB (eq.
+// 4's S), then flags: 1 where reflection/refraction were written, 1 where the shadow was.
 #pragma once
 #include "passes/heuristic/effect_channels.h"
 #include "passes/heuristic/reflection_probes.h"
@@ -57,6 +58,9 @@ class ScreenSpaceFallbackPass : public SettingsPass<FallbackSettings> {
     static constexpr const char* position = "position";
   };
   std::string type() const override { return "ss_fallback"; }
+  bool addsShadows() const override {
+    return settings().shadows == FallbackSettings::Shadows::ShadowMap;
+  }
   std::string description() const override {
     return "Screen-space reflection/refraction (or sky) where no ray was traced";
   }

@@ -396,7 +396,9 @@ TEST(ClassifiedShadows, BadSettingsNameTheField) {
 // cheap), and the budget buys only reflections and refractions: with no budget none are traced.
 TEST(ClassifiedShadows, HeuristicTracesEveryShadowWhenAskedTo) {
   const Scene s = builtin("spheres");
-  auto r = render(s, "hybrid-heuristic", {"heuristic.shadows=all", "heuristic.budget=0"}, 96, 54);
+  auto r = render(s, "hybrid-heuristic",
+                  {"deferred_shading.shadows=off", "heuristic.shadows=all", "heuristic.budget=0"},
+                  96, 54);
   const Buffer& mask = r->context().input("heuristic_mask");
   const Buffer& ids = r->context().input("object_id");
   size_t visible = 0;
@@ -410,7 +412,8 @@ TEST(ClassifiedShadows, HeuristicTracesEveryShadowWhenAskedTo) {
   }
   EXPECT_GT(visible, ids.pixelCount() / 2);
   // With a budget, mirrors and glass are selected on top (their nodes alone carry a cost).
-  auto more = render(s, "hybrid-heuristic", {"heuristic.shadows=all"}, 96, 54);
+  auto more = render(s, "hybrid-heuristic",
+                     {"deferred_shading.shadows=off", "heuristic.shadows=all"}, 96, 54);
   EXPECT_GT(more->context().counters.at("heuristic/selected"), 0.0);
   EXPECT_EQ(r->context().counters.at("heuristic/selected"), 0.0);
 }
@@ -420,10 +423,14 @@ TEST(ClassifiedShadows, HeuristicTracesEveryShadowWhenAskedTo) {
 // more reflections and refractions.
 TEST(ClassifiedShadows, HeuristicLeavesEveryShadowToTheMapsWhenAskedTo) {
   const Scene s = builtin("spheres");
-  auto maps =
-      render(s, "hybrid-heuristic", {"heuristic.shadows=maps", "heuristic.budget=1000"}, 96, 54);
-  auto paper =
-      render(s, "hybrid-heuristic", {"heuristic.shadows=budget", "heuristic.budget=1000"}, 96, 54);
+  auto maps = render(s, "hybrid-heuristic",
+                     {"deferred_shading.shadows=off", "ss_fallback.shadows=shadow_map",
+                      "heuristic.shadows=maps", "heuristic.budget=1000"},
+                     96, 54);
+  auto paper = render(s, "hybrid-heuristic",
+                      {"deferred_shading.shadows=off", "ss_fallback.shadows=shadow_map",
+                       "heuristic.shadows=budget", "heuristic.budget=1000"},
+                      96, 54);
   const Buffer& mask = maps->context().input("heuristic_mask");
   const Buffer& paperMask = paper->context().input("heuristic_mask");
   const Buffer& fallback = maps->context().input("fallback");
@@ -444,6 +451,67 @@ TEST(ClassifiedShadows, HeuristicLeavesEveryShadowToTheMapsWhenAskedTo) {
   EXPECT_GT(effects, paperEffects);
   EXPECT_GT(maps->context().counters.at("heuristic/selected"),
             paper->context().counters.at("heuristic/selected"));
+}
+
+// hybrid-heuristic's deferred shading shades with the shadow maps (deferred_shading.shadows =
+// shadow_map): the image ss_fallback's map shadows and blend's eq. 4 gave, to within a few units
+// in the last place (L - (1 - S) is the same sum, L weighed once), with ss_fallback shadowing
+// nothing; the map shadows darken a share of the pixels.
+TEST(ClassifiedShadows, DeferredShadingWithMapsGivesTheFallbacksImage) {
+  for (const char* name : {"spheres", "cornell", "atrium"}) {
+    const Scene s = builtin(name);
+    auto shaded = render(s, "hybrid-heuristic", {}, 96, 54);
+    auto fallback =
+        render(s, "hybrid-heuristic",
+               {"deferred_shading.shadows=off", "ss_fallback.shadows=shadow_map"}, 96, 54);
+    auto unshadowed = render(s, "hybrid-heuristic", {"deferred_shading.shadows=off"}, 96, 54);
+    const Buffer &a = shaded->context().input("composite"),
+                 &b = fallback->context().input("composite");
+    ASSERT_EQ(a.data.size(), b.data.size());
+    for (size_t i = 0; i < a.data.size(); ++i)
+      ASSERT_NEAR(a.data[i], b.data[i], 4e-7f * std::max(1.0f, std::abs(b.data[i])))
+          << name << " value " << i;
+    const Buffer& fb = shaded->context().input("fallback");
+    for (size_t i = 0; i < fb.pixelCount(); ++i)
+      ASSERT_EQ(fb.data[i * fallback::kChannels + fallback::kCoversShadow], 0.0f) << name << i;
+    const Buffer &lit = shaded->context().input("hdr"), &bare = unshadowed->context().input("hdr");
+    size_t darker = 0;
+    for (size_t i = 0; i < lit.pixelCount(); ++i)
+      darker += luminance(lit.rgb(int(i % 96), int(i / 96))) <
+                0.9f * luminance(bare.rgb(int(i % 96), int(i / 96)));
+    EXPECT_GT(darker, lit.pixelCount() / 50) << name << ": the maps shadow almost nothing";
+  }
+}
+
+// A pipeline whose deferred shading shades with the maps cannot also take shadows from that light
+// (traced by the heuristic's selection, or ss_fallback's): loading, the CLI's --set and each frame
+// say so, naming the passes; turned off, the paper's rule runs.
+TEST(ClassifiedShadows, ShadowsAreNotTakenTwice) {
+  Pipeline p = Pipeline::load("hybrid-heuristic");
+  EXPECT_NO_THROW(p.checkShadows("test"));
+  p.setParam("heuristic.shadows=budget", "test");
+  try {
+    p.checkShadows("test");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("heuristic"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("deferred_shading"), std::string::npos) << e.what();
+  }
+  const Scene s = builtin("spheres");
+  {
+    Pipeline q = Pipeline::load("hybrid-heuristic");
+    q.setParam("ss_fallback.shadows=shadow_map", "test");
+    Renderer r(s, std::move(q), RenderSettings{.width = 32, .height = 18});
+    EXPECT_THROW(r.renderFrame(0, s.camera), InputError);
+  }
+  p.setParam("deferred_shading.shadows=off", "test");
+  EXPECT_NO_THROW(p.checkShadows("test"));
+  const std::string doubled = R"({"name": "doubled", "passes": [
+      {"type": "raster_gbuffer"}, {"type": "deferred_shading", "params": {"shadows": "shadow_map"}},
+      {"type": "heuristic"}, {"type": "rt_secondary"}, {"type": "ss_fallback",
+      "params": {"shadows": "off"}}, {"type": "blend"}, {"type": "tonemap",
+      "inputs": {"hdr": "composite"}}]})";
+  EXPECT_THROW(Pipeline::fromJson(Json::parse(doubled), "doubled.json"), InputError);
 }
 
 namespace {

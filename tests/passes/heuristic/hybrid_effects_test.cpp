@@ -128,16 +128,18 @@ TEST(HybridEffects, FeedbackIsTypedRecords) {
 TEST(HybridEffects, ModesAgreeAtTheExtremes) {
   Scene s = makeSpheresScene();
   auto all = test::renderOnce(s, "hybrid-all", 96, 54, s.camera);
-  auto perEffect = makeRenderer(s, "hybrid-heuristic",
-                                {"heuristic.select_all=1", "heuristic.per_effect=1",
-                                 "heuristic.shadows=budget", "rt_secondary.max_depth=10"},
-                                96, 54);
+  auto perEffect = makeRenderer(
+      s, "hybrid-heuristic",
+      {"heuristic.select_all=1", "heuristic.per_effect=1", "deferred_shading.shadows=off",
+       "heuristic.shadows=budget", "rt_secondary.max_depth=10"},
+      96, 54);
   perEffect->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(all->output(), perEffect->output()));
-  auto none = makeRenderer(s, "hybrid-heuristic",
-                           {"heuristic.budget=0", "heuristic.shadows=budget",
-                            "ss_fallback.mode=off", "ss_fallback.shadows=off"},
-                           96, 54);
+  auto none =
+      makeRenderer(s, "hybrid-heuristic",
+                   {"heuristic.budget=0", "deferred_shading.shadows=off",
+                    "heuristic.shadows=budget", "ss_fallback.mode=off", "ss_fallback.shadows=off"},
+                   96, 54);
   none->renderFrame(0, s.camera);
   auto deferred = test::renderOnce(s, "deferred", 96, 54, s.camera);
   EXPECT_TRUE(sameBuffer(none->output(), deferred->output()));
@@ -211,7 +213,9 @@ TEST(HybridEffects, DeadlineCutsToTheFallbackAndOtherwiseChangesNothing) {
   EXPECT_GT(ctx.counters.at("rt_secondary/items_cut"), 0.0);
   for (float v : ctx.input("traced_mask").data) ASSERT_EQ(v, 0.0f);  // ...and nothing traced
   auto none = makeRenderer(s, "hybrid-heuristic",
-                           {"heuristic.budget=0", "heuristic.shadows=budget"}, 96, 54);
+                           {"heuristic.budget=0", "deferred_shading.shadows=off",
+                            "heuristic.shadows=budget", "ss_fallback.shadows=shadow_map"},
+                           96, 54);
   none->renderFrame(0, s.camera);
   EXPECT_TRUE(sameBuffer(cut->output(), none->output()));
 
@@ -551,12 +555,15 @@ TEST(HybridEffects, FallbacksStandInForUnselectedEffects) {
   Scene s = makeSpheresScene();
   const int w = 160, h = 90;
   auto all = test::renderOnce(s, "hybrid-all", w, h, s.camera);
-  auto paper = makeRenderer(s, "hybrid-heuristic",
-                            {"heuristic.budget=0", "heuristic.shadows=budget",
-                             "ss_fallback.mode=off", "ss_fallback.shadows=off"},
-                            w, h);
-  auto fallback =
-      makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0", "heuristic.shadows=budget"}, w, h);
+  auto paper =
+      makeRenderer(s, "hybrid-heuristic",
+                   {"heuristic.budget=0", "deferred_shading.shadows=off",
+                    "heuristic.shadows=budget", "ss_fallback.mode=off", "ss_fallback.shadows=off"},
+                   w, h);
+  auto fallback = makeRenderer(s, "hybrid-heuristic",
+                               {"heuristic.budget=0", "deferred_shading.shadows=off",
+                                "heuristic.shadows=budget", "ss_fallback.shadows=shadow_map"},
+                               w, h);
   paper->renderFrame(0, s.camera);
   fallback->renderFrame(0, s.camera);
   EXPECT_TRUE(heuristicOf(*fallback).lastSelection().empty());
