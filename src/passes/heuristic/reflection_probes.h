@@ -44,6 +44,8 @@ class ReflectionProbes {
   // Probes beyond `capacity` are freed, the longest unwanted first. Returns the probes drawn.
   int update(const FrameScene& fs, const ShadingContext& shading,
              const std::vector<uint8_t>& wanted, int size, int refresh, size_t capacity);
+  // Updates so far (0: none yet, the first frame to come).
+  uint64_t updates() const { return updates_; }
   // Radiance arriving at object o's centre from unit direction d (bilinear within a face); the
   // sky where o has no probe.
   Vec3 lookup(const Scene& scene, int object, Vec3 d) const;

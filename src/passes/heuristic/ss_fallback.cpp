@@ -74,6 +74,12 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
                 .max = 1024,
                 .doc =
                     "probes redrawn per frame when geometry moved (oldest first; new ones always)"})
+          .add(&S::probeBake,
+               {.name = "probe_bake",
+                .doc = "the first frame draws a probe for every mirror and glass object (up to "
+                       "max_probes, the largest first), as engines bake static probes at load, "
+                       "so an object entering the view finds its probe drawn; off: drawn when "
+                       "the object first shows"})
           .add(
               &S::steps,
               {.name = "steps", .min = 1, .max = 512, .doc = "march steps along the reflected ray"})
@@ -192,6 +198,24 @@ void ScreenSpaceFallbackPass::updateProbes(FrameContext& ctx, const ShadingConte
                     });
   std::vector<uint8_t> wanted(n, 0);
   for (size_t k = 0; k < keep; ++k) wanted[order[k]] = 1;
+  if (s.probeBake && probes.updates() == 0) {
+    // The first frame bakes the rest too, the largest first: probes do not depend on the camera,
+    // so a later frame whose camera turns to an object finds its probe drawn instead of paying
+    // six draws of the scene then. The images are the same.
+    const Scene& scene = *ctx.scene;
+    std::vector<uint32_t> rest;
+    for (size_t o = 0; o < n && o < scene.objects.size(); ++o) {
+      const Material& m = scene.materials[size_t(scene.objects[o].material)];
+      if (!wanted[o] && (m.reflectivity > 0 || m.opacity < 1)) rest.push_back(uint32_t(o));
+    }
+    auto extent = [&](uint32_t o) {
+      const Bounds3& b = ctx.frame.objects[o].bounds;
+      return length(b.hi - b.lo);
+    };
+    std::stable_sort(rest.begin(), rest.end(),
+                     [&](uint32_t a, uint32_t c) { return extent(a) > extent(c); });
+    for (size_t k = 0; keep + k < size_t(s.maxProbes) && k < rest.size(); ++k) wanted[rest[k]] = 1;
+  }
   ctx.report(*this, FallbackCounters::probesDrawn,
              probes.update(ctx.frame, shading, wanted, s.probeSize, s.probeRefresh,
                            2 * size_t(s.maxProbes)));

@@ -34,6 +34,7 @@ struct FallbackSettings {
   int probeSize = 128;
   int maxProbes = 32;
   int probeRefresh = 2;
+  bool probeBake = true;  // every mirror and glass object's probe on the first frame
   int steps = 32;
   float thickness = 0.05f;
 };

@@ -549,6 +549,39 @@ TEST(ReflectionProbes, SeeTheSceneAroundTheObject) {
   EXPECT_TRUE(near(probes.lookup(s, b, {1, 0, 0}), {0.2f, 0.2f, 0.2f}));
 }
 
+// probe_bake: the first frame draws the probe of every mirror and glass object, in view or not,
+// so a camera that turns to them later draws none; without it each is drawn when its object
+// first shows. Probes do not depend on the camera: in a still scene the images are the same
+// either way (where objects move, a probe drawn earlier trails them by probe_refresh a frame).
+TEST(HybridEffects, ProbesBakedOnTheFirstFrameLeaveTheImagesAsTheyWere) {
+  Scene s = makeSpheresScene();
+  for (Object& o : s.objects) o.animation = {};  // the bob held still
+  size_t mirrorsAndGlass = 0;
+  for (const Object& o : s.objects) {
+    const Material& m = s.materials[size_t(o.material)];
+    mirrorsAndGlass += m.reflectivity > 0 || m.opacity < 1 ? 1 : 0;
+  }
+  ASSERT_GT(mirrorsAndGlass, 1u);
+  CameraDesc sky = s.camera;  // straight up: no object in view
+  sky.lookAt = sky.position + Vec3(0, 1, 0);
+  sky.up = Vec3(0, 0, 1);
+  auto baked = makeRenderer(s, "hybrid-heuristic", {"heuristic.budget=0"}, 96, 54);
+  auto drawnInView = makeRenderer(s, "hybrid-heuristic",
+                                  {"heuristic.budget=0", "ss_fallback.probe_bake=0"}, 96, 54);
+  auto drawn = [](const Renderer& r) {
+    return r.context().counters.at("ss_fallback/probes_drawn");
+  };
+  baked->renderFrame(0, sky);
+  drawnInView->renderFrame(0, sky);
+  EXPECT_EQ(drawn(*baked), double(std::min<size_t>(mirrorsAndGlass, 32)));
+  EXPECT_EQ(drawn(*drawnInView), 0.0);
+  baked->renderFrame(1, s.camera);
+  drawnInView->renderFrame(1, s.camera);
+  EXPECT_EQ(drawn(*baked), 0.0);
+  EXPECT_GT(drawn(*drawnInView), 0.0);
+  EXPECT_TRUE(sameBuffer(baked->output(), drawnInView->output()));
+}
+
 // With nothing ray traced, the fallbacks (shadow maps, screen-space reflection and refraction)
 // bring the image much closer to hybrid-all than the paper's rule (unshadowed, black mirrors).
 TEST(HybridEffects, FallbacksStandInForUnselectedEffects) {
