@@ -27,7 +27,7 @@ layout(buffer_reference, scalar, buffer_reference_align = 8) buffer Counters {
 
 DofAccumulationArgs A;
 
-float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+#include "color.glsl"
 float saturate(float x) { return clamp(x, 0.0, 1.0); }
 
 // history(): a bilinear sample (sampleBilinear, floor) of a w x h buffer of C channels; false

@@ -29,7 +29,7 @@ NhDenoiseArgs A;
 shared float sums[TD_NH_GROUP];
 shared uint counts[TD_NH_COUNTS];
 
-float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+#include "color.glsl"
 vec3 at3(uint64_t b, uint i) {
   Floats f = Floats(b);
   return vec3(f.v[3u * i], f.v[3u * i + 1u], f.v[3u * i + 2u]);

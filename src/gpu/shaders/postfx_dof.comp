@@ -19,7 +19,7 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Floats { flo
 const float kPi = 3.14159265358979323846;
 const float kZoneOfFocusCoc = 1.41421356;
 
-float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+#include "color.glsl"
 
 vec3 load3(uint64_t b, uint i) {
   Floats f = Floats(b);

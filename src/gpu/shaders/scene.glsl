@@ -37,7 +37,7 @@ float kInf = uintBitsToFloat(0x7f800000u);  // (no constant expression makes an 
 
 vec3 v3(float a[3]) { return vec3(a[0], a[1], a[2]); }
 float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
-float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+#include "color.glsl"
 vec3 safeNormalize(vec3 v) {  // as math.h normalize: zero stays zero
   const float l2 = dot(v, v);
   return l2 > 0.0 ? v / sqrt(l2) : vec3(0.0);
