@@ -20,6 +20,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The channel names the pass that produces `buffer` declared (an EXR names channels beyond four
+// by them).
+std::vector<std::string> declaredChannels(const Pipeline& p, const std::string& buffer) {
+  for (const auto& pass : p.passes)
+    for (const BufferSlot& s : pass->outputs())
+      if (pass->bufferName(s.slot) == buffer) return channelNamesOf(s);
+  return {};
+}
+
 struct RenderVerb {
   RenderOptions opts;
 
@@ -27,14 +36,14 @@ struct RenderVerb {
 
   // The frame's hdr (or output) as R, G, B and each AOV of the frame's size as a layer named
   // after it; other sizes are left to their own files.
-  std::vector<unsigned char> layeredExr(const FrameContext& ctx,
+  std::vector<unsigned char> layeredExr(const FrameContext& ctx, const Pipeline& pipeline,
                                         const std::vector<std::string>& aovs) const {
     const Buffer& main = ctx.buffers.count("hdr") ? ctx.input("hdr") : ctx.input("output");
     std::vector<ExrLayer> layers{{"", &main}};
     for (const std::string& a : aovs) {
       const Buffer& b = ctx.input(a);
       if (b.width == main.width && b.height == main.height)
-        layers.push_back({a, &b});
+        layers.push_back({a, &b, declaredChannels(pipeline, a)});
       else
         std::fprintf(stderr,
                      "tandem: --exr-layers: '%s' is %dx%d, not the frame's size: only "
@@ -118,9 +127,9 @@ struct RenderVerb {
     for (const std::string& a : aovs) {
       std::string ext = isFile && hasExtension(out, ".exr") ? ".exr" : ".png";
       std::string p = base.string() + "_" + a + ext;
-      stage(p, encodeBuffer(p, ctx.input(a)));
+      stage(p, encodeBuffer(p, ctx.input(a), declaredChannels(renderer.pipeline(), a)));
     }
-    if (!exrLayers.empty()) stage(exrLayers, layeredExr(ctx, aovs));
+    if (!exrLayers.empty()) stage(exrLayers, layeredExr(ctx, renderer.pipeline(), aovs));
     files.commit();
     for (const std::string& p : written) std::printf("wrote %s\n", p.c_str());
     return 0;

@@ -94,12 +94,14 @@ std::vector<std::string> exrChannelNames(const ExrLayer& l) {
   static const char* kRgba[] = {"R", "G", "B", "A"};
   static const char* kXyzw[] = {"X", "Y", "Z", "W"};
   const Buffer& b = *l.buffer;
-  const int c = std::min(b.channels, 4);
+  const int c = b.channels;
   const bool vector = b.kind == BufferKind::Normal || b.kind == BufferKind::Position ||
                       b.kind == BufferKind::Motion;
+  const bool named = l.channels.size() == size_t(c);
   std::vector<std::string> names;
   for (int k = 0; k < c; ++k) {
-    std::string n = c == 1   ? (b.kind == BufferKind::Depth && !l.name.empty() ? "Z" : "Y")
+    std::string n = c > 4    ? (named ? l.channels[size_t(k)] : std::to_string(k))
+                    : c == 1 ? (b.kind == BufferKind::Depth && !l.name.empty() ? "Z" : "Y")
                     : vector ? kXyzw[k]
                              : kRgba[k];
     names.push_back(l.name.empty() ? n : l.name + "." + n);

@@ -23,6 +23,9 @@ std::vector<unsigned char> encodeExr(const std::string& path, const Buffer& img,
 struct ExrLayer {
   std::string name;
   const Buffer* buffer = nullptr;
+  // Up to four channels are named by the EXR conventions of their kind (R, G, B, A; X, Y, Z, W;
+  // Y, or Z for depth); a wider buffer's by these (its slot's channelNamesOf), else by number.
+  std::vector<std::string> channels = {};
 };
 // Every layer in one float (or half) EXR; all layers must have the same size.
 std::vector<unsigned char> encodeExrLayers(const std::string& path,

@@ -105,8 +105,10 @@ Buffer visualizeBuffer(const Buffer& b, float scale) {
   return out;
 }
 
-std::vector<unsigned char> encodeBuffer(const std::string& path, const Buffer& b) {
-  return hasExtension(path, ".exr") ? encodeExr(path, b) : encodePng(path, visualizeBuffer(b));
+std::vector<unsigned char> encodeBuffer(const std::string& path, const Buffer& b,
+                                        const std::vector<std::string>& channels) {
+  return hasExtension(path, ".exr") ? encodeExrLayers(path, {{"", &b, channels}})
+                                    : encodePng(path, visualizeBuffer(b));
 }
 
 void writeBuffer(const std::string& path, const Buffer& b) {

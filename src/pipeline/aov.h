@@ -3,6 +3,7 @@
 // tonemapped, variance as standard error. Reduced-extent buffers keep their own size.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "core/buffer.h"
 
@@ -15,7 +16,9 @@ Buffer visualizeBuffer(const Buffer& b, float scale = 1.0f);
 Vec3 idColor(int id);
 // Writes a buffer to `path`: EXR gets raw values, PNG the visualisation.
 void writeBuffer(const std::string& path, const Buffer& b);
-// The bytes writeBuffer would write, for staging in a FileCommit.
-std::vector<unsigned char> encodeBuffer(const std::string& path, const Buffer& b);
+// The bytes writeBuffer would write, for staging in a FileCommit. `channels`: the names of a
+// buffer's channels for an EXR wider than four (ExrLayer::channels).
+std::vector<unsigned char> encodeBuffer(const std::string& path, const Buffer& b,
+                                        const std::vector<std::string>& channels = {});
 
 }  // namespace tandem

@@ -70,6 +70,18 @@ def test_buffers_equal_what_the_cli_writes():
     single = read_exr(os.path.join(d, "x.exr"))
     np.testing.assert_array_equal(single["R"], out["output"][:, :, 0])
     np.testing.assert_array_equal(read_exr(os.path.join(d, "x_depth.exr"))["Y"], out["depth"])
+    # A buffer wider than four channels keeps them all, named as its pass declares them.
+    subprocess.run([BINARY, "render", "cornell", "--pipeline", "hybrid-heuristic", "--width", "48",
+                    "--height", "27", "--aov", "fallback", "--exr-layers",
+                    os.path.join(d, "wide.exr"), "--out", os.path.join(d, "w.exr")],
+                   check=True, capture_output=True)
+    names = ["reflection_r", "reflection_g", "reflection_b", "refraction_r", "refraction_g",
+             "refraction_b", "shadow_r", "shadow_g", "shadow_b", "covers_effect", "covers_shadow"]
+    wide, alone = read_exr(os.path.join(d, "wide.exr")), read_exr(os.path.join(d, "w_fallback.exr"))
+    assert out["fallback"].shape[2] == len(names)
+    for k, n in enumerate(names):
+        np.testing.assert_array_equal(wide["fallback." + n], out["fallback"][:, :, k])
+        np.testing.assert_array_equal(alone[n], out["fallback"][:, :, k])
 
 
 def test_settings_are_checked_as_set_is():
