@@ -237,8 +237,9 @@ void Pipeline::checkShadows(const std::string& source) const {
     if (p.enabled && p.addsShadows())
       throw InputError(source, "passes[" + std::to_string(i) + "] (" + p.name() + ")",
                        "takes shadows from light that '" + shaded->name() +
-                           "' shades with shadow maps already (set " + p.name() +
-                           ".shadows to maps or off, or " + shaded->name() + ".shadows to off)");
+                           "' shades with shadow maps already (set " + shaded->name() +
+                           ".shadows=off, or take no shadow here: heuristic.shadows=maps, "
+                           "ss_fallback.shadows=off)");
   }
 }
 

@@ -178,6 +178,9 @@ expect_error "reference negative shutter" "--shutter" "$T" reference --shutter -
 expect_error "--set unknown parameter" "unknown parameter" "$T" render --pipeline hybrid-heuristic --set heuristic.nope=1 --out "$D/err/x.png"
 expect_error "--set out of range" "out of range" "$T" render --pipeline hybrid-heuristic --set heuristic.budget_ms=-3 --out "$D/err/x.png"
 expect_error "--set unknown pass" "no pass labelled" "$T" render --set nopass.x=1 --out "$D/err/x.png"
+expect_error "--set shadows taken twice" "shades with shadow maps already" "$T" render --pipeline hybrid-heuristic --set heuristic.shadows=budget --out "$D/err/x.png"
+"$T" render --pipeline hybrid-heuristic --width 32 --height 18 --set heuristic.shadows=budget --set deferred_shading.shadows=off --out "$D/paper_rule.png" >/dev/null 2>&1
+check "--set the paper's rule, deferred shadows off in either order" "[ -s $D/paper_rule.png ]"
 expect_error "--set malformed" "pass.param=value" "$T" render --set budget --out "$D/err/x.png"
 expect_error "experiment bad scene" "not found" "$T" experiment heuristic --scenes /nonexistent.json --out "$D/err/exp"
 echo '{"runner": "sweep", "scenes": ["cornell"], "pipelines": ["deferred"], "widht": 3}' > "$D/badexp.json"
