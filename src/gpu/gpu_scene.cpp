@@ -72,12 +72,42 @@ GpuLight gpuLight(const Light& light) {
 bool samePositions(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
+
+// An object's positions and those of its time steps (FrameObject), one after the other.
+std::vector<Vec3> geometryOf(const FrameObject& o) {
+  std::vector<Vec3> all = o.positions;
+  if (o.stepPositions.size() >= 2)
+    for (const std::vector<Vec3>& step : o.stepPositions) all.insert(all.end(), step.begin(), step.end());
+  return all;
+}
+
+// The time steps a moving object keeps on the device (0: it stands still).
+uint32_t motionSteps(const FrameObject& o) {
+  return o.stepPositions.size() >= 2 ? uint32_t(o.stepPositions.size()) : 0;
+}
+
+// Leaf-order triangles at the frame's positions and at each time step.
+void leafTriangles(const Mesh& mesh, const FrameObject& o, const std::vector<uint32_t>& prims,
+                   std::vector<float>& triangles, std::vector<float>& stepTriangles) {
+  triangles.resize(prims.size() * 9);
+  const size_t steps = motionSteps(o);
+  stepTriangles.resize(prims.size() * 9 * steps);
+  for (size_t i = 0; i < prims.size(); ++i)
+    for (size_t k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.indices[3 * size_t(prims[i]) + k];
+      std::memcpy(&triangles[9 * i + 3 * k], &o.positions[v], sizeof(Vec3));
+      for (size_t s = 0; s < steps; ++s)
+        std::memcpy(&stepTriangles[9 * (i * steps + s) + 3 * k], &o.stepPositions[s][v],
+                    sizeof(Vec3));
+    }
+}
 }  // namespace
 
 GpuScene::~GpuScene() {
-  for (GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &staging_, &materials_, &textures_,
-                       &levels_, &texels_, &lights_, &decode_, &objectsBuf_, &positions_, &normals_,
-                       &tangents_, &uvs_, &indices_, &args_})
+  for (GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &motion_, &motionTriangles_,
+                       &staging_, &materials_, &textures_, &levels_, &texels_, &lights_, &decode_,
+                       &objectsBuf_, &positions_, &normals_, &tangents_, &uvs_, &indices_,
+                       &stepPositions_, &stepNormals_, &args_})
     memory_.release(*b);
 }
 
@@ -86,29 +116,36 @@ GpuScene::ObjectBvh GpuScene::buildObject(const Scene& scene, const FrameObject&
   const size_t n = mesh.triangleCount();
   std::vector<Bounds3> boxes(n);
   for (size_t t = 0; t < n; ++t)
-    for (int k = 0; k < 3; ++k) boxes[t].extend(o.positions[mesh.indices[3 * t + size_t(k)]]);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.indices[3 * t + size_t(k)];
+      boxes[t].extend(o.positions[v]);
+      if (motionSteps(o))  // between steps a vertex stays inside the box of both
+        for (const std::vector<Vec3>& step : o.stepPositions) boxes[t].extend(step[v]);
+    }
   BvhBuild b = buildBvh(boxes);
   ObjectBvh out;
   out.nodes = std::move(b.nodes);
-  out.triangles.reserve(n * 9);
   out.prims = std::move(b.items);
-  for (const uint32_t t : out.prims)
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 p = o.positions[mesh.indices[3 * size_t(t) + size_t(k)]];
-      out.triangles.insert(out.triangles.end(), {p.x, p.y, p.z});
-    }
+  out.steps = motionSteps(o);
+  leafTriangles(mesh, o, out.prims, out.triangles, out.stepTriangles);
   for (const Bounds3& box : boxes) out.bounds.extend(box);
   return out;
 }
 
 void GpuScene::refitObject(ObjectBvh& ob, const Scene& scene, const FrameObject& o, size_t index) {
   const Mesh& mesh = scene.meshes[size_t(scene.objects[index].mesh)];
-  for (size_t i = 0; i < ob.prims.size(); ++i)
-    for (size_t k = 0; k < 3; ++k) {
-      const Vec3 p = o.positions[mesh.indices[3 * size_t(ob.prims[i]) + k]];
-      float* v = &ob.triangles[9 * i + 3 * k];
-      v[0] = p.x, v[1] = p.y, v[2] = p.z;
-    }
+  ob.steps = motionSteps(o);
+  leafTriangles(mesh, o, ob.prims, ob.triangles, ob.stepTriangles);
+  auto extendByTriangle = [&](Bounds3& b, size_t t) {
+    for (size_t k = 0; k < 3; ++k)
+      b.extend({ob.triangles[9 * t + 3 * k], ob.triangles[9 * t + 3 * k + 1],
+                ob.triangles[9 * t + 3 * k + 2]});
+    for (size_t s = 0; s < ob.steps; ++s)
+      for (size_t k = 0; k < 3; ++k) {
+        const float* p = &ob.stepTriangles[9 * (t * ob.steps + s) + 3 * k];
+        b.extend({p[0], p[1], p[2]});
+      }
+  };
   // Children always follow their parent (buildBvh's order): from the last node back, every
   // child's box is final before its parent's is drawn around it.
   for (size_t n = ob.nodes.size(); n-- > 0;) {
@@ -116,10 +153,7 @@ void GpuScene::refitObject(ObjectBvh& ob, const Scene& scene, const FrameObject&
     if (node.lox > node.hix) continue;  // an empty slot stays empty
     Bounds3 b;
     if (node.count) {
-      for (size_t t = node.a; t < node.a + node.count; ++t)
-        for (size_t k = 0; k < 3; ++k)
-          b.extend({ob.triangles[9 * t + 3 * k], ob.triangles[9 * t + 3 * k + 1],
-                    ob.triangles[9 * t + 3 * k + 2]});
+      for (size_t t = node.a; t < node.a + node.count; ++t) extendByTriangle(b, t);
     } else {
       for (size_t c = node.a; c < node.a + 2; ++c) {
         const BvhNode& k = ob.nodes[c];
@@ -141,14 +175,15 @@ void GpuScene::update(const FrameScene& fs, GpuCommands& cmd) {
   built_.resize(fs.objects.size());
   for (size_t o = 0; o < fs.objects.size(); ++o) {
     const FrameObject& fo = fs.objects[o];
-    if (!fresh && samePositions(built_[o], fo.positions)) continue;  // only what moved
+    std::vector<Vec3> geometry = geometryOf(fo);
+    if (!fresh && samePositions(built_[o], geometry)) continue;  // only what moved
     // A BVH built for these triangles is refitted (its tree kept, its boxes redrawn around where
     // the triangles are now): cheaper than a build, and rigid motion barely loosens the boxes.
-    if (!fresh && built_[o].size() == fo.positions.size())
+    if (!fresh && built_[o].size() == geometry.size())
       refitObject(objects_[o], scene, fo, o);
     else
       objects_[o] = buildObject(scene, fo, o);
-    built_[o] = fo.positions;
+    built_[o] = std::move(geometry);
   }
   scene_ = fs.scene;
   version_ = fs.geometryVersion;
@@ -164,13 +199,16 @@ GpuBuffer& GpuScene::ensure(GpuBuffer& b, size_t bytes) {
 void GpuScene::upload(GpuCommands& cmd, bool sceneChanged, const FrameScene& fs) {
   // One array of nodes (each object's, offset, then the top level's), one of triangles.
   std::vector<BvhNode> nodes;
-  std::vector<float> tris;
+  std::vector<float> tris, stepTris;
   std::vector<uint32_t> prims, roots(objects_.size());
+  std::vector<ObjectMotion> motion(objects_.size());
   std::vector<Bounds3> boxes(objects_.size());
   for (size_t o = 0; o < objects_.size(); ++o) {
     const ObjectBvh& ob = objects_[o];
     const uint32_t nodeBase = uint32_t(nodes.size()), triBase = uint32_t(prims.size());
     roots[o] = nodeBase;
+    motion[o] = {ob.steps, triBase, uint32_t(stepTris.size() / 9), 0};
+    stepTris.insert(stepTris.end(), ob.stepTriangles.begin(), ob.stepTriangles.end());
     for (BvhNode n : ob.nodes) {
       n.a += n.count ? triBase : nodeBase;
       nodes.push_back(n);
@@ -197,6 +235,8 @@ void GpuScene::upload(GpuCommands& cmd, bool sceneChanged, const FrameScene& fs)
   stage(st, triangles_, tris.data(), tris.size() * 4);
   stage(st, prims_, prims.data(), prims.size() * 4);
   stage(st, roots_, roots.data(), roots.size() * 4);
+  stage(st, motion_, motion.data(), motion.size() * sizeof(ObjectMotion));
+  stage(st, motionTriangles_, stepTris.data(), stepTris.size() * 4);
   stageShading(st, sceneChanged, fs);
   record(st, cmd);
 }
@@ -265,7 +305,7 @@ void GpuScene::stageShading(Staging& st, bool sceneChanged, const FrameScene& fs
   }
   // Vertices as the frame has them (world space), every object's after the one before.
   std::vector<GpuObject> objects;
-  std::vector<Vec3> positions, normals;
+  std::vector<Vec3> positions, normals, stepPositions, stepNormals;
   std::vector<Vec4> tangents;
   std::vector<Vec2> uvs;
   std::vector<uint32_t> indices;
@@ -279,6 +319,13 @@ void GpuScene::stageShading(Staging& st, bool sceneChanged, const FrameScene& fs
     g.firstIndex = uint32_t(indices.size());
     g.hasUvs = mesh.uvs.empty() ? 0 : 1;
     g.hasTangents = fo.tangents.size() == fo.positions.size() ? 1 : 0;
+    g.motionSteps = motionSteps(fo);
+    g.firstStep = uint32_t(stepPositions.size());
+    for (size_t v = 0; v < fo.positions.size() && g.motionSteps; ++v)
+      for (size_t s = 0; s < g.motionSteps; ++s) {
+        stepPositions.push_back(fo.stepPositions[s][v]);
+        stepNormals.push_back(v < fo.stepNormals[s].size() ? fo.stepNormals[s][v] : Vec3(0.0f));
+      }
     objects.push_back(g);
     positions.insert(positions.end(), fo.positions.begin(), fo.positions.end());
     normals.insert(normals.end(), fo.normals.begin(), fo.normals.end());
@@ -299,6 +346,8 @@ void GpuScene::stageShading(Staging& st, bool sceneChanged, const FrameScene& fs
   stage(st, tangents_, tangents.data(), tangents.size() * sizeof(Vec4));
   stage(st, uvs_, uvs.data(), uvs.size() * sizeof(Vec2));
   stage(st, indices_, indices.data(), indices.size() * 4);
+  stage(st, stepPositions_, stepPositions.data(), stepPositions.size() * sizeof(Vec3));
+  stage(st, stepNormals_, stepNormals.data(), stepNormals.size() * sizeof(Vec3));
   SceneArgs& a = sceneArgs_;
   a.nodes = nodes_.address;
   a.triangles = triangles_.address;
@@ -317,6 +366,10 @@ void GpuScene::stageShading(Staging& st, bool sceneChanged, const FrameScene& fs
   a.tangents = tangents_.address;
   a.uvs = uvs_.address;
   a.indices = indices_.address;
+  a.objectMotion = motion_.address;
+  a.motionTriangles = motionTriangles_.address;
+  a.stepPositions = stepPositions_.address;
+  a.stepNormals = stepNormals_.address;
   stage(st, args_, &a, sizeof a);
 }
 
@@ -327,14 +380,17 @@ TraceArgs GpuScene::traceArgs() const {
   a.trianglePrim = prims_.address;
   a.objectRoot = roots_.address;
   a.topRoot = topRoot_;
+  a.objectMotion = motion_.address;
+  a.motionTriangles = motionTriangles_.address;
   return a;
 }
 
 uint64_t GpuScene::deviceBytes() const {
   uint64_t n = 0;
-  for (const GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &materials_, &textures_,
-                             &levels_, &texels_, &lights_, &decode_, &objectsBuf_, &positions_,
-                             &normals_, &tangents_, &uvs_, &indices_, &args_})
+  for (const GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &motion_, &motionTriangles_,
+                             &materials_, &textures_, &levels_, &texels_, &lights_, &decode_,
+                             &objectsBuf_, &positions_, &normals_, &tangents_, &uvs_, &indices_,
+                             &stepPositions_, &stepNormals_, &args_})
     n += b->size;
   return n;
 }

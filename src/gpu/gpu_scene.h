@@ -46,6 +46,10 @@ class GpuScene {
     std::vector<BvhNode> nodes;
     std::vector<float> triangles;  // 9 floats each, in leaf order
     std::vector<uint32_t> prims;   // each triangle's index in the object
+    // Moving while the shutter is open: `steps` time steps of each triangle (9 floats a step,
+    // a triangle's steps together, in leaf order); the boxes bound every step.
+    uint32_t steps = 0;
+    std::vector<float> stepTriangles;
     Bounds3 bounds;
   };
   static ObjectBvh buildObject(const Scene& scene, const FrameObject& o, size_t index);
@@ -77,11 +81,12 @@ class GpuScene {
   uint64_t version_ = ~0ull;
   const Scene* scene_ = nullptr;
   std::vector<ObjectBvh> objects_;
-  std::vector<std::vector<Vec3>> built_;  // each object's positions when its BVH was built
-  GpuBuffer nodes_, triangles_, prims_, roots_, staging_;
+  // Each object's positions, then those of its time steps, when its BVH was built.
+  std::vector<std::vector<Vec3>> built_;
+  GpuBuffer nodes_, triangles_, prims_, roots_, motion_, motionTriangles_, staging_;
   // Shading data: per scene, and per update (vertices).
   GpuBuffer materials_, textures_, levels_, texels_, lights_, decode_, objectsBuf_;
-  GpuBuffer positions_, normals_, tangents_, uvs_, indices_, args_;
+  GpuBuffer positions_, normals_, tangents_, uvs_, indices_, stepPositions_, stepNormals_, args_;
   SceneArgs sceneArgs_{};
   uint32_t topRoot_ = 0;
   size_t triangleCount_ = 0;

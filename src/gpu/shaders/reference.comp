@@ -1,7 +1,8 @@
 #version 460
 // tandem reference on the GPU, one invocation a pixel and one sample a dispatch, what
-// renderReference computes (rt/reference_render.cpp) for a still shutter: the same Owen-scrambled
-// Sobol samples (rt/sampler.cpp) for the pixel position, the lens point and the path, then the
+// renderReference computes (rt/reference_render.cpp): the same Owen-scrambled Sobol samples
+// (rt/sampler.cpp) for the pixel position, the lens point, the shutter time (the camera and the
+// moving objects where they are then) and the path, then the
 // path tracer (rt/path_tracer.cpp: next-event estimation to punctual lights and emissive
 // triangles with MIS, Fresnel glass, mirrors, Lambert + normalised Blinn-Phong, Russian roulette)
 // or distributed ray tracing of the hybrids' shading (whitted.glsl), or Peres 2022's diffuse global
@@ -102,10 +103,11 @@ vec3 areaLight(Surface s, vec3 wo, vec3 kd, vec3 ks, float pd) {
   }
   const GpuEmitter t = em.e[lo];
   if (!(t.pdfArea > 0.0)) return vec3(0.0);
-  const uvec3 k = triangleVertices(Objects(S.objects).o[t.object], t.prim);
+  const GpuObject ob = Objects(S.objects).o[t.object];
+  const uvec3 k = triangleVertices(ob, t.prim);
   const float su = sqrt(uv.x);
-  const vec3 x = vertexPosition(k.x) * (1.0 - su) + vertexPosition(k.y) * (su * (1.0 - uv.y)) +
-                 vertexPosition(k.z) * (su * uv.y);
+  const vec3 x = vertexPositionAt(ob, k.x) * (1.0 - su) +
+                 vertexPositionAt(ob, k.y) * (su * (1.0 - uv.y)) + vertexPositionAt(ob, k.z) * (su * uv.y);
   const vec3 toL = x - s.position;
   const float dist = length(toL);
   if (!(dist > 0.0)) return vec3(0.0);
@@ -252,6 +254,25 @@ vec3 diffuseGIRadiance(GpuCamera c, int x, int y) {
   return giRadiance(s, -d, u0, u1, u2);
 }
 
+// cameraAtShutter (rt/reference_render.cpp): the camera moved to its position and lookAt at
+// shutter fraction tau, its axes as Camera::make draws them (Mat4::lookAt).
+GpuCamera cameraAtShutter(GpuCamera c, float tau) {
+  const vec3 eye = lerp3(v3(c.position), v3(A.closePosition), tau);
+  const vec3 target = lerp3(v3(A.openLookAt), v3(A.closeLookAt), tau);
+  const vec3 f = safeNormalize(target - eye);
+  vec3 s = safeNormalize(cross(f, v3(A.cameraUp)));
+  if (length(s) == 0.0) s = safeNormalize(cross(f, abs(f.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+  const vec3 u = cross(s, f);
+  for (int i = 0; i < 3; ++i) {
+    c.position[i] = eye[i];
+    c.eye[i] = eye[i];
+    c.forward[i] = f[i];
+    c.right[i] = s[i];
+    c.up[i] = u[i];
+  }
+  return c;
+}
+
 void main() {
   A = ArgsRef(args).a;
   const GpuCamera cam = CameraRef(A.camera).c;
@@ -265,16 +286,18 @@ void main() {
   // One sample a dispatch, added to the pixel's sums (no other invocation writes them).
   startSampler(seed, pixel, A.first);
   const vec2 jitter = uniform2(), lens = uniform2();
-  uniform1();  // the shutter time: a still shutter here, the dimension kept
+  const float tau = uniform1();  // the shutter time
   vec3 L;
   if (A.integrator == TD_REFERENCE_DIFFUSE_GI) {
-    L = diffuseGIRadiance(cam, x, y);
+    L = diffuseGIRadiance(cam, x, y);  // the G-buffer's surface: shutter open, as on the CPU
   } else {
+    traceTau = tau;
+    const GpuCamera c = A.cameraMoves != 0u ? cameraAtShutter(cam, tau) : cam;
     vec3 o, d;
     const ThinLensRays thin =
         ThinLensRays(A.apertureRadius, A.focusDistance, A.apertureRotation, A.apertureBlades);
-    thinLensRay(cam, thin, vec2(float(x), float(y)) + jitter, lens, o, d);
-    L = A.integrator == TD_REFERENCE_WHITTED ? whittedRadiance(cam, o, d) : pathRadiance(o, d);
+    thinLensRay(c, thin, vec2(float(x), float(y)) + jitter, lens, o, d);
+    L = A.integrator == TD_REFERENCE_WHITTED ? whittedRadiance(c, o, d) : pathRadiance(o, d);
   }
   if (any(isnan(L)) || any(isinf(L))) L = vec3(0.0);  // a degenerate pdf spoils no pixel
   const float lum = luminance(L);

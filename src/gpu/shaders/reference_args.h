@@ -23,7 +23,7 @@ struct ReferenceArgs {
   TD_ADDR objectFirst;  // int per object: its first emitter, -1 none
   TD_ADDR lightSkip;    // uint per light: 1 stands in for an emissive mesh (hit instead)
   TD_ADDR counters;     // uint: rays
-  TD_UINT integrator, first, pad, emitterCount;  // first: the sample's index
+  TD_UINT integrator, first, cameraMoves, emitterCount;  // first: the sample's index
   TD_UINT seedLo, seedHi;
   TD_INT maxDepth, rouletteDepth;
   TD_FLOAT apertureRadius, focusDistance, apertureRotation;
@@ -35,5 +35,8 @@ struct ReferenceArgs {
   GpuLightGrid grid;     // diffuse-gi: the LightGrid that picks lights (rt/light_grid.h)
   TD_FLOAT pixelSpread;  // the primary hit's texture filtering
   TD_FLOAT pad3[3];
+  // cameraMoves: the camera's position and lookAt at shutter close (at open: `camera`'s) and its
+  // up vector; each sample's camera lies between them at its shutter time (cameraAtShutter).
+  TD_FLOAT openLookAt[3], closePosition[3], closeLookAt[3], cameraUp[3];
 };
 #endif

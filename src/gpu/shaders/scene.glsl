@@ -29,7 +29,8 @@ SceneArgs S;
 
 void useScene(uint64_t address) {
   S = SceneRef(address).s;
-  bvh = BvhRefs(S.nodes, S.triangles, S.trianglePrim, S.objectRoot, S.topRoot);
+  bvh = BvhRefs(S.nodes, S.triangles, S.trianglePrim, S.objectRoot, S.topRoot, S.objectMotion,
+                S.motionTriangles);
 }
 
 const float kPi = 3.14159265358979323846;
@@ -137,6 +138,22 @@ vec2 vertexUv(uint v) {
   Floats p = Floats(S.uvs);
   return vec2(p.v[2u * v], p.v[2u * v + 1u]);
 }
+// Vertex v (an index into the shared arrays) of object `ob` where it is at traceTau: a moving
+// object's between its time steps (positionAt, normalAt), any other's as the frame has it.
+vec3 vertexPositionAt(GpuObject ob, uint v) {
+  if (ob.motionSteps < 2u) return vertexPosition(v);
+  float frac;
+  const uint at = ob.firstStep + (v - ob.firstVertex) * ob.motionSteps + stepAt(ob.motionSteps, frac);
+  Floats p = Floats(S.stepPositions);
+  return lerp3(floats3(p, 3u * at), floats3(p, 3u * at + 3u), frac);
+}
+vec3 vertexNormalAt(GpuObject ob, uint v) {
+  if (ob.motionSteps < 2u) return vertexNormal(v);
+  float frac;
+  const uint at = ob.firstStep + (v - ob.firstVertex) * ob.motionSteps + stepAt(ob.motionSteps, frac);
+  Floats n = Floats(S.stepNormals);
+  return safeNormalize(lerp3(floats3(n, 3u * at), floats3(n, 3u * at + 3u), frac));
+}
 uvec3 triangleVertices(GpuObject ob, int prim) {
   Uints idx = Uints(S.indices);
   const uint i = ob.firstIndex + 3u * uint(prim);
@@ -218,7 +235,8 @@ Surface resolveSurface(int object, int prim, vec3 origin, vec3 dir, float t, flo
   const GpuObject ob = Objects(S.objects).o[object];
   const GpuMaterial m = Materials(S.materials).m[ob.material];
   const uvec3 k = triangleVertices(ob, prim);
-  const vec3 a = vertexPosition(k.x), b = vertexPosition(k.y), c = vertexPosition(k.z);
+  const vec3 a = vertexPositionAt(ob, k.x), b = vertexPositionAt(ob, k.y),
+             c = vertexPositionAt(ob, k.z);
   const vec3 worldCross = cross(b - a, c - a);
   vec3 geoNormal = safeNormalize(worldCross);
   const bool textured = hasTexture(m) && ob.hasUvs != 0u;
@@ -236,7 +254,8 @@ Surface resolveSurface(int object, int prim, vec3 origin, vec3 dir, float t, flo
   v = clamp(v, 0.0, 1.0 - u);
   const float w = 1.0 - u - v;
   const vec3 position = a * w + b * u + c * v;
-  vec3 n = safeNormalize(vertexNormal(k.x) * w + vertexNormal(k.y) * u + vertexNormal(k.z) * v);
+  vec3 n = safeNormalize(vertexNormalAt(ob, k.x) * w + vertexNormalAt(ob, k.y) * u +
+                         vertexNormalAt(ob, k.z) * v);
   if ((m.flags & TD_MAT_DOUBLE_SIDED) != 0u && dot(geoNormal, dir) > 0.0) {
     geoNormal = -geoNormal;
     n = -n;

@@ -47,10 +47,12 @@ struct GpuLight {
 };
 
 // Object: its material and where its vertices (world-space positions, normals, tangents; UVs)
-// and its triangles' vertex indices start in the shared arrays.
+// and its triangles' vertex indices start in the shared arrays; an object moving while the
+// shutter is open has `motionSteps` time steps of positions and normals (FrameObject's
+// stepPositions, stepNormals), vertex i's step s at firstStep + i * motionSteps + s.
 struct GpuObject {
   TD_UINT material, firstVertex, firstIndex, hasUvs;
-  TD_UINT hasTangents, pad0, pad1, pad2;
+  TD_UINT hasTangents, motionSteps, firstStep, pad;
 };
 
 struct SceneArgs {
@@ -58,6 +60,8 @@ struct SceneArgs {
   TD_ADDR objects, materials, textures, levels, texels, lights;
   TD_ADDR positions, normals, tangents, uvs, indices;  // vertices: 3, 3, 4, 2 floats; 3 uints
   TD_ADDR decode;  // 512 floats: sRGB byte -> linear, then byte / 255
+  TD_ADDR objectMotion, motionTriangles;  // bvh.h TraceArgs
+  TD_ADDR stepPositions, stepNormals;     // 3 floats a vertex and step (GpuObject)
   TD_UINT topRoot, lightCount;
   TD_INT skyFaces[6];
   TD_FLOAT skyColor[3], ambient[3];

@@ -17,7 +17,8 @@ int hitFilter(uint flags, int object, int prim, float t, float u, float v, vec3 
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= a.count) return;
-  bvh = BvhRefs(a.nodes, a.triangles, a.trianglePrim, a.objectRoot, a.topRoot);
+  bvh = BvhRefs(a.nodes, a.triangles, a.trianglePrim, a.objectRoot, a.topRoot, a.objectMotion,
+                a.motionTriangles);
   const GpuRay ray = Rays(a.rays).r[i];
   TraceHit h;
   traverse(vec3(ray.ox, ray.oy, ray.oz), vec3(ray.dx, ray.dy, ray.dz), ray.tnear, ray.tfar,

@@ -16,8 +16,12 @@ const int HIT_ACCEPT = 0, HIT_IGNORE = 1, HIT_STOP = 2;
 struct BvhRefs {
   uint64_t nodes, triangles, trianglePrim, objectRoot;
   uint topRoot;
+  uint64_t objectMotion, motionTriangles;
 };
 BvhRefs bvh;
+// The shutter fraction in [0, 1] of the rays traced (Ray::time): where moving objects are met.
+// A kernel tracing an open shutter sets it per sample; 0 (shutter open) otherwise.
+float traceTau = 0.0;
 
 struct TraceHit {
   float t, u, v;
@@ -28,15 +32,14 @@ struct TraceHit {
 int hitFilter(uint flags, int object, int prim, float t, float u, float v, vec3 ng, vec3 o,
               vec3 d);
 
-// Triangle t against the ray within [tnear, tfar] (Moller-Trumbore, both faces). ng:
+// Triangle (v0, v1, v2) against the ray within [tnear, tfar] (Moller-Trumbore, both faces). ng:
 // cross(v1 - v0, v2 - v0), unnormalised. Where two surfaces meet (a corner of two walls) the
 // distances to both agree within rounding, and which one a ray takes may differ from Embree's.
-bool hitTriangle(Floats tris, uint t, vec3 o, vec3 d, float tnear, float tfar, out float th,
-                 out float u, out float v, out vec3 ng) {
+bool hitTriangle(vec3 v0, vec3 v1, vec3 v2, vec3 o, vec3 d, float tnear, float tfar,
+                 out float th, out float u, out float v, out vec3 ng) {
   th = u = v = 0.0;
-  const vec3 v0 = vec3(tris.v[9u * t], tris.v[9u * t + 1u], tris.v[9u * t + 2u]);
-  const vec3 e1 = vec3(tris.v[9u * t + 3u], tris.v[9u * t + 4u], tris.v[9u * t + 5u]) - v0;
-  const vec3 e2 = vec3(tris.v[9u * t + 6u], tris.v[9u * t + 7u], tris.v[9u * t + 8u]) - v0;
+  const vec3 e1 = v1 - v0;
+  const vec3 e2 = v2 - v0;
   ng = cross(e1, e2);
   const vec3 p = cross(d, e2);
   const float det = dot(e1, p);
@@ -50,6 +53,23 @@ bool hitTriangle(Floats tris, uint t, vec3 o, vec3 d, float tnear, float tfar, o
   if (v < 0.0 || u + v > 1.0) return false;
   th = dot(e2, q) * invDet;
   return th >= tnear && th <= tfar;
+}
+
+// a + (b - a) f, as math.h's lerp (and positionAt between time steps) computes it.
+vec3 lerp3(vec3 a, vec3 b, float f) { return a + (b - a) * f; }
+
+vec3 floats3(Floats f, uint at) { return vec3(f.v[at], f.v[at + 1u], f.v[at + 2u]); }
+
+// Vertex k of triangle `at` (its first float) of a triangle array.
+vec3 cornerOf(Floats f, uint at, uint k) { return floats3(f, at + 3u * k); }
+
+// Where the time steps around traceTau begin for an object of `steps` steps, and how far
+// between that step and the next the ray's time lies (FrameScene's lerpSteps).
+uint stepAt(uint steps, out float frac) {
+  const float x = clamp(traceTau, 0.0, 1.0) * float(steps - 1u);
+  const uint i = min(uint(x), steps - 2u);
+  frac = x - float(i);
+  return i;
 }
 
 // Entry distance into node n's box within [tnear, tfar], or -1 when the ray misses it (an empty
@@ -88,6 +108,12 @@ bool traverse(vec3 o, vec3 d, float tnear, float tfar, uint flags, out TraceHit 
     }
     for (uint k = 0u; k < n.count; ++k) {
       const uint object = roots.v[n.a + k];
+      // A moving object's triangle at the ray's time: the two steps around it, interpolated.
+      const uvec4 motion = uvec4(Uints(bvh.objectMotion).v[4u * object],
+                                 Uints(bvh.objectMotion).v[4u * object + 1u],
+                                 Uints(bvh.objectMotion).v[4u * object + 2u], 0u);
+      float frac = 0.0;
+      const uint step = motion.x >= 2u ? stepAt(motion.x, frac) : 0u;
       int size = 0;
       bottom[size++] = roots.v[object];
       while (size > 0) {
@@ -100,8 +126,19 @@ bool traverse(vec3 o, vec3 d, float tnear, float tfar, uint flags, out TraceHit 
         }
         for (uint t = m.a; t < m.a + m.count; ++t) {
           float th, u, v;
-          vec3 ng;
-          if (!hitTriangle(tris, t, o, d, tnear, best, th, u, v, ng)) continue;
+          vec3 ng, v0, v1, v2;
+          if (motion.x >= 2u) {
+            Floats steps = Floats(bvh.motionTriangles);
+            const uint at = 9u * (motion.z + (t - motion.y) * motion.x + step);
+            v0 = lerp3(cornerOf(steps, at, 0u), cornerOf(steps, at + 9u, 0u), frac);
+            v1 = lerp3(cornerOf(steps, at, 1u), cornerOf(steps, at + 9u, 1u), frac);
+            v2 = lerp3(cornerOf(steps, at, 2u), cornerOf(steps, at + 9u, 2u), frac);
+          } else {
+            v0 = cornerOf(tris, 9u * t, 0u);
+            v1 = cornerOf(tris, 9u * t, 1u);
+            v2 = cornerOf(tris, 9u * t, 2u);
+          }
+          if (!hitTriangle(v0, v1, v2, o, d, tnear, best, th, u, v, ng)) continue;
           const int prim = int(prims.v[t]);
           if ((flags & TRACE_FILTERED) != 0u) {
             const int f = hitFilter(flags, int(object), prim, th, u, v, ng, o, d);

@@ -132,7 +132,7 @@ void PTReferencePass::render(
 }
 
 bool PTReferencePass::hasGpu() const {
-  return true;  // shaders/reference.comp (an open shutter and MPI ranks: executeGpu runs execute)
+  return true;  // shaders/reference.comp (MPI ranks: executeGpu runs execute)
 }
 
 namespace {
@@ -172,13 +172,9 @@ std::vector<GpuEmitter> gpuEmitters(const FrameScene& fs, std::vector<int32_t>& 
 }  // namespace
 
 void PTReferencePass::executeGpu(FrameContext& ctx) {
-  // An open shutter (its camera or objects moving: part 2's motion blur) and processes sharing
-  // the rows stay on the CPU.
-  bool shutter = false;
-  for (const View& v : ctx.views)
-    shutter |= std::memcmp(&v.camera.desc, &v.shutterCamera.desc, sizeof(CameraDesc)) != 0;
-  for (const FrameObject& fo : ctx.frame.objects) shutter |= !fo.stepPositions.empty();
-  if (shutter || (cluster_ && cluster_->ranks() > 1)) {
+  // Processes sharing the rows stay on the CPU. An open shutter renders here: each sample's
+  // camera and moving objects where they are at its time (GpuScene keeps the time steps).
+  if (cluster_ && cluster_->ranks() > 1) {
     execute(ctx);
     return;
   }
@@ -232,6 +228,14 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
     const Camera& cam = v.camera;
     const GpuCamera gc = gpuCamera(cam, 0.0f);
     a.camera = gpu.constants(&gc, sizeof gc);
+    const CameraDesc &open = cam.desc, &close = v.shutterCamera.desc;
+    a.cameraMoves = std::memcmp(&open.position, &close.position, sizeof(Vec3)) ||
+                    std::memcmp(&open.lookAt, &close.lookAt, sizeof(Vec3));
+    auto put = [](float* out, Vec3 p) { out[0] = p.x, out[1] = p.y, out[2] = p.z; };
+    put(a.openLookAt, open.lookAt);
+    put(a.closePosition, close.position);
+    put(a.closeLookAt, close.lookAt);
+    put(a.cameraUp, open.up);
     a.pixelSpread = pixelSpreadAngle(cam);
     a.apertureRadius = 0.5f * cam.desc.apertureDiameter;
     a.focusDistance = cam.desc.focusDistance;

@@ -47,11 +47,11 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
     return {{Slots::hdr, 3}, {Slots::variance, 1, BufferKind::Variance}};
   }
   void execute(FrameContext& ctx) override;
-  // path and whitted on the GPU (the same Sobol samples, bit for bit); diffuse-gi's light grid,
-  // an open shutter and MPI ranks on the CPU.
+  // Every integrator on the GPU, with the CPU's Sobol samples (the shutter's moving camera and
+  // objects included); diffuse-gi's light grid built on the host; MPI ranks on the CPU.
   bool hasGpu() const override;
   std::string gpuCondition() const override {
-    return "with a still shutter (an open one renders on the CPU)";
+    return "in one process (MPI ranks render on the CPU)";
   }
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
