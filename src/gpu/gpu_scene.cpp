@@ -77,7 +77,8 @@ bool samePositions(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 std::vector<Vec3> geometryOf(const FrameObject& o) {
   std::vector<Vec3> all = o.positions;
   if (o.stepPositions.size() >= 2)
-    for (const std::vector<Vec3>& step : o.stepPositions) all.insert(all.end(), step.begin(), step.end());
+    for (const std::vector<Vec3>& step : o.stepPositions)
+      all.insert(all.end(), step.begin(), step.end());
   return all;
 }
 
@@ -104,10 +105,11 @@ void leafTriangles(const Mesh& mesh, const FrameObject& o, const std::vector<uin
 }  // namespace
 
 GpuScene::~GpuScene() {
-  for (GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &motion_, &motionTriangles_,
-                       &staging_, &materials_, &textures_, &levels_, &texels_, &lights_, &decode_,
-                       &objectsBuf_, &positions_, &normals_, &tangents_, &uvs_, &indices_,
-                       &stepPositions_, &stepNormals_, &args_})
+  for (GpuBuffer* b :
+       {&nodes_,   &triangles_,     &prims_,       &roots_,   &motion_,   &motionTriangles_,
+        &staging_, &materials_,     &textures_,    &levels_,  &texels_,   &lights_,
+        &decode_,  &objectsBuf_,    &positions_,   &normals_, &tangents_, &uvs_,
+        &indices_, &stepPositions_, &stepNormals_, &args_})
     memory_.release(*b);
 }
 
@@ -387,10 +389,11 @@ TraceArgs GpuScene::traceArgs() const {
 
 uint64_t GpuScene::deviceBytes() const {
   uint64_t n = 0;
-  for (const GpuBuffer* b : {&nodes_, &triangles_, &prims_, &roots_, &motion_, &motionTriangles_,
-                             &materials_, &textures_, &levels_, &texels_, &lights_, &decode_,
-                             &objectsBuf_, &positions_, &normals_, &tangents_, &uvs_, &indices_,
-                             &stepPositions_, &stepNormals_, &args_})
+  for (const GpuBuffer* b :
+       {&nodes_,         &triangles_,   &prims_,   &roots_,    &motion_, &motionTriangles_,
+        &materials_,     &textures_,    &levels_,  &texels_,   &lights_, &decode_,
+        &objectsBuf_,    &positions_,   &normals_, &tangents_, &uvs_,    &indices_,
+        &stepPositions_, &stepNormals_, &args_})
     n += b->size;
   return n;
 }

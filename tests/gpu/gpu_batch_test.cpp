@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "core/interrupt.h"
 #include "gpu/gpu_test_util.h"
@@ -21,13 +22,15 @@ namespace {
 // GPU passes after a CPU pass).
 void compareBatching(const std::shared_ptr<GpuDevice>& dev, const std::string& pipeline,
                      const char* sceneName, uint64_t batches, int frames,
-                     const std::vector<std::string>& params = {}) {
+                     const std::vector<std::string>& params = {},
+                     const std::function<void(Pipeline&)>& edit = {}) {
   const Scene scene = loadScene(sceneName);
   CameraDesc cam = defaultCamera(scene);
   RenderSettings rs{.width = 160, .height = 90, .gpu = dev};
   const auto load = [&] {
     Pipeline p = Pipeline::load(pipeline);
     for (const std::string& q : params) p.setParam(q, "test");
+    if (edit) edit(p);
     return p;
   };
   Renderer batched(scene, load(), rs);
@@ -70,9 +73,10 @@ TEST(GpuBatch, BatchedFramesEqualPassByPassOnes) {
   compareBatching(dev, "deferred", "spheres", 1, 2);
   compareBatching(dev, "hybrid-heuristic-taa", "spheres", 1, 3);
   compareBatching(dev, "foveated-base", "cornell", 1, 2);
-  // The G-buffer, foveation, path tracer and direct light on the GPU; the denoiser with the
-  // variance colour weight on the CPU; tonemap on the GPU again: two batches.
-  compareBatching(dev, "foveated-base", "cornell", 2, 2, {"nh_denoise.color_weight=variance"});
+  // The G-buffer, foveation, path tracer, direct light and denoiser on the GPU; a pass only the
+  // CPU has; tonemap on the GPU again: two batches.
+  compareBatching(dev, "foveated-base", "cornell", 2, 2, {"nh_denoise.color_weight=variance"},
+                  [](Pipeline& p) { halveOnTheHostBeforeTonemap(p, "denoised"); });
   expectNoValidationMessages(*dev);
 }
 

@@ -134,6 +134,8 @@ TEST(GpuFoveated, PassesMatchTheCpuOnTheSameInputs) {
                 {"nh_denoise.split=none", "foveated_pt.light_selection=uniform"});
   comparePasses(dev, "foveated-nh3ld", "levels from the noise, no demodulation",
                 {"nh_denoise.levels_from=variance", "nh_denoise.demodulate=false"});
+  comparePasses(dev, "foveated-nh3ld", "the variance colour weight (its prefilters, the guide)",
+                {"nh_denoise.color_weight=variance"});
   comparePasses(dev, "foveated-nh3ld-temporal", "temporal, with history",
                 {"direct_light.lights=1"});
   expectNoValidationMessages(*dev);

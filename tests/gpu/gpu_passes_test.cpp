@@ -12,6 +12,7 @@
 #include "gpu/gpu_device.h"
 #include "gpu/gpu_memory.h"
 #include "gpu/gpu_test_util.h"
+#include "passes/common/downsample.h"
 #include "passes/common/tonemap.h"
 #include "pipeline/gpu_frame.h"
 #include "scene/loaders.h"
@@ -109,11 +110,49 @@ TEST(GpuTonemap, MatchesTheCpuPassValueForValue) {
   expectNoValidationMessages(*dev);
 }
 
+// downsample on the GPU: the CPU's half and quarter images, value for value (the same sums in
+// the same order), both filters, on odd sizes whose last row and column reduce what is left.
+TEST(GpuDownsample, MatchesTheCpuPassValueForValue) {
+  REQUIRE_GPU(dev);
+  for (const auto& [w, h] : {std::pair{64, 32}, std::pair{37, 23}}) {
+    Buffer hdr(w, h, 3);
+    for (size_t i = 0; i < hdr.data.size(); ++i)
+      hdr.data[i] = float(std::sin(0.37 * double(i)) * 4.0 + 4.5 + 0.01 * double(i % 97));
+    for (const char* filter : {"box", "bilinear"}) {
+      FrameContext runs[2];
+      for (int onGpu = 0; onGpu < 2; ++onGpu) {
+        Pipeline p;
+        p.passes.push_back(std::make_unique<DownsamplePass>());
+        p.setParam(std::string("downsample.filter=") + filter, "test");
+        FrameContext& ctx = runs[onGpu];
+        ctx.width = w;
+        ctx.height = h;
+        if (onGpu) ctx.gpu = std::make_shared<GpuFrame>(dev);
+        ctx.buffers["hdr"] = hdr;
+        const FrameTimings ft = p.execute(ctx);
+        size_t hosts = 0;
+        for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
+        EXPECT_EQ(hosts, onGpu ? 1u : 0u) << filter << ": the pass did not run on the GPU";
+      }
+      for (const char* name : {"half", "quarter"}) {
+        const Buffer &c = runs[0].input(name), &g = runs[1].input(name);
+        ASSERT_TRUE(c.sameShape(g)) << filter << " " << name;
+        EXPECT_EQ(c.width, name[0] == 'h' ? (w + 1) / 2 : (w + 3) / 4);
+        float worst = 0;
+        for (size_t i = 0; i < c.data.size(); ++i)
+          worst = std::max(worst, std::abs(c.data[i] - g.data[i]));
+        EXPECT_LE(worst, 1e-5f) << filter << " " << name << " at " << w << "x" << h;
+      }
+    }
+  }
+  expectNoValidationMessages(*dev);
+}
+
 // Whole pipelines on the GPU, and with some passes there, give the CPU's image on the built-in
 // scenes (PSNR >= 45 dB, as every deterministic GPU pass must), and each buffer crosses once a
 // frame, as its own timing row with its bytes: `deferred` runs there whole (only its output comes
-// back); `interleaved-rt` with `shading_rate = pixel` (which its GPU version leaves to the CPU)
-// traces on the CPU and tonemaps on the GPU (hdr goes up).
+// back); with a pass only the CPU has between its shading and its tonemap, hdr comes down, the
+// CPU pass's host_hdr goes up, and the output comes down.
 TEST(GpuPipeline, PipelinesMatchTheCpuAndMoveEachBufferOnce) {
   REQUIRE_GPU(dev);
   for (const char* name : {"cornell", "spheres", "atrium"})
@@ -122,8 +161,8 @@ TEST(GpuPipeline, PipelinesMatchTheCpuAndMoveEachBufferOnce) {
       const CameraDesc cam = defaultCamera(scene);
       RenderSettings rs{.width = 160, .height = 90};
       const auto pipeline = [&] {
-        Pipeline p = Pipeline::load(mixed ? "interleaved-rt" : "deferred");
-        if (mixed) p.setParam("interleaved_rt.shading_rate=pixel", "test");
+        Pipeline p = Pipeline::load("deferred");
+        if (mixed) halveOnTheHostBeforeTonemap(p);
         return p;
       };
       Renderer cpu(scene, pipeline(), rs);
@@ -131,23 +170,23 @@ TEST(GpuPipeline, PipelinesMatchTheCpuAndMoveEachBufferOnce) {
       Renderer gpu(scene, pipeline(), rs);
       gpu.context().keepAllOutputs = false;  // as render and bench: only the output comes back
       const std::string what =
-          std::string(name) + (mixed ? ", interleaved-rt per pixel" : ", deferred");
+          std::string(name) + (mixed ? ", deferred with a CPU pass" : ", deferred");
       for (int f = 0; f < 2; ++f) {
         cpu.renderFrame(f, cam);
         const FrameTimings ft = gpu.renderFrame(f, cam);
         EXPECT_GE(psnr(cpu.output(), gpu.output(), 1.0), 45.0) << what;
         int uploads = 0, downloads = 0, moves = 0;
         for (const PassTiming& t : ft.passes) {
-          if (t.name == "upload:hdr") {
-            ++uploads;
-            EXPECT_EQ(t.bytes, 160.0 * 90 * 3 * 4) << what;
+          if (t.name == "upload:host_hdr" || t.name == "download:hdr") {
+            t.name[0] == 'u' ? ++uploads : ++downloads;
+            EXPECT_EQ(t.bytes, 160.0 * 90 * 3 * 4) << what << ": " << t.name;
           }
           if (t.name == "download:output") ++downloads;
           if (t.name.rfind("upload:", 0) == 0 || t.name.rfind("download:", 0) == 0) ++moves;
         }
         EXPECT_EQ(uploads, mixed ? 1 : 0) << what;
-        EXPECT_EQ(downloads, 1) << what;
-        EXPECT_EQ(moves, mixed ? 2 : 1) << what;
+        EXPECT_EQ(downloads, mixed ? 2 : 1) << what;
+        EXPECT_EQ(moves, mixed ? 3 : 1) << what;
       }
     }
   expectNoValidationMessages(*dev);

@@ -15,6 +15,7 @@
 #include "gpu/gpu_device.h"
 #include "pipeline/frame_context.h"
 #include "pipeline/gpu_frame.h"
+#include "pipeline/pipeline.h"
 
 namespace tandem {
 
@@ -123,6 +124,31 @@ inline FrameContext frameAgain(const FrameContext& from, const std::shared_ptr<G
 
 inline void expectNoValidationMessages(const GpuDevice& dev) {
   for (const std::string& m : dev.validationMessages()) ADD_FAILURE() << "validation: " << m;
+}
+
+// A pass with no GPU version (every built-in pass has one): halves `hdr` into `host_hdr` on the
+// CPU, so tests can put a CPU pass between GPU ones.
+class HostHalvingPass : public Pass {
+ public:
+  std::string type() const override { return "host_halving"; }
+  std::string description() const override { return "test: a pass only the CPU runs"; }
+  std::vector<BufferSlot> inputs() const override { return {{"hdr", 3}}; }
+  std::vector<BufferSlot> outputs() const override { return {{"host_hdr", 3}}; }
+  void execute(FrameContext& ctx) override {
+    const Buffer& in = ctx.input(*this, "hdr");
+    Buffer& out = ctx.output(*this, "host_hdr");
+    for (size_t i = 0; i < in.data.size(); ++i) out.data[i] = 0.5f * in.data[i];
+  }
+};
+
+// Puts a HostHalvingPass before the pipeline's last pass (its tonemap), reading `hdr` (the
+// buffer the tonemap read), which the tonemap then reads halved.
+inline void halveOnTheHostBeforeTonemap(Pipeline& p, const std::string& hdr = "hdr") {
+  auto host = std::make_unique<HostHalvingPass>();
+  host->bindings["hdr"] = hdr;
+  p.passes.insert(p.passes.end() - 1, std::move(host));
+  p.passes.back()->bindings["hdr"] = "host_hdr";
+  p.validate("test");
 }
 
 }  // namespace tandem

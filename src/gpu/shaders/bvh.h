@@ -35,8 +35,8 @@ struct TraceArgs {
   TD_ADDR objectRoot;    // per object its BVH's root node, then the top leaves' object ids
   TD_ADDR rays;
   TD_ADDR hits;
-  TD_UINT topRoot;  // the root of the BVH over the objects
-  TD_UINT count;    // rays
+  TD_UINT topRoot;          // the root of the BVH over the objects
+  TD_UINT count;            // rays
   TD_ADDR objectMotion;     // ObjectMotion per object
   TD_ADDR motionTriangles;  // the moving objects' triangles at each time step
 };

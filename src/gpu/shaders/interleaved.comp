@@ -6,7 +6,9 @@
 // shadows, mirrors and glass or local Blinn-Phong; the samples resolved to pixels by the box or
 // Blackman-Harris filter (the CPU's table); each pixel's first sample's velocity over the shutter,
 // view depth and motion since the previous frame. With a sample mask only the samples within the
-// filter's reach of it are traced, and pixels outside it are 0.
+// filter's reach of it are traced, and pixels outside it are 0. With `shading_rate = pixel` the
+// samples' visibility comes first (the raster's, or each pair's samples traced into the same
+// keys), then each pixel's representatives, then the shading of those alone.
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -28,9 +30,7 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Car
 };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Out { float v[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Words { uint v[]; };
-layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer Keys {
-  uint64_t v[];
-};
+layout(buffer_reference, scalar, buffer_reference_align = 8) buffer Keys { uint64_t v[]; };
 
 InterleavedArgs A;
 
@@ -60,6 +60,27 @@ bool activeSample(uint id) {
   return false;
 }
 
+// TD_IL_TRACE: a pair's samples traced (InterleavedRTPass::visibility), each hit kept as the
+// rasterizer keeps it (its triangle's index over all objects, inverted, in the low word; 0 for
+// the sky), so that representatives are found and shaded as the raster's are.
+void traceSample(uint k) {
+  if (k >= p.count) return;
+  const uint id = Words(A.ids).v[p.begin + k];
+  if (!activeSample(id)) return;
+  vec3 o, d;
+  float tnear;
+  cameraRayAt(Pairs(A.pairs).v[p.pair].camera, samplePos(id), o, d, tnear);
+  TraceHit h;
+  const bool found = traverse(o, d, 0.0, 1e30, TRACE_FILTERED | TRACE_CULL_BACK, h);
+  uint64_t key = 0ul;
+  if (found) {
+    const uint triangle = Objects(S.objects).o[h.object].firstIndex / 3u + uint(h.prim);
+    key = (uint64_t(1u) << 32) | uint64_t(~triangle);
+  }
+  Keys(A.visibility).v[id] = key;
+  atomicAdd(Words(A.counters).v[TD_COUNT_RAYS], 1u);
+}
+
 void shade(uint k) {
   if (k >= p.count) return;
   const uint id = Words(A.ids).v[p.begin + k];
@@ -71,8 +92,9 @@ void shade(uint k) {
   cameraRayAt(pair.camera, samplePos(id), o, d, tnear);
   TraceHit h;
   bool found;
-  if ((A.flags & TD_IL_RASTER) != 0u) {
-    // The rasterizer's triangle, intersected by the sample's camera ray (as the CPU resolves it).
+  if ((A.flags & (TD_IL_RASTER | TD_IL_PER_PIXEL)) != 0u) {
+    // The triangle the visibility keys hold, intersected by the sample's camera ray (as the CPU
+    // resolves it).
     const uint64_t key = Keys(A.visibility).v[id];
     found = key != 0ul;
     if (found) {
@@ -256,6 +278,11 @@ void main() {
       if (r != k)
         for (uint c = 0u; c < 3u; ++c) colour.v[3u * k + c] = colour.v[3u * r + c];
     }
+    return;
+  }
+  if (p.stage == TD_IL_TRACE) {
+    useScene(A.scene);
+    traceSample(k);
     return;
   }
   if (p.stage == TD_IL_SHADE) {

@@ -10,10 +10,11 @@
 #define TD_IL_MOTION 2u     // per pixel: velocity, view_depth (and motion) of its first sample
 #define TD_IL_REPRESENT 3u  // shading_rate pixel: each sample's representative
 #define TD_IL_COPY 4u       // shading_rate pixel: a sample takes its representative's colour
+#define TD_IL_TRACE 5u      // rt with shading_rate pixel: one pair's samples traced into keys
 
 #define TD_IL_WHITTED 1u    // Whitted shading (else local Blinn-Phong without shadows)
 #define TD_IL_TIME 2u       // the pairs vary time (motion's carry matrices apply)
-#define TD_IL_RASTER 4u     // visibility from the rasterizer's keys (else each sample traced)
+#define TD_IL_RASTER 4u     // visibility from the rasterizer (else each sample traced)
 #define TD_IL_PER_PIXEL 8u  // shading_rate pixel
 #define TD_IL_LENS 16u      // the pairs vary the lens
 
@@ -46,8 +47,8 @@ struct InterleavedArgs {
   TD_ADDR weights;                       // float[TD_IL_TABLE + 2]
   TD_ADDR counters;                      // uint[TD_COUNT_N] (whitted_args.h)
   TD_ADDR shadowMaps;                    // 0: none
-  TD_ADDR visibility;                    // TD_IL_RASTER: uint64 key per sample (raster_args.h)
-  TD_ADDR rep;                           // TD_IL_PER_PIXEL: uint per sample
+  TD_ADDR visibility;  // TD_IL_RASTER or _PER_PIXEL: uint64 key per sample (raster_args.h)
+  TD_ADDR rep;         // TD_IL_PER_PIXEL: uint per sample
   TD_FLOAT openViewProj[16], closeViewProj[16];  // the view's cameras at shutter open and close
   TD_INT viewX, viewY, width, height;
   TD_INT sx, sy, reach, objectCount;

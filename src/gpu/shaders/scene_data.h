@@ -59,7 +59,7 @@ struct SceneArgs {
   TD_ADDR nodes, triangles, trianglePrim, objectRoot;  // the BVHs (bvh.h TraceArgs)
   TD_ADDR objects, materials, textures, levels, texels, lights;
   TD_ADDR positions, normals, tangents, uvs, indices;  // vertices: 3, 3, 4, 2 floats; 3 uints
-  TD_ADDR decode;  // 512 floats: sRGB byte -> linear, then byte / 255
+  TD_ADDR decode;                         // 512 floats: sRGB byte -> linear, then byte / 255
   TD_ADDR objectMotion, motionTriangles;  // bvh.h TraceArgs
   TD_ADDR stepPositions, stepNormals;     // 3 floats a vertex and step (GpuObject)
   TD_UINT topRoot, lightCount;

@@ -29,6 +29,8 @@ class DownsamplePass : public SettingsPass<DownsampleSettings> {
             {Slots::quarter, 3, BufferKind::Color, Extent::quarter()}};
   }
   void execute(FrameContext& ctx) override;
+  bool hasGpu() const override { return true; }  // shaders/downsample.comp
+  void executeGpu(FrameContext& ctx) override;
 
  protected:
   const ParamTable<DownsampleSettings>& tableFor() const override;

@@ -76,11 +76,8 @@ class NHDenoisePass : public SettingsPass<NHDenoiseSettings> {
     return {{Slots::denoised, 3, BufferKind::Color}};
   }
   void execute(FrameContext& ctx) override;
-  // shaders/nh_denoise.comp; the variance colour weight (its prefilters) stays on the CPU.
-  bool hasGpu() const override {
-    return settings().colorWeight == NHDenoiseSettings::ColorWeight::Mean;
-  }
-  std::string gpuCondition() const override { return "with `color_weight = mean`"; }
+  // shaders/nh_denoise.comp, with either colour weight.
+  bool hasGpu() const override { return true; }
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   // The (region, step width) of every level the last frame ran, in order (Algorithm 1).

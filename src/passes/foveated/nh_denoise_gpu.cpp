@@ -1,7 +1,8 @@
 // nh_denoise on the GPU (shaders/nh_denoise.comp): the planes set up, L̄ (and each region's
-// noise) reduced on the device, then Algorithm 1's levels region by region, ping-ponging two
-// states, and the output. Only levels_from = variance reads anything back: the regions' noise,
-// at a checkpoint, to choose their level counts as the CPU does.
+// noise) reduced on the device, with the variance colour weight its prefilters, then Algorithm
+// 1's levels region by region, ping-ponging two states, and the output. Only levels_from = variance
+// reads anything back: the regions' noise, at a checkpoint, to choose their level counts as the CPU
+// does.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -54,8 +55,10 @@ void NHDenoisePass::executeGpu(FrameContext& ctx) {
   const size_t pixels = size_t(W) * H;
   const uint32_t gx = (W + 15) / 16, gy = (H + 15) / 16;
   a.groups = gx * gy;
-  a.state[0] = gpu.scratch(name() + ":state0", pixels * 5 * sizeof(float)).address;
-  a.state[1] = gpu.scratch(name() + ":state1", pixels * 5 * sizeof(float)).address;
+  a.guided = s.colorWeight == NHDenoiseSettings::ColorWeight::Variance && a.variance != 0;
+  a.stateFloats = a.guided ? 9 : 5;
+  a.state[0] = gpu.scratch(name() + ":state0", pixels * a.stateFloats * sizeof(float)).address;
+  a.state[1] = gpu.scratch(name() + ":state1", pixels * a.stateFloats * sizeof(float)).address;
   a.partials = gpu.scratch(name() + ":partials", size_t(a.groups) * TD_NH_PARTIALS * 4).address;
   const uint32_t zeroCounts[TD_NH_COUNTS] = {};
   const float zeroStats[TD_NH_STATS] = {};
@@ -69,6 +72,7 @@ void NHDenoisePass::executeGpu(FrameContext& ctx) {
   a.sigmaColor = s.sigmaColor;
   a.sigmaNormal = s.sigmaNormal;
   a.sigmaPosition = s.sigmaPosition;
+  a.sigmaVariance = s.sigmaVariance;
   const uint64_t args = gpu.constants(&a, sizeof a);
   const GpuKernel& k =
       gpu.kernel("nh_denoise", kNhDenoiseSpv, sizeof(kNhDenoiseSpv) / 4, sizeof(NhStagePush));
@@ -82,6 +86,13 @@ void NHDenoisePass::executeGpu(FrameContext& ctx) {
   stage(TD_NH_SETUP, gx, gy);
   if (fromNoise) stage(TD_NH_NOISE, gx, gy);
   stage(TD_NH_REDUCE, 1, 1);
+  if (a.guided) {  // state 0 -> 1 -> 0, then the guide in place
+    stage(TD_NH_PREFILTER, gx, gy);
+    push.from = 1;
+    stage(TD_NH_PREFILL, gx, gy);
+    push.from = 0;
+    stage(TD_NH_GUIDE, gx, gy);
+  }
   const auto* counts = static_cast<const uint32_t*>(gpu.constantsData(a.counts));
   const auto* stats = static_cast<const float*>(gpu.constantsData(a.stats));
   std::vector<int> levels = fixedLevels(s);

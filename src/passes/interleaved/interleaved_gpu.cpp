@@ -1,9 +1,10 @@
 // interleaved_rt and interleaved_raster on the GPU (shaders/interleaved.comp): the CPU's pairs,
 // tiles and sample layout (the layout moved to the device when it changes); for the raster, each
 // pair's samples drawn by the compute rasterizer in sample mode; each pair's samples traced (rt)
-// and shaded with the scene at the pair's time (the GPU's BVH has no time: between pairs of a
-// shutter with moving objects the host moves them and refits, one submission a pair), then the
-// resolve and the motion buffers.
+// and shaded with the scene at the pair's time (between pairs of a shutter with moving objects
+// the host moves them and refits, one submission a pair: the raster needs the vertices there),
+// then the resolve and the motion buffers. A pixel's shading rate finds every sample's surface
+// first (drawn, or traced into the raster's keys), then shades each pixel's representatives.
 #include <cstring>
 #include <vector>
 
@@ -208,14 +209,23 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
     const auto sceneAt = [&](int j) {
       return gpu.scene(moving ? ctx.frame.at(p.taus[size_t(j)]) : ctx.frame).sceneAddress();
     };
-    if (raster) {  // 1. every pair's samples drawn (the CPU draws all before shading)
+    // 1. With the raster, or a pixel's shading rate, visibility before any shading (the CPU
+    // finds every sample's surface first): each pair's samples drawn, or traced, into keys.
+    if (raster || perPixel) {
       const GpuBuffer& vis = gpu.scratch(name() + ":visibility", samples * sizeof(uint64_t));
       a.visibility = vis.address;
       cmd.fill(vis, 0, samples * sizeof(uint64_t), 0);
       cmd.barrier();
       for (int j = 0; j < n; ++j) {
-        rasterCounts.push_back(drawPassSamples(ctx, L, parts, j, cams[size_t(j)], sceneAt(j),
-                                               ctx.pixelSpread(v), vis, name() + ":queue"));
+        if (raster) {
+          rasterCounts.push_back(drawPassSamples(ctx, L, parts, j, cams[size_t(j)], sceneAt(j),
+                                                 ctx.pixelSpread(v), vis, name() + ":queue"));
+        } else {
+          a.scene = sceneAt(j);
+          const uint32_t begin = L.passBegin(j), count = L.passEnd(j) - begin;
+          InterleavedPush push{gpu.constants(&a, sizeof a), TD_IL_TRACE, uint32_t(j), begin, count};
+          if (count > 0) gpu.dispatchInterruptibly(k, 64, rows(count), &push);
+        }
         cmd.barrier();
       }
       if (perPixel) {

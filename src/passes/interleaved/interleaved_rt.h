@@ -13,11 +13,8 @@ class InterleavedRTPass : public InterleavedPass {
            "(Foster 2015, the same tiles)";
   }
 
-  // shaders/interleaved.comp; a pixel's shading rate (shared samples) stays on the CPU.
-  bool hasGpu() const override {
-    return settings().shadingRate == InterleavedSettings::ShadingRate::Sample;
-  }
-  std::string gpuCondition() const override { return "with `shading_rate = sample`"; }
+  // shaders/interleaved.comp, at either shading rate.
+  bool hasGpu() const override { return true; }
   void executeGpu(FrameContext& ctx) override;
 
  protected:
