@@ -105,21 +105,4 @@ void FrameScene::update(const Scene& s, float t, float tPrev, float shutter) {
   if (staticChanged) staticVersion = newVersion();
 }
 
-FrameScene FrameScene::at(float tau) const {
-  FrameScene f = *this;
-  bool moving = false;
-  for (FrameObject& o : f.objects) {
-    if (o.stepPositions.size() < 2) continue;
-    moving = true;
-    for (size_t v = 0; v < o.positions.size(); ++v) {
-      o.positions[v] = positionAt(o, v, tau);
-      o.normals[v] = normalAt(o, v, tau);
-    }
-    o.stepPositions.clear();
-    o.stepNormals.clear();
-  }
-  if (moving) f.geometryVersion = newVersion();
-  return f;
-}
-
 }  // namespace tandem

@@ -38,10 +38,6 @@ struct FrameScene {
   // A shutter > 0 (seconds) keeps the shutter's time steps of objects that move in it.
   void update(const Scene& s, float t, float tPrev, float shutter = 0.0f);
   bool motionBlur() const { return shutterClose > time; }
-  // This frame's geometry frozen at shutter fraction tau in [0, 1]: the moving objects' vertices
-  // and normals where they are then, no time steps, a geometryVersion of its own (what a device
-  // whose BVH has no time traces a pass at one shutter time with).
-  FrameScene at(float tau) const;
 };
 
 // Vertex v of object o at shutter fraction tau in [0,1] (linear between time steps).

@@ -1,10 +1,10 @@
 // Interleaved sampling (Foster 2015; Fatahalian et al. 2009) on the GPU against the CPU:
 // interleaved_rt and interleaved_raster (the compute rasterizer in sample mode) run on both
 // devices from the same frame (the same pairs, tiles and sample layout), for motion blur over an
-// open shutter (the GPU's scene moved to each pair's time), defocus, both, with the schemes,
-// filters, shading and shading rate switched, a sample mask, and the velocity, view depth and
-// motion buffers the post-process blur and TAA read; the motion-blur pipelines on the GPU whole;
-// the accumulation baselines.
+// open shutter (moving objects drawn and traced at each pair's time), defocus, both, with the
+// schemes, filters, shading and shading rate switched, a sample mask, and the velocity, view depth
+// and motion buffers the post-process blur and TAA read; the motion-blur pipelines on the GPU
+// whole; the accumulation baselines.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -137,7 +137,10 @@ TEST(GpuInterleaved, InterleavedRasterMatchesTheCpu) {
   REQUIRE_GPU(dev);
   const std::string raster = "interleaved-raster";
   const std::vector<Case> cases = {
-      {raster, "interleaved_motion", "raster: motion blur (the scene moved between passes)", {}},
+      {raster,
+       "interleaved_motion",
+       "raster: motion blur (moving objects drawn at each pass's time)",
+       {}},
       {raster,
        "interleaved_both",
        "raster: both, random tiles, Blackman-Harris",

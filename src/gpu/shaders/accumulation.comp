@@ -38,6 +38,7 @@ void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= cam.width || y >= cam.height) return;
   useScene(A.scene);
+  traceTau = A.tau;
   whitted = WhittedConfig(A.maxDepth, A.importanceCutoff, A.shadowCull, A.whittedFlags);
   vec3 origin, dir;
   float tnear;
@@ -53,8 +54,8 @@ void main() {
     const int prim = int(triangle - ob.firstIndex / 3u);
     const uvec3 k = triangleVertices(ob, prim);
     float t, u, v;
-    intersectTriangle(origin, dir, vertexPosition(k.x), vertexPosition(k.y), vertexPosition(k.z),
-                      t, u, v);
+    intersectTriangle(origin, dir, vertexPositionAt(ob, k.x), vertexPositionAt(ob, k.y),
+                      vertexPositionAt(ob, k.z), t, u, v);
     const Surface s = resolveSurface(object, prim, origin, dir, t, u, v, 0.0);
     if (A.whittedShading != 0u) {
       const float om = s.reflectivity, orr = 1.0 - s.opacity;

@@ -17,5 +17,6 @@ struct AccumulationArgs {
   TD_INT maxDepth;
   TD_UINT whittedFlags;
   TD_FLOAT importanceCutoff, shadowCull;
+  TD_FLOAT tau;  // the pair's shutter fraction: where moving objects are
 };
 #endif

@@ -2,7 +2,7 @@
 // interleaved_rt on the GPU (Foster 2015; Fatahalian et al. 2009), one stage a dispatch over one
 // view, what InterleavedPass::renderView computes: a pair's samples (the CPU's layout: position
 // and pair) each traced from its pair's camera, back faces culled, and shaded at the pair's time
-// (the scene is at that time: the host moves it between pairs) as the CPU shades them, Whitted's
+// (moving objects met where they are then: traceTau) as the CPU shades them, Whitted's
 // shadows, mirrors and glass or local Blinn-Phong; the samples resolved to pixels by the box or
 // Blackman-Harris filter (the CPU's table); each pixel's first sample's velocity over the shutter,
 // view depth and motion since the previous frame. With a sample mask only the samples within the
@@ -69,7 +69,9 @@ void traceSample(uint k) {
   if (!activeSample(id)) return;
   vec3 o, d;
   float tnear;
-  cameraRayAt(Pairs(A.pairs).v[p.pair].camera, samplePos(id), o, d, tnear);
+  const IlPair pair = Pairs(A.pairs).v[p.pair];
+  traceTau = pair.tau;
+  cameraRayAt(pair.camera, samplePos(id), o, d, tnear);
   TraceHit h;
   const bool found = traverse(o, d, 0.0, 1e30, TRACE_FILTERED | TRACE_CULL_BACK, h);
   uint64_t key = 0ul;
@@ -87,6 +89,7 @@ void shade(uint k) {
   if (!activeSample(id)) return;
   if ((A.flags & TD_IL_PER_PIXEL) != 0u && Words(A.rep).v[id] != id) return;
   const IlPair pair = Pairs(A.pairs).v[p.pair];
+  traceTau = pair.tau;  // moving objects where they are at the pair's time
   vec3 o, d;
   float tnear;
   cameraRayAt(pair.camera, samplePos(id), o, d, tnear);
@@ -103,7 +106,8 @@ void shade(uint k) {
       const GpuObject ob = Objects(S.objects).o[h.object];
       h.prim = int(triangle - ob.firstIndex / 3u);
       const uvec3 k = triangleVertices(ob, h.prim);
-      intersectTriangle(o, d, vertexPosition(k.x), vertexPosition(k.y), vertexPosition(k.z), h.t,
+      intersectTriangle(o, d, vertexPositionAt(ob, k.x), vertexPositionAt(ob, k.y),
+                        vertexPositionAt(ob, k.z), h.t,
                         h.u, h.v);
     }
   } else {

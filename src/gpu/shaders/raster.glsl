@@ -52,7 +52,8 @@ bool alphaKeeps(RasterTriangle t, GpuCamera cam, uint objectCount, int px, int p
   vec3 o, d;
   float tnear, th, u, v;
   cameraRay(cam, px, py, o, d, tnear);
-  intersectTriangle(o, d, vertexPosition(k.x), vertexPosition(k.y), vertexPosition(k.z), th, u, v);
+  intersectTriangle(o, d, vertexPositionAt(ob, k.x), vertexPositionAt(ob, k.y),
+                    vertexPositionAt(ob, k.z), th, u, v);
   return surfaceAlpha(object, prim, u, v) >= Materials(S.materials).m[ob.material].alphaCutoff;
 }
 
@@ -82,8 +83,8 @@ void drawSample(RasterTriangle t, RasterArgs a, uint id) {
     vec3 o, d;
     float tnear, th, u, v;
     cameraRayAt(a.camera, p, o, d, tnear);
-    intersectTriangle(o, d, vertexPosition(k.x), vertexPosition(k.y), vertexPosition(k.z), th, u,
-                      v);
+    intersectTriangle(o, d, vertexPositionAt(ob, k.x), vertexPositionAt(ob, k.y),
+                      vertexPositionAt(ob, k.z), th, u, v);
     if (surfaceAlpha(object, prim, u, v) < Materials(S.materials).m[ob.material].alphaCutoff)
       return;
   }

@@ -30,7 +30,8 @@ struct RasterArgs {
   TD_FLOAT viewProj[16];  // the jittered camera's, row-major
   GpuCamera camera;       // the pixel rays of alpha-tested texels
   TD_UINT triangles;      // the drawn objects' together
-  TD_UINT objectCount, queueCapacity, bothFaces, spanCount, pad;
+  TD_UINT objectCount, queueCapacity, bothFaces, spanCount;
+  TD_FLOAT tau;  // the shutter fraction moving objects are drawn at (GpuObject's time steps)
   // Sample mode (interleaved sampling: Rasterizer::renderSamples) when sampleIds != 0: the
   // visibility buffer is indexed by sample id, and a triangle is tested at the samples of the
   // cells its box touches, the cell's [sampleStart[c], sampleStart[c + 1]) of sampleIds, each at

@@ -21,6 +21,7 @@ layout(push_constant, scalar) uniform Push { uint64_t args; };
 void main() {
   const RasterArgs a = RasterArgsRef(args).a;
   useScene(a.scene);
+  traceTau = a.tau;
   RasterQueue q = RasterQueue(a.queue);
   const uint n = min(q.count, a.queueCapacity);
   const int lx = int(gl_LocalInvocationID.x), ly = int(gl_LocalInvocationID.y);

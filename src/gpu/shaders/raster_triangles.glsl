@@ -159,9 +159,9 @@ void rasterize(uint triangle, int object, RasterArgs a) {
   const GpuMaterial m = Materials(S.materials).m[ob.material];
   const int prim = int(triangle - ob.firstIndex / 3u);
   const uvec3 k = triangleVertices(ob, prim);
-  const vec4 c0 = toClip(a.viewProj, vertexPosition(k.x));
-  const vec4 c1 = toClip(a.viewProj, vertexPosition(k.y));
-  const vec4 c2 = toClip(a.viewProj, vertexPosition(k.z));
+  const vec4 c0 = toClip(a.viewProj, vertexPositionAt(ob, k.x));
+  const vec4 c1 = toClip(a.viewProj, vertexPositionAt(ob, k.y));
+  const vec4 c2 = toClip(a.viewProj, vertexPositionAt(ob, k.z));
   const uint o0 = outcode(c0), o1 = outcode(c1), o2 = outcode(c2);
   if ((o0 & o1 & o2) != 0u) {
     atomicAdd(groupCounts[TD_RASTER_CULLED], 1u);
@@ -227,6 +227,7 @@ void main() {
   barrier();
   const RasterArgs a = RasterArgsRef(args).a;
   useScene(a.scene);
+  traceTau = a.tau;
   anywhere = a.sampleIds != 0ul;
   const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
   const uint i = group * 64u + gl_LocalInvocationIndex;

@@ -56,7 +56,10 @@ bool hitTriangle(vec3 v0, vec3 v1, vec3 v2, vec3 o, vec3 d, float tnear, float t
 }
 
 // a + (b - a) f, as math.h's lerp (and positionAt between time steps) computes it.
-vec3 lerp3(vec3 a, vec3 b, float f) { return a + (b - a) * f; }
+vec3 lerp3(vec3 a, vec3 b, float f) {
+  precise const vec3 r = a + (b - a) * f;  // unfused, as the CPU computes it
+  return r;
+}
 
 vec3 floats3(Floats f, uint at) { return vec3(f.v[at], f.v[at + 1u], f.v[at + 2u]); }
 

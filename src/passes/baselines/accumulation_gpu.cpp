@@ -1,7 +1,7 @@
 // accumulation on the GPU: each pair of T a full frame drawn by the compute rasterizer
 // (gpu_visible_surfaces.h) at its time and lens point, then shaded and added into hdr
-// (shaders/accumulation.comp), pairs in the CPU's order. With objects moving in the shutter the
-// scene is moved to each pair's time first (one submission a pair).
+// (shaders/accumulation.comp), pairs in the CPU's order. Objects moving in the shutter are drawn
+// and traced where they are at the pair's time (their time steps on the device).
 #include <algorithm>
 #include <vector>
 
@@ -46,9 +46,6 @@ void AccumulationPass::executeGpu(FrameContext& ctx) {
   a.whittedFlags = gpuWhittedFlags(ws);
   a.importanceCutoff = ws.importanceCutoff;
   a.shadowCull = ws.shadowCull;
-  bool moving = false;
-  for (const FrameObject& fo : ctx.frame.objects) moving |= fo.stepPositions.size() >= 2;
-  moving = moving && time;
   size_t triangles = 0;
   for (const Object& o : scene.objects) triangles += scene.meshes[size_t(o.mesh)].triangleCount();
   const RasterQueue queue = rasterQueue(gpu, "raster:" + name() + ":queue", triangles);
@@ -64,14 +61,16 @@ void AccumulationPass::executeGpu(FrameContext& ctx) {
       const float tau = time ? p.tau : 0.0f;
       const Camera cam = cameraForPair(v, p, time, lens, aa ? v.jitter + p.jitter : v.jitter);
       const FrameScene& fs = ctx.frame;
-      a.scene = (moving ? gpu.scene(fs.at(tau)) : gpu.scene(fs)).sceneAddress();
+      // Moving objects keep their time steps on the device: drawn and traced at the pair's time.
+      a.scene = gpu.scene(fs).sceneAddress();
+      a.tau = tau;
       std::vector<uint32_t> draw(std::max<size_t>(fs.objects.size(), 1), 0);
       for (size_t o = 0; o < fs.objects.size(); ++o)
         draw[o] = boundsOutsideFrustum(cam.viewProj, fs.objects[o].bounds) ? 0 : 1;
       cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
       cmd.barrier();
-      counters.push_back(
-          recordRasterizer(gpu, scene, a.scene, queue, RasterView{&cam, 0.0f, &draw, &vis, false}));
+      counters.push_back(recordRasterizer(
+          gpu, scene, a.scene, queue, RasterView{&cam, 0.0f, &draw, &vis, false, nullptr, tau}));
       cmd.barrier();
       const GpuCamera gc = gpuCamera(cam, 0.0f);
       a.camera = gpu.constants(&gc, sizeof gc);

@@ -62,6 +62,7 @@ uint64_t recordRasterizer(GpuFrame& gpu, const Scene& scene, uint64_t sceneAddre
   a.objectCount = uint32_t(scene.objects.size());
   a.queueCapacity = queue.capacity;
   a.bothFaces = view.bothFaces ? 1 : 0;
+  a.tau = view.tau;
   if (const RasterSamples* r = view.samples) {
     a.sampleStart = r->start;
     a.sampleIds = r->ids;

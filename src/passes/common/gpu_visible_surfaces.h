@@ -46,6 +46,7 @@ struct RasterView {
   const GpuBuffer* visibility = nullptr;
   bool bothFaces = false;
   const RasterSamples* samples = nullptr;  // null: every pixel centre
+  float tau = 0;  // the shutter fraction moving objects are drawn at (their time steps)
 };
 // Records the compute rasterizer's set-up and large-triangle kernels for `view` over the drawn
 // objects' triangles, with `queue`: afterwards each pixel of the visibility buffer holds the

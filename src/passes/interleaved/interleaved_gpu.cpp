@@ -1,9 +1,9 @@
 // interleaved_rt and interleaved_raster on the GPU (shaders/interleaved.comp): the CPU's pairs,
 // tiles and sample layout (the layout moved to the device when it changes); for the raster, each
 // pair's samples drawn by the compute rasterizer in sample mode; each pair's samples traced (rt)
-// and shaded with the scene at the pair's time (between pairs of a shutter with moving objects
-// the host moves them and refits, one submission a pair: the raster needs the vertices there),
-// then the resolve and the motion buffers. A pixel's shading rate finds every sample's surface
+// and shaded at the pair's time (the scene's moving objects keep their time steps on the device:
+// the raster draws and the rays meet them where they are then), then the resolve and the motion
+// buffers. A pixel's shading rate finds every sample's surface
 // first (drawn, or traced into the raster's keys), then shades each pixel's representatives.
 #include <cstring>
 #include <vector>
@@ -113,7 +113,7 @@ void fillPairs(GpuFrame& gpu, const std::vector<float>& taus, const std::vector<
 // Pass j's samples drawn by the compute rasterizer in sample mode into `vis` (the scene at
 // `sceneAddress`); the address of its counters.
 uint64_t drawPassSamples(FrameContext& ctx, const SampleLayout& L, const uint64_t parts[5], int j,
-                         const Camera& cam, uint64_t sceneAddress, float pixelSpread,
+                         const Camera& cam, float tau, uint64_t sceneAddress, float pixelSpread,
                          const GpuBuffer& vis, const std::string& queueKey) {
   GpuFrame& gpu = *ctx.gpu;
   size_t triangles = 0;
@@ -133,7 +133,7 @@ uint64_t drawPassSamples(FrameContext& ctx, const SampleLayout& L, const uint64_
   rs.cellsX = L.cellsX;
   rs.cellsY = L.cellsY;
   return recordRasterizer(gpu, *ctx.scene, sceneAddress, queue,
-                          RasterView{&cam, pixelSpread, &draw, &vis, false, &rs});
+                          RasterView{&cam, pixelSpread, &draw, &vis, false, &rs, tau});
 }
 
 }  // namespace
@@ -168,10 +168,6 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
   a.animated = gpu.constants(animated.data(), animated.size() * sizeof(uint32_t));
   const std::vector<uint32_t> zero(TD_COUNT_N, 0);
   a.counters = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
-  // A shutter whose objects move: the scene at each pair's time (else the frame's, once).
-  bool moving = false;
-  for (const FrameObject& fo : ctx.frame.objects) moving |= fo.stepPositions.size() >= 2;
-  moving = moving && s.time();
   std::vector<uint64_t> rasterCounts;  // the rasterizer's counters, a pair a view
   const GpuKernel& k = gpu.kernel("interleaved", kInterleavedSpv, sizeof(kInterleavedSpv) / 4,
                                   sizeof(InterleavedPush));
@@ -206,9 +202,9 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
               a);
     putMatrix(a.openViewProj, v.camera.viewProjUnjittered);
     putMatrix(a.closeViewProj, v.shutterCamera.viewProjUnjittered);
-    const auto sceneAt = [&](int j) {
-      return gpu.scene(moving ? ctx.frame.at(p.taus[size_t(j)]) : ctx.frame).sceneAddress();
-    };
+    // The frame's scene, its moving objects with their time steps: each pair draws and traces
+    // them where they are at its time.
+    a.scene = gpu.scene(ctx.frame).sceneAddress();
     // 1. With the raster, or a pixel's shading rate, visibility before any shading (the CPU
     // finds every sample's surface first): each pair's samples drawn, or traced, into keys.
     if (raster || perPixel) {
@@ -218,10 +214,10 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
       cmd.barrier();
       for (int j = 0; j < n; ++j) {
         if (raster) {
-          rasterCounts.push_back(drawPassSamples(ctx, L, parts, j, cams[size_t(j)], sceneAt(j),
-                                                 ctx.pixelSpread(v), vis, name() + ":queue"));
+          rasterCounts.push_back(drawPassSamples(ctx, L, parts, j, cams[size_t(j)],
+                                                 p.taus[size_t(j)], a.scene, ctx.pixelSpread(v),
+                                                 vis, name() + ":queue"));
         } else {
-          a.scene = sceneAt(j);
           const uint32_t begin = L.passBegin(j), count = L.passEnd(j) - begin;
           InterleavedPush push{gpu.constants(&a, sizeof a), TD_IL_TRACE, uint32_t(j), begin, count};
           if (count > 0) gpu.dispatchInterruptibly(k, 64, rows(count), &push);
@@ -235,7 +231,6 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
       }
     }
     for (int j = 0; j < n; ++j) {  // 2. each pair's samples traced (rt) and shaded
-      a.scene = sceneAt(j);
       const uint32_t begin = L.passBegin(j), count = L.passEnd(j) - begin;
       InterleavedPush push{gpu.constants(&a, sizeof a), TD_IL_SHADE, uint32_t(j), begin, count};
       if (count > 0) gpu.dispatchInterruptibly(k, 64, rows(count), &push);
