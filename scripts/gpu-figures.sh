@@ -2,7 +2,7 @@
 # The GPU figures of docs/benchmarks.md in one run, each measured side by side with the same binary
 # on the machine's CPU cores (issue: "side by side in one run"): frame times of the heuristic
 # hybrid's pipelines, the depth-of-field, foveated and motion-blur pipelines, the hybrid's SSIM
-# against rt-only on the GPU, and the reference's ray rate.
+# against rt-only on the GPU, and the reference's ray rate (a still and an open shutter).
 # Prepared for a lent GPU machine, where one `run` of the device tool must measure everything:
 #
 #   bash ../shared/tools/device-pack.sh
@@ -85,5 +85,12 @@ for d in cpu gpu; do
   $T reference --scene cornell --device "$d" --spp $spp --width $RW --height $RH --no-cache \
     --out "$out/reference-$d.exr" > "$out/reference-$d.txt" 2>&1 || true
   echo "reference cornell ${RW}x${RH} ${spp} spp on $d: $(grep -o '[0-9.]* s (sampling[^)]*), [0-9.]* Mrays/s' "$out/reference-$d.txt")" >> "$table"
+done
+# The motion-blur experiments' ground truth: Whitted through an open shutter (moving objects).
+for d in cpu gpu; do
+  $T reference --scene scenes/interleaved_motion.json --shutter 0.1 --integrator whitted \
+    --device "$d" --spp $spp --width $RW --height $RH --no-cache \
+    --out "$out/reference-shutter-$d.exr" > "$out/reference-shutter-$d.txt" 2>&1 || true
+  echo "reference interleaved_motion (0.1 s shutter, whitted) ${RW}x${RH} ${spp} spp on $d: $(grep -o '[0-9.]* s (sampling[^)]*), [0-9.]* Mrays/s' "$out/reference-shutter-$d.txt")" >> "$table"
 done
 cat "$table"
