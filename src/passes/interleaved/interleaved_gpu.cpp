@@ -110,6 +110,31 @@ void fillPairs(GpuFrame& gpu, const std::vector<float>& taus, const std::vector<
   a.carry = gpu.constants(carry.data(), carry.size() * sizeof(IlCarry));
 }
 
+// The frame's buffers, the resolve's filter, the tiles' shape, which objects are animated (for
+// the motion's carry matrices, a slot per object, at least one) and the counters.
+void frameArgs(FrameContext& ctx, const InterleavedPass& pass, const TileShape& shape,
+               InterleavedArgs& a) {
+  using Slots = InterleavedPass::Slots;
+  GpuFrame& gpu = *ctx.gpu;
+  a.hdr = ctx.deviceOutput(pass, Slots::hdr);
+  a.velocity = ctx.deviceOutput(pass, Slots::velocity);
+  a.depth = ctx.deviceOutput(pass, Slots::viewDepth);
+  a.motion = ctx.deviceOutputIfConsumed(pass, Slots::motion);
+  a.mask =
+      ctx.optionalInput(pass, Slots::sampleMask) ? ctx.deviceInput(pass, Slots::sampleMask) : 0;
+  filterArgs(gpu, pass.settings(), a);
+  a.frameWidth = uint32_t(ctx.width);
+  a.sx = shape.sx;
+  a.sy = shape.sy;
+  a.objectCount = int(ctx.scene->objects.size());
+  std::vector<uint32_t> animated(std::max<size_t>(ctx.scene->objects.size(), 1), 0);
+  for (size_t o = 0; o < ctx.scene->objects.size(); ++o)
+    animated[o] = ctx.scene->objects[o].animated() ? 1u : 0u;
+  a.animated = gpu.constants(animated.data(), animated.size() * sizeof(uint32_t));
+  const std::vector<uint32_t> zero(TD_COUNT_N, 0);
+  a.counters = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
+}
+
 // Pass j's samples drawn by the compute rasterizer in sample mode into `vis` (the scene at
 // `sceneAddress`); the address of its counters.
 uint64_t drawPassSamples(FrameContext& ctx, const SampleLayout& L, const uint64_t parts[5], int j,
@@ -151,23 +176,8 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
   InterleavedArgs a{};
   shadingArgs(ctx, *this, a);
   a.flags |= (raster ? TD_IL_RASTER : 0u) | (perPixel ? TD_IL_PER_PIXEL : 0u);
-  a.hdr = ctx.deviceOutput(*this, Slots::hdr);
-  a.velocity = ctx.deviceOutput(*this, Slots::velocity);
-  a.depth = ctx.deviceOutput(*this, Slots::viewDepth);
-  a.motion = ctx.deviceOutputIfConsumed(*this, Slots::motion);
-  a.mask =
-      ctx.optionalInput(*this, Slots::sampleMask) ? ctx.deviceInput(*this, Slots::sampleMask) : 0;
-  filterArgs(gpu, s, a);
-  a.frameWidth = uint32_t(ctx.width);
-  a.sx = shape.sx;
-  a.sy = shape.sy;
-  a.objectCount = int(ctx.scene->objects.size());
-  std::vector<uint32_t> animated(std::max<size_t>(ctx.scene->objects.size(), 1), 0);
-  for (size_t o = 0; o < ctx.scene->objects.size(); ++o)
-    animated[o] = ctx.scene->objects[o].animated() ? 1u : 0u;
-  a.animated = gpu.constants(animated.data(), animated.size() * sizeof(uint32_t));
-  const std::vector<uint32_t> zero(TD_COUNT_N, 0);
-  a.counters = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
+  frameArgs(ctx, *this, shape, a);
+  const size_t objectSlots = std::max<size_t>(ctx.scene->objects.size(), 1);
   std::vector<uint64_t> rasterCounts;  // the rasterizer's counters, a pair a view
   const GpuKernel& k = gpu.kernel("interleaved", kInterleavedSpv, sizeof(kInterleavedSpv) / 4,
                                   sizeof(InterleavedPush));
@@ -198,8 +208,7 @@ std::vector<const uint32_t*> InterleavedPass::renderOnGpu(FrameContext& ctx) {
     a.spread = ctx.pixelSpread(v) / std::sqrt(float(s.spp)) * s.textureFootprint;
     const std::vector<Camera> cams = pairCameras(v, p);
     const MotionCarry mc = motionCarry(ctx, p.taus, v, a.motion != 0);
-    fillPairs(gpu, p.taus, cams, mc.carry, mc.carryPrev, mc.nowCams, mc.prevCams, animated.size(),
-              a);
+    fillPairs(gpu, p.taus, cams, mc.carry, mc.carryPrev, mc.nowCams, mc.prevCams, objectSlots, a);
     putMatrix(a.openViewProj, v.camera.viewProjUnjittered);
     putMatrix(a.closeViewProj, v.shutterCamera.viewProjUnjittered);
     // The frame's scene, its moving objects with their time steps: each pair draws and traces
