@@ -69,22 +69,37 @@ GpuLight gpuLight(const Light& light) {
   return g;
 }
 
-bool samePositions(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+// The time steps a moving object keeps on the device (0: it stands still).
+uint32_t motionSteps(const FrameObject& o) {
+  return o.stepPositions.size() >= 2 ? uint32_t(o.stepPositions.size()) : 0;
 }
 
 // An object's positions and those of its time steps (FrameObject), one after the other.
 std::vector<Vec3> geometryOf(const FrameObject& o) {
   std::vector<Vec3> all = o.positions;
-  if (o.stepPositions.size() >= 2)
+  if (motionSteps(o))
     for (const std::vector<Vec3>& step : o.stepPositions)
       all.insert(all.end(), step.begin(), step.end());
   return all;
 }
 
-// The time steps a moving object keeps on the device (0: it stands still).
-uint32_t motionSteps(const FrameObject& o) {
-  return o.stepPositions.size() >= 2 ? uint32_t(o.stepPositions.size()) : 0;
+// Whether `built` (geometryOf when the BVH was built) is the object's geometry now, compared in
+// place: no copy of the objects that did not move.
+bool sameGeometry(const std::vector<Vec3>& built, const FrameObject& o) {
+  size_t size = o.positions.size(), at = 0;
+  if (motionSteps(o))
+    for (const std::vector<Vec3>& step : o.stepPositions) size += step.size();
+  if (built.size() != size) return false;
+  const auto same = [&](const std::vector<Vec3>& part) {
+    const bool equal = std::memcmp(built.data() + at, part.data(), part.size() * sizeof(Vec3)) == 0;
+    at += part.size();
+    return equal;
+  };
+  if (!same(o.positions)) return false;
+  if (motionSteps(o))
+    for (const std::vector<Vec3>& step : o.stepPositions)
+      if (!same(step)) return false;
+  return true;
 }
 
 // Leaf-order triangles at the frame's positions and at each time step.
@@ -177,8 +192,8 @@ void GpuScene::update(const FrameScene& fs, GpuCommands& cmd) {
   built_.resize(fs.objects.size());
   for (size_t o = 0; o < fs.objects.size(); ++o) {
     const FrameObject& fo = fs.objects[o];
+    if (!fresh && sameGeometry(built_[o], fo)) continue;  // only what moved
     std::vector<Vec3> geometry = geometryOf(fo);
-    if (!fresh && samePositions(built_[o], geometry)) continue;  // only what moved
     // A BVH built for these triangles is refitted (its tree kept, its boxes redrawn around where
     // the triangles are now): cheaper than a build, and rigid motion barely loosens the boxes.
     if (!fresh && built_[o].size() == geometry.size())
