@@ -2,8 +2,11 @@
 // shadow, reflection and refraction buffers and traced mask, and the composited image, of
 // `hybrid-all` (every reflective and transparent object traced; shadows classified by the shadow
 // maps, traced, or looked up in the maps) on the built-in scenes and the feature scene, over three
-// frames of a moving camera; and classified shadows on the GPU against its shadow rays.
+// frames of a moving camera; classified shadows on the GPU against its shadow rays; and the
+// heuristic's partial objects, mask for mask.
 #include <gtest/gtest.h>
+
+#include <tbb/task_arena.h>
 
 #include <cmath>
 
@@ -177,6 +180,87 @@ TEST(GpuHybrid, HeuristicHybridMatchesTheCpu) {
   compareHybrid(dev, "hybrid-heuristic", featureScene(), featureCamera(),
                 "features, fallback shadows", "classified",
                 {small, "deferred_shading.shadows=off", "ss_fallback.shadows=shadow_map"});
+  expectNoValidationMessages(*dev);
+}
+
+// The heuristic alone, run again from `from`'s object ids with `params` (a fresh pass, its costs
+// priced by the prior), on the GPU with `dev` (null: the CPU).
+FrameContext heuristicAgain(const FrameContext& from, const std::vector<std::string>& params,
+                            const std::shared_ptr<GpuDevice>& dev) {
+  Pipeline full = Pipeline::load("hybrid-budget");
+  full.setParam("heuristic.deadline=false", "test");  // the budget as given, not overcommitted
+  for (const std::string& q : params) full.setParam(q, "test");
+  Pipeline p;
+  p.name = "heuristic";
+  for (auto& pass : full.passes)
+    if (pass->type() == "heuristic") {
+      p.output = pass->bufferName("heuristic_mask");
+      p.passes.push_back(std::move(pass));
+    }
+  FrameContext ctx = frameAgain(from, dev);
+  ctx.history.clear();  // no ray-tracing times: every node priced by the prior, on any machine
+  for (const BufferSlot& o : p.passes.front()->outputs())
+    ctx.buffers.erase(p.passes.front()->bufferName(o.slot));
+  const FrameTimings ft = p.execute(ctx);
+  int hosts = 0;
+  for (const PassTiming& t : ft.passes) hosts += t.name.ends_with("/host") ? 1 : 0;
+  EXPECT_EQ(hosts, dev ? 1 : 0) << "the heuristic did not run on the GPU";
+  return ctx;
+}
+
+// partial_objects with a ms budget: what the budget leaves buys the central part of the most
+// relevant node left out. From the same ids both devices select the same nodes and the
+// same part, pixel for pixel (the distances to each view's centre are binned and compared
+// exactly), mono and stereo (each eye's own centre), at budgets from a tenth to nine tenths of
+// everything visible (where what is left pays for a pixel of the part or more in some of them).
+TEST(GpuHybrid, PartialObjectsAreTheCpusPixels) {
+  REQUIRE_GPU(dev);
+  const Scene spheres = loadScene("spheres");
+  const CameraDesc cam = defaultCamera(spheres);
+  // The budget's prior before any frame calibrated it: units of predicted CPU ms per wall ms.
+  const double prior = double(tbb::this_task_arena::max_concurrency());
+  for (bool stereo : {false, true}) {
+    RenderSettings rs{.width = 160, .height = 90};
+    rs.stereo.enabled = stereo;
+    Renderer cpu(spheres, Pipeline::load("hybrid-budget"), rs);
+    cpu.renderFrame(0, cam);
+    const FrameContext& from = cpu.context();
+    const double everything = heuristicAgain(from, {"heuristic.budget_ms=1e6"}, nullptr)
+                                  .counter("heuristic/selected_cost");
+    ASSERT_GT(everything, 0);
+    int parts = 0;  // budgets where the part added pixels
+    for (int tenths = 1; tenths <= 9; ++tenths) {
+      const std::string at = std::string(stereo ? "stereo" : "mono") + ", budget " +
+                             std::to_string(tenths) + " tenths of everything";
+      const std::string budget =
+          "heuristic.budget_ms=" + std::to_string(0.1 * tenths * everything / prior);
+      const std::vector<std::string> params = {"heuristic.partial_objects=true", budget};
+      const FrameContext c = heuristicAgain(from, params, nullptr);
+      const FrameContext g = heuristicAgain(from, params, dev);
+      const double fraction = c.counter("heuristic/partial_fraction");
+      EXPECT_EQ(g.counter("heuristic/partial_fraction", -1), fraction) << at;
+      EXPECT_EQ(g.counter("heuristic/selected", -1), c.counter("heuristic/selected")) << at;
+      EXPECT_EQ(g.input("heuristic_order").data, c.input("heuristic_order").data) << at;
+      const Buffer &cm = c.input("heuristic_mask"), &gm = g.input("heuristic_mask");
+      ASSERT_TRUE(cm.sameShape(gm)) << at;
+      size_t differ = 0;
+      for (size_t i = 0; i < cm.data.size(); ++i) differ += cm.data[i] != gm.data[i] ? 1 : 0;
+      EXPECT_EQ(differ, 0u) << at << ": mask values that differ";
+      // The part's pixels: the mask less the one without partial objects.
+      const FrameContext whole = heuristicAgain(from, {budget}, nullptr);
+      const Buffer& wm = whole.input("heuristic_mask");
+      size_t added = 0, lost = 0;
+      for (size_t i = 0; i < cm.data.size(); ++i) {
+        added += cm.data[i] > wm.data[i] ? 1 : 0;
+        lost += cm.data[i] < wm.data[i] ? 1 : 0;
+      }
+      EXPECT_EQ(lost, 0u) << at;
+      if (fraction == 0) EXPECT_EQ(added, 0u) << at;
+      parts += added > 0 ? 1 : 0;
+      std::printf("%s: part %.4f of a node, %zu mask values added\n", at.c_str(), fraction, added);
+    }
+    EXPECT_GE(parts, 2) << (stereo ? "stereo" : "mono") << ": no budget left a part to trace";
+  }
   expectNoValidationMessages(*dev);
 }
 

@@ -54,30 +54,42 @@ PartialNode partialNode(const std::vector<HeuristicNode>& nodes, const std::vect
   return best;
 }
 
-double centralRadius2(const Buffer& objectId, int object, double fraction,
-                      const std::function<Vec2(int)>& centreOf) {
-  // A histogram of the object's pixels by squared distance to the centre, normalised by the
-  // squared half-diagonal of a view (1024 bins), cut where the count reaches the fraction.
-  constexpr int kBins = 1024;
+std::vector<uint32_t> centralHistogram(const Buffer& objectId, int object,
+                                       const std::function<Vec2(int)>& centreOf) {
+  // The object's pixels by squared distance to their view's centre, normalised by the squared
+  // half-diagonal of the view holding column 0 (TD_HEURISTIC_BINS bins).
+  constexpr int kBins = int(TD_HEURISTIC_BINS);
   const Vec2 c0 = centreOf(0);
   const double norm = double(c0.x) * c0.x + double(c0.y) * c0.y;
   std::vector<uint32_t> hist(kBins, 0);
-  uint32_t total = 0;
   for (int y = 0; y < objectId.height; ++y)
     for (int x = 0; x < objectId.width; ++x) {
       if (objectId.at(x, y)[0] != float(object)) continue;
       const Vec2 c = centreOf(x);
       const double dx = x + 0.5 - c.x, dy = y + 0.5 - c.y;
       hist[size_t(std::min(int((dx * dx + dy * dy) / norm * kBins), kBins - 1))]++;
-      ++total;
     }
+  return hist;
+}
+
+int centralBins(const std::vector<uint32_t>& hist, double fraction) {
+  uint32_t total = 0;
+  for (uint32_t c : hist) total += c;
   const double want = fraction * total;
   uint32_t sum = 0;
-  for (int b = 0; b < kBins; ++b) {
-    if (sum + hist[size_t(b)] > want) return double(b) / kBins * norm;
-    sum += hist[size_t(b)];
+  for (size_t b = 0; b < hist.size(); ++b) {
+    if (sum + hist[b] > want) return int(b);
+    sum += hist[b];
   }
-  return norm;
+  return int(hist.size());
+}
+
+double centralRadius2(const Buffer& objectId, int object, double fraction,
+                      const std::function<Vec2(int)>& centreOf) {
+  const Vec2 c0 = centreOf(0);
+  const double norm = double(c0.x) * c0.x + double(c0.y) * c0.y;
+  const int bins = centralBins(centralHistogram(objectId, object, centreOf), fraction);
+  return double(bins) / TD_HEURISTIC_BINS * norm;
 }
 
 double centreWeight(double x, double y) {
@@ -293,6 +305,12 @@ Vec2 viewCentre(const FrameContext& ctx, int x) {
               float(v.y) + 0.5f * float(v.camera.height)};
   return {0.5f * float(ctx.width), 0.5f * float(ctx.height)};
 }
+
+// The squared half-diagonal of the view holding column 0: centralHistogram's unit.
+double viewNorm(const FrameContext& ctx) {
+  const Vec2 c0 = viewCentre(ctx, 0);
+  return double(c0.x) * c0.x + double(c0.y) * c0.y;
+}
 }  // namespace
 
 void HeuristicPass::refreshBounds(const FrameContext& ctx) {
@@ -340,7 +358,7 @@ std::vector<HeuristicNode> HeuristicPass::priceNodes(const Scene& scene,
 
 std::vector<uint8_t> HeuristicPass::select(const FrameContext& ctx,
                                            const std::vector<HeuristicNode>& nodes,
-                                           const Buffer* ids, double& partialR2) {
+                                           const CentralCut& cut) {
   const HeuristicSettings& s = settings();
   const size_t n = ctx.scene->objects.size();
   const bool perEffect = s.perEffect, msBudget = s.budgetMs > 0;
@@ -361,13 +379,12 @@ std::vector<uint8_t> HeuristicPass::select(const FrameContext& ctx,
     selected[nodeObject(id)] |= nodeBits(id);
   }
   partial_ = {};
-  partialR2 = -1;
-  if (msBudget && s.partialObjects && !s.selectAll && ids) {  // ids: none on the GPU
+  partialBins_ = -1;
+  if (msBudget && s.partialObjects && !s.selectAll) {
     partial_ = partialNode(nodes, selected_, budget_ - selectedCost_);
     if (partial_.id >= 0) {
       selectedCost_ += partial_.fraction * costOf[size_t(partial_.id)];
-      partialR2 = centralRadius2(*ids, int(nodeObject(partial_.id)), partial_.fraction,
-                                 [&](int x) { return viewCentre(ctx, x); });
+      partialBins_ = cut(int(nodeObject(partial_.id)), partial_.fraction);
     }
   }
   if (s.shadows == HeuristicSettings::Shadows::All)
@@ -377,13 +394,18 @@ std::vector<uint8_t> HeuristicPass::select(const FrameContext& ctx,
   return selected;
 }
 
+uint8_t HeuristicPass::partialBits() const {
+  uint8_t bits = partial_.id >= 0 ? nodeBits(partial_.id) : 0;
+  if (settings().shadows == HeuristicSettings::Shadows::Maps) bits &= uint8_t(~(1u << kShadow));
+  return bits;
+}
+
 void HeuristicPass::writeMask(const FrameContext& ctx, const Buffer& ids,
-                              const std::vector<uint8_t>& selected, double partialR2,
-                              Buffer& mask) const {
-  const float partialObject = partial_.id >= 0 ? float(nodeObject(partial_.id)) : -2.0f;
-  uint8_t partialBits = partial_.id >= 0 ? nodeBits(partial_.id) : 0;
-  if (settings().shadows == HeuristicSettings::Shadows::Maps)
-    partialBits &= uint8_t(~(1u << kShadow));
+                              const std::vector<uint8_t>& selected, Buffer& mask) const {
+  const float partialObject = this->partialObject();
+  const uint8_t partialBits = this->partialBits();
+  const double partialR2 =
+      partialBins_ >= 0 ? double(partialBins_) / TD_HEURISTIC_BINS * viewNorm(ctx) : -1.0;
   parallelRange(
       mask.pixelCount(),
       [&](size_t b, size_t e) {
@@ -417,7 +439,7 @@ std::vector<CounterDesc> HeuristicPass::counters() const {
 }
 
 std::vector<uint8_t> HeuristicPass::decide(FrameContext& ctx, const std::vector<uint32_t>& pixels,
-                                           const Buffer* ids, double& partialR2) {
+                                           const CentralCut& cut) {
   const HeuristicSettings& s = settings();
   const Scene& scene = *ctx.scene;
   const size_t n = scene.objects.size();
@@ -446,8 +468,7 @@ std::vector<uint8_t> HeuristicPass::decide(FrameContext& ctx, const std::vector<
     calibrationPrior_ = true;
   }
   const std::vector<HeuristicNode> nodes = priceNodes(scene, pixels);
-  partialR2 = -1;
-  const std::vector<uint8_t> selected = select(ctx, nodes, ids, partialR2);
+  const std::vector<uint8_t> selected = select(ctx, nodes, cut);
   selectedFrame_ = ctx.serial;
   selectedLast_ = selected;
   // The partial node counts as selected for stability (I): it stays the one part-traced.
@@ -466,10 +487,13 @@ std::vector<uint8_t> HeuristicPass::decide(FrameContext& ctx, const std::vector<
 
 void HeuristicPass::execute(FrameContext& ctx) {
   const Buffer& ids = ctx.input(*this, Slots::objectId);
-  double partialR2 = -1;
+  const CentralCut cut = [&](int object, double fraction) {
+    return centralBins(centralHistogram(ids, object, [&](int x) { return viewCentre(ctx, x); }),
+                       fraction);
+  };
   const std::vector<uint8_t> selected =
-      decide(ctx, countObjectPixels(ids, ctx.scene->objects.size()), &ids, partialR2);
-  writeMask(ctx, ids, selected, partialR2, ctx.output(*this, Slots::heuristicMask));
+      decide(ctx, countObjectPixels(ids, ctx.scene->objects.size()), cut);
+  writeMask(ctx, ids, selected, ctx.output(*this, Slots::heuristicMask));
 }
 
 void HeuristicPass::executeGpu(FrameContext& ctx) {
@@ -482,6 +506,17 @@ void HeuristicPass::executeGpu(FrameContext& ctx) {
   a.pixels = gpu.constants(zero.data(), zero.size() * sizeof(uint32_t));
   a.pixelCount = uint32_t(size_t(ctx.width) * size_t(ctx.height));
   a.objectCount = uint32_t(n);
+  a.width = uint32_t(ctx.width);
+  a.partialObject = TD_HEURISTIC_NONE;
+  // Each view's columns and twice its centre (integers: the distances compare exactly).
+  std::vector<HeuristicView> views;
+  for (const View& v : ctx.views)
+    views.push_back({uint32_t(v.x), uint32_t(v.x + v.camera.width),
+                     uint32_t(2 * v.x + v.camera.width), uint32_t(2 * v.y + v.camera.height)});
+  views.push_back({0, uint32_t(ctx.width), uint32_t(ctx.width), uint32_t(ctx.height)});
+  a.views = gpu.constants(views.data(), views.size() * sizeof(HeuristicView));
+  a.viewCount = uint32_t(views.size());
+  a.norm4 = uint32_t(4.0 * viewNorm(ctx));
   // A 2D grid: one invocation a pixel, rows of at most 65535 groups of 64.
   const uint32_t groups = (a.pixelCount + 63) / 64, gx = std::max(1u, std::min(groups, 65535u));
   a.rowWidth = gx * 64;
@@ -492,13 +527,29 @@ void HeuristicPass::executeGpu(FrameContext& ctx) {
   // The selection needs every object's area: the counts come back before the mask is recorded.
   cmd.checkpoint();
   const auto* counted = static_cast<const uint32_t*>(gpu.constantsData(a.pixels));
-  double partialR2 = -1;
+  // A partial object's pixels by distance, counted where they are, cut on the host.
+  const CentralCut cut = [&](int object, double fraction) {
+    HeuristicArgs h = a;
+    const std::vector<uint32_t> empty(TD_HEURISTIC_BINS, 0);
+    h.pixels = gpu.constants(empty.data(), empty.size() * sizeof(uint32_t));
+    h.partialObject = uint32_t(object);
+    h.mode = TD_HEURISTIC_CENTRAL;
+    cmd.dispatch(k, gx, (groups + gx - 1) / gx, 1, &h);
+    cmd.checkpoint();
+    const auto* hist = static_cast<const uint32_t*>(gpu.constantsData(h.pixels));
+    return centralBins(std::vector<uint32_t>(hist, hist + TD_HEURISTIC_BINS), fraction);
+  };
   const std::vector<uint8_t> selected =
-      decide(ctx, std::vector<uint32_t>(counted, counted + n), nullptr, partialR2);
+      decide(ctx, std::vector<uint32_t>(counted, counted + n), cut);
   std::vector<uint32_t> bits(std::max<size_t>(n, 1), 0);
   for (size_t o = 0; o < n; ++o) bits[o] = selected[o];
   a.selected = gpu.constants(bits.data(), bits.size() * sizeof(uint32_t));
   a.mask = ctx.deviceOutput(*this, Slots::heuristicMask);
+  if (partialBins_ >= 0) {
+    a.partialObject = uint32_t(nodeObject(partial_.id));
+    a.partialBits = partialBits();
+    a.partialBins = uint32_t(partialBins_);
+  }
   a.mode = TD_HEURISTIC_MASK;
   cmd.dispatch(k, gx, (groups + gx - 1) / gx, 1, &a);
 }

@@ -71,9 +71,17 @@ PartialNode partialNode(const std::vector<HeuristicNode>& nodes, const std::vect
 // The squared distance from the view centre (pixels) within which `object` has `fraction` of its
 // visible pixels: the part of a partial object that is traced is the part nearest the centre (a
 // contiguous region, the part the eye is on). `centreOf(x)` is the centre of the view holding
-// column x.
+// column x. It is centralBins(centralHistogram(...)) / TD_HEURISTIC_BINS of the squared
+// half-diagonal of the view holding column 0 (the GPU counts the same histogram).
 double centralRadius2(const Buffer& objectId, int object, double fraction,
                       const std::function<Vec2(int)>& centreOf);
+// The object's pixels counted by squared distance to their view's centre over that
+// half-diagonal, in TD_HEURISTIC_BINS bins (the last holding everything beyond).
+std::vector<uint32_t> centralHistogram(const Buffer& objectId, int object,
+                                       const std::function<Vec2(int)>& centreOf);
+// The bins whose pixels together stay within `fraction` of the histogram's (all of them: its
+// size).
+int centralBins(const std::vector<uint32_t>& hist, double fraction);
 
 // P of §3.2: 1 at the view centre falling to 0.01 at (and beyond) the edge, from NDC x, y.
 double centreWeight(double ndcX, double ndcY);
@@ -176,13 +184,9 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
             effectSlot(Slots::heuristicOrder, BufferKind::List, Extent::any())};
   }
   void execute(FrameContext& ctx) override;
-  // On the GPU the per-pixel halves (each object's area by atomics, the mask); the selection
-  // between them on the host. Not with partial objects (the part's radius sorts the object's
-  // pixels by distance).
-  bool hasGpu() const override { return !(settings().partialObjects && settings().budgetMs > 0); }
-  std::string gpuCondition() const override {
-    return "unless `partial_objects` with a `budget_ms`";
-  }
+  // On the GPU the per-pixel halves (each object's area by atomics, the mask; a partial object's
+  // pixels by distance from the centre); the selection between them on the host.
+  bool hasGpu() const override { return true; }  // shaders/heuristic.comp
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   void resetHistory() override;
@@ -198,19 +202,24 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
   const ParamTable<HeuristicSettings>& tableFor() const override;
 
  private:
+  // A partial object's traced part: centralBins of the object's centralHistogram for the share.
+  using CentralCut = std::function<int(int object, double fraction)>;
   void refreshBounds(const FrameContext& ctx);
-  // The frame's selection from each object's visible pixels (`ids`, for a partial object's part:
-  // null on the GPU): the effect bits per object; heuristic_order, rt_request and the counters
-  // written.
+  // The frame's selection from each object's visible pixels: the effect bits per object;
+  // heuristic_order, rt_request and the counters written.
   std::vector<uint8_t> decide(FrameContext& ctx, const std::vector<uint32_t>& pixels,
-                              const Buffer* ids, double& partialR2);
+                              const CentralCut& cut);
   // The nodes to choose from; with a ms budget priced in predicted CPU ms.
   std::vector<HeuristicNode> priceNodes(const Scene& scene, const std::vector<uint32_t>& pixels);
   // Chooses within budget_ (and the partial node); returns the effect bits per object.
   std::vector<uint8_t> select(const FrameContext& ctx, const std::vector<HeuristicNode>& nodes,
-                              const Buffer* ids, double& partialR2);
+                              const CentralCut& cut);
   void writeMask(const FrameContext& ctx, const Buffer& ids, const std::vector<uint8_t>& selected,
-                 double partialR2, Buffer& mask) const;
+                 Buffer& mask) const;
+  // The partial node's object, or -2 (no object id) when none.
+  float partialObject() const { return partial_.id >= 0 ? float(nodeObject(partial_.id)) : -2.0f; }
+  // The partial node's effect bits (its shadows left to the maps with shadows = maps).
+  uint8_t partialBits() const;
   void updateMeasurements(const RtStats& stats);
   // A node's object and effect bits (a node is an object, or object * 3 + effect with
   // per_effect).
@@ -236,6 +245,7 @@ class HeuristicPass : public SettingsPass<HeuristicSettings> {
   std::vector<std::array<double, kEffectCount>> pricePerPixel_;
   double budget_ = 0, selectedCost_ = 0;
   PartialNode partial_;
+  int partialBins_ = -1;  // the partial part's centralBins (-1: none)
   int64_t selectedFrame_ = -1;
 };
 
