@@ -255,7 +255,9 @@ TEST(GpuHybrid, PartialObjectsAreTheCpusPixels) {
         lost += cm.data[i] < wm.data[i] ? 1 : 0;
       }
       EXPECT_EQ(lost, 0u) << at;
-      if (fraction == 0) EXPECT_EQ(added, 0u) << at;
+      if (fraction == 0) {
+        EXPECT_EQ(added, 0u) << at;
+      }
       parts += added > 0 ? 1 : 0;
       std::printf("%s: part %.4f of a node, %zu mask values added\n", at.c_str(), fraction, added);
     }
