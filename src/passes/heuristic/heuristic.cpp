@@ -184,7 +184,10 @@ std::vector<HeuristicNode> heuristicNodes(
 
 void BudgetCalibration::observe(double selectedCost, double ms) {
   if (!(selectedCost > 0) || !(ms > 0)) return;  // nothing traced: nothing learned
-  samples_[size_t(count_ % 3)] = selectedCost / ms;
+  // A budget below the RT pass's fixed cost (its shadow maps, its launch) is never met: each frame
+  // the rate falls by budget / time. Without a floor it would reach zero, where no budget raised
+  // later buys anything again.
+  samples_[size_t(count_ % 3)] = std::max(selectedCost / ms, kFloor * prior_);
   ++count_;
 }
 

@@ -118,6 +118,8 @@ class BudgetCalibration {
  public:
   // Rays per CPU ms assumed before any effect has been measured (about this machine).
   static constexpr double kPriorRaysPerMs = 10000;
+  // The lowest rate learned, as a share of the prior.
+  static constexpr double kFloor = 1e-3;
   explicit BudgetCalibration(double priorUnitsPerMs = 1) : prior_(priorUnitsPerMs) {}
   void observe(double selectedCost, double ms);
   double unitsFor(double budgetMs) const { return budgetMs * unitsPerMs(); }

@@ -175,6 +175,23 @@ TEST(Heuristic, BudgetCalibrationIsTheMedianOfThreeFrames) {
   EXPECT_DOUBLE_EQ(c.unitsPerMs(), 300);
 }
 
+// A budget below the RT pass's fixed cost (its shadow maps, its launch) is never met, and the rate
+// falls while it lasts; a budget raised later is met again within 30 frames (the rate at the
+// fixed point of cost = units * budget, time = overhead + cost / true rate).
+TEST(Heuristic, BudgetCalibrationRecoversFromABudgetItCannotMeet) {
+  const double overhead = 10, rate = 4;  // wall ms whatever is selected; units a traced wall ms
+  BudgetCalibration c(2.0);
+  const auto frame = [&](double budgetMs) {
+    const double cost = c.unitsFor(budgetMs);  // the walk fills the budget
+    c.observe(cost, overhead + cost / rate);
+  };
+  for (int f = 0; f < 300; ++f) frame(2);  // under the overhead
+  EXPECT_LT(c.unitsPerMs(), 0.01);
+  for (int f = 0; f < 30; ++f) frame(30);
+  const double fixedPoint = rate * (30 - overhead) / 30;
+  EXPECT_NEAR(c.unitsPerMs(), fixedPoint, 0.01 * fixedPoint);
+}
+
 // Partial objects: the unspent budget buys a share of the most relevant node left out (Figure 4:
 // 5, 6, 7 take 350 of 400; of 0-4, node 1 is the most relevant, and 50 buys 50/700 of it).
 TEST(Heuristic, PartialNodeIsTheMostRelevantLeftOut) {
