@@ -2,7 +2,8 @@
 # The GPU figures of docs/benchmarks.md in one run, each measured side by side with the same binary
 # on the machine's CPU cores (issue: "side by side in one run"): frame times of the heuristic
 # hybrid's pipelines, the depth-of-field, foveated and motion-blur pipelines, the hybrid's SSIM
-# against rt-only on the GPU, and the reference's ray rate (a still and an open shutter).
+# against rt-only on the GPU, the graphics pipeline's visibility draw against the compute
+# rasterizer, and the reference's ray rate (a still and an open shutter).
 # Prepared for a lent GPU machine, where one `run` of the device tool must measure everything:
 #
 #   bash ../shared/tools/device-pack.sh
@@ -78,6 +79,15 @@ $T compare "$out/hybrid-heuristic.png" "$out/rt-only.png" > "$out/ssim.txt" 2>&1
   echo
   echo "hybrid-heuristic against rt-only (GPU, atrium_spheres ${W}x${H}): $(grep -E '^(ssim|psnr)' "$out/ssim.txt" | tr '\n' ' ')"
 } >> "$table"
+
+# Issue 43: the graphics pipeline's visibility draw against the compute rasterizer, both on the
+# GPU, the visibility part of `deferred` (vbuffer_shading) on the atrium.
+echo >> "$table"
+for r in compute graphics; do
+  $T bench atrium --pipeline deferred --device gpu --width $W --height $H --frames $frames \
+    --warmup $warm --set vbuffer_shading.gpu_rasterizer=$r > "$out/rasterizer-$r.txt" 2>&1 || true
+  echo "deferred atrium ${W}x${H} on the GPU, $r rasterizer: visibility $(awk '$1 == "vbuffer_shading/visibility" {print $2}' "$out/rasterizer-$r.txt") ms, frame $(median "$out/rasterizer-$r.txt") ms (medians)" >> "$table"
+done
 
 # The reference's ray rate on both devices (cornell, path tracer).
 echo >> "$table"

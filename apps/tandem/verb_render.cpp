@@ -100,12 +100,16 @@ struct RenderVerb {
     }
     std::printf("  %-28s %9.2f ms\n", "frame", last.totalMs);
 
-    if (ctx.counters.count(RasterCounters::trianglesIn))
+    if (ctx.counters.count(RasterCounters::trianglesBinned))
       std::printf("  raster: %.0f triangles, %.0f culled, %.0f clipped, %.0f set up and binned\n",
                   ctx.counter(RasterCounters::trianglesIn),
                   ctx.counter(RasterCounters::trianglesCulled),
                   ctx.counter(RasterCounters::trianglesClipped),
                   ctx.counter(RasterCounters::trianglesBinned));
+    else if (ctx.counters.count(RasterCounters::trianglesIn))  // the graphics pipeline's draw
+      std::printf("  raster: %.0f triangles, %.0f of objects outside the frustum\n",
+                  ctx.counter(RasterCounters::trianglesIn),
+                  ctx.counter(RasterCounters::trianglesCulled));
     // Every output is staged first and renamed into place together: all files or none.
     const std::string& outName = renderer.pipeline().output;
     FileCommit files;

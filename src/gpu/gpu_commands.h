@@ -46,6 +46,8 @@ class GpuCommands {
   // The same less the time between checkpoints' submissions: the GPU's working time.
   double activeMs(uint32_t a, uint32_t b) const;
   GpuDevice& device() { return device_; }
+  // The command buffer being recorded, for what has no method here (the graphics rasterizer).
+  VkCommandBuffer commandBuffer() const { return cb_; }
 
  private:
   GpuDevice& device_;

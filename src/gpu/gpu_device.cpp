@@ -306,7 +306,8 @@ GpuDevice::GpuDevice(size_t index) {
   VkPhysicalDeviceVulkan13Features f13{};
   f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
   f13.synchronization2 = VK_TRUE;
-  f13.maintenance4 = VK_TRUE;  // glslc's SPIR-V for Vulkan 1.3 declares LocalSizeId
+  f13.maintenance4 = VK_TRUE;      // glslc's SPIR-V for Vulkan 1.3 declares LocalSizeId
+  f13.dynamicRendering = VK_TRUE;  // the graphics rasterizer (core in 1.3: every device has it)
   VkPhysicalDeviceVulkan12Features f12{};
   f12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
   f12.bufferDeviceAddress = VK_TRUE;

@@ -19,12 +19,18 @@ GpuFrame::GpuFrame(std::shared_ptr<GpuDevice> device)
 
 GpuFrame::~GpuFrame() {
   kernels_.clear();
+  graphicsRaster_.reset();
   for (auto& [name, c] : copies_) memory_.release(c.buffer);
   for (auto& [key, b] : scratch_) memory_.release(b);
   memory_.release(uploadStaging_);
   for (GpuBuffer& b : downloadStaging_) memory_.release(b);
   for (GpuBuffer& b : released_) memory_.release(b);
   for (GpuBuffer& b : constants_) memory_.release(b);
+}
+
+GpuGraphicsRaster& GpuFrame::graphicsRaster() {
+  if (!graphicsRaster_) graphicsRaster_ = std::make_unique<GpuGraphicsRaster>(*device_);
+  return *graphicsRaster_;
 }
 
 GpuScene& GpuFrame::scene(const FrameScene& fs) {

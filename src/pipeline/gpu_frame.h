@@ -16,6 +16,7 @@
 #include "core/buffer.h"
 #include "gpu/gpu_commands.h"
 #include "gpu/gpu_device.h"
+#include "gpu/gpu_graphics_raster.h"
 #include "gpu/gpu_kernel.h"
 #include "gpu/gpu_memory.h"
 #include "gpu/gpu_scene.h"
@@ -37,6 +38,9 @@ class GpuFrame {
   // The kernel `name` built from `spirv` on first use, kept after.
   const GpuKernel& kernel(const std::string& name, const uint32_t* spirv, size_t words,
                           uint32_t pushBytes);
+  // The graphics pipeline's visibility draw, made on first use (a GpuError where the device's
+  // queue has no graphics).
+  GpuGraphicsRaster& graphicsRaster();
 
   // The frame's scene on the device, brought up to `fs` first (its own submission: call it before
   // recording kernels that read it).
@@ -130,6 +134,7 @@ class GpuFrame {
   GpuCommands commands_;
   GpuCommands uploads_;  // the scene's and uploads, submitted ahead of the open batch
   GpuScene scene_;
+  std::unique_ptr<GpuGraphicsRaster> graphicsRaster_;
   GpuBuffer uploadStaging_;
   std::vector<GpuBuffer> downloadStaging_;  // used in turn each batch
   size_t downloadsUsed_ = 0;

@@ -6,6 +6,8 @@
 
 #include "gpu/gpu_camera.h"
 #include "gpu/shaders/raster_args.h"
+#include "gpu/shaders/raster_graphics_args.h"
+#include "gpu/shaders/raster_pack_spv.h"
 #include "gpu/shaders/raster_queue_spv.h"
 #include "gpu/shaders/raster_resolve_spv.h"
 #include "gpu/shaders/raster_triangles_f32_spv.h"
@@ -94,8 +96,54 @@ uint64_t recordRasterizer(GpuFrame& gpu, const Scene& scene, uint64_t sceneAddre
   return a.counters;
 }
 
+const ParamTable<RasterizerSettings>& rasterizerTable() {
+  using S = RasterizerSettings;
+  static const ParamTable<S> table = ParamTable<S>().add(
+      &S::gpuRasterizer,
+      {.name = "gpu_rasterizer",
+       .doc = "on the GPU: the compute rasterizer (the CPU's coverage and depths) or the graphics "
+              "pipeline (hardware rasterization; edges and depths by the device's rules), to time "
+              "one against the other",
+       .choices = {"compute", "graphics"}});
+  return table;
+}
+
+namespace {
+// The graphics pipeline's draw of one view into `vis` (its keys, as the compute rasterizer's).
+void recordGraphicsVisibility(GpuFrame& gpu, const Scene& scene, uint64_t sceneAddress,
+                              const std::string& key, const View& v, const GpuCamera& camera,
+                              const std::vector<uint32_t>& draw, const GpuBuffer& vis) {
+  const Camera& cam = v.jitteredCamera;
+  std::vector<GpuGraphicsRaster::Draw> draws;
+  for (size_t o = 0; o < draw.size() && o < scene.objects.size(); ++o) {
+    const size_t n = scene.meshes[size_t(scene.objects[o].mesh)].triangleCount();
+    if (draw[o] && n > 0) draws.push_back({uint32_t(o), uint32_t(n)});
+  }
+  const size_t pixels = size_t(cam.width) * size_t(cam.height);
+  const GpuBuffer& ids = gpu.scratch(key + "ids", pixels * sizeof(uint32_t));
+  const GpuBuffer& depths = gpu.scratch(key + "depths", pixels * sizeof(float));
+  RasterDrawArgs d{};
+  d.scene = sceneAddress;
+  d.camera = gpu.constants(&camera, sizeof camera);
+  std::memcpy(d.viewProj, &cam.viewProj.m[0][0], sizeof d.viewProj);
+  d.tau = 0;
+  GpuCommands& cmd = gpu.commands();
+  gpu.graphicsRaster().record(cmd.commandBuffer(), cam.width, cam.height, d, draws, ids, depths);
+  RasterPackArgs p{};
+  p.ids = ids.address;
+  p.depths = depths.address;
+  p.visibility = vis.address;
+  p.pixels = uint32_t(pixels);
+  const uint32_t groups = uint32_t((pixels + 63) / 64), gx = std::min<uint32_t>(groups, 65535);
+  cmd.dispatch(
+      gpu.kernel("raster_pack", kRasterPackSpv, sizeof(kRasterPackSpv) / 4, sizeof(RasterPackArgs)),
+      gx, (groups + gx - 1) / gx, 1, &p);
+  cmd.barrier();
+}
+}  // namespace
+
 void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t targets, uint64_t hdr,
-                                const char* resolvePart) {
+                                const char* resolvePart, bool graphics) {
   GpuFrame& gpu = *ctx.gpu;
   GpuCommands& cmd = gpu.commands();
   const FrameScene& fs = ctx.frame;
@@ -129,10 +177,15 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
     in += double(triangleCount);
     const size_t pixels = size_t(cam.width) * size_t(cam.height);
     const GpuBuffer& vis = gpu.scratch(key + std::to_string(vi), pixels * sizeof(uint64_t));
-    cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
-    counters.push_back(
-        recordRasterizer(gpu, scene, sceneAddress, queueBuffer,
-                         RasterView{&cam, ctx.pixelSpread(v), &draw, &vis, /*bothFaces=*/false}));
+    if (graphics) {
+      recordGraphicsVisibility(gpu, scene, sceneAddress, key + std::to_string(vi) + ":", v,
+                               gpuCamera(cam, ctx.pixelSpread(v)), draw, vis);
+    } else {
+      cmd.fill(vis, 0, pixels * sizeof(uint64_t), 0);
+      counters.push_back(
+          recordRasterizer(gpu, scene, sceneAddress, queueBuffer,
+                           RasterView{&cam, ctx.pixelSpread(v), &draw, &vis, /*bothFaces=*/false}));
+    }
     RasterResolveArgs r{};
     r.scene = sceneAddress;
     r.view = gpuViewConstants(ctx, v);
@@ -156,7 +209,7 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
   const uint32_t t2 = cmd.timestamp();
   std::vector<const uint32_t*> counts;
   for (uint64_t c : counters) counts.push_back(static_cast<const uint32_t*>(gpu.constantsData(c)));
-  gpu.afterSubmit([&ctx, &pass, &cmd, counts, in, culledOnHost, t0, t1, t2, resolvePart] {
+  gpu.afterSubmit([&ctx, &pass, &cmd, counts, in, culledOnHost, t0, t1, t2, resolvePart, graphics] {
     double culled = culledOnHost, clipped = 0, binned = 0;
     for (const uint32_t* c : counts) {
       culled += c[TD_RASTER_CULLED];
@@ -165,8 +218,10 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
     }
     ctx.report(pass, RasterCounters::trianglesIn, in);
     ctx.report(pass, RasterCounters::trianglesCulled, culled);
-    ctx.report(pass, RasterCounters::trianglesClipped, clipped);
-    ctx.report(pass, RasterCounters::trianglesBinned, binned);
+    if (!graphics) {
+      ctx.report(pass, RasterCounters::trianglesClipped, clipped);
+      ctx.report(pass, RasterCounters::trianglesBinned, binned);
+    }
     ctx.passParts.push_back({"visibility", cmd.activeMs(t0, t1), 0});
     ctx.passParts.push_back({resolvePart, cmd.activeMs(t1, t2), 0});
   });

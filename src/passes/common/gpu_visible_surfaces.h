@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pipeline/frame_context.h"
+#include "pipeline/param_table.h"
 #include "pipeline/pass.h"
 
 namespace tandem {
@@ -54,14 +55,25 @@ struct RasterView {
 uint64_t recordRasterizer(GpuFrame& gpu, const Scene& scene, uint64_t sceneAddress,
                           const RasterQueue& queue, const RasterView& view);
 
+// The setting of the passes that rasterize the frame (raster_gbuffer, vbuffer_shading): on the
+// GPU, the compute rasterizer (the CPU's coverage and depths) or the graphics pipeline's hardware
+// rasterizer, to time one against the other. The CPU ignores it.
+struct RasterizerSettings {
+  enum class GpuRasterizer { Compute, Graphics };
+  GpuRasterizer gpuRasterizer = GpuRasterizer::Compute;
+};
+const ParamTable<RasterizerSettings>& rasterizerTable();
+
 class GpuVisibleSurfaces {
  public:
   // Records, view by view, the rasterization and the resolve into `targets` (the address of a
   // GBufferTargets in this submission's constants; a zero field: not written) and into `hdr`
   // when it is non-zero. After the submission reports `pass`'s parts "visibility" and
-  // `resolvePart` and its raster/* counters, as VisibleSurfaces::rasterize does.
+  // `resolvePart` and its raster/* counters, as VisibleSurfaces::rasterize does. `graphics`: the
+  // visibility drawn by the graphics pipeline (gpu_graphics_raster.h) instead, whose hardware
+  // counts nothing: only the triangles in and those of objects outside the frustum are reported.
   void record(FrameContext& ctx, const Pass& pass, uint64_t targets, uint64_t hdr,
-              const char* resolvePart);
+              const char* resolvePart, bool graphics = false);
 };
 
 }  // namespace tandem

@@ -24,7 +24,8 @@ void RasterGBufferPass::execute(FrameContext& ctx) {
 }
 
 void RasterGBufferPass::executeGpu(FrameContext& ctx) {
-  gpuSurfaces_.record(ctx, *this, gbufferDeviceTargets(ctx, *this), 0, "resolve");
+  gpuSurfaces_.record(ctx, *this, gbufferDeviceTargets(ctx, *this), 0, "resolve",
+                      settings().gpuRasterizer == RasterizerSettings::GpuRasterizer::Graphics);
 }
 
 }  // namespace tandem

@@ -91,7 +91,8 @@ void VBufferShadingPass::execute(FrameContext& ctx) {
 // all once one is read): the image and every target read are the same.
 void VBufferShadingPass::executeGpu(FrameContext& ctx) {
   const uint64_t hdr = ctx.deviceOutput(*this, Slots::hdr);
-  gpuSurfaces_.record(ctx, *this, gbufferDeviceTargetsIfConsumed(ctx, *this), hdr, "shading");
+  gpuSurfaces_.record(ctx, *this, gbufferDeviceTargetsIfConsumed(ctx, *this), hdr, "shading",
+                      settings().gpuRasterizer == RasterizerSettings::GpuRasterizer::Graphics);
 }
 
 }  // namespace tandem

@@ -5,7 +5,8 @@
 // shading kernel as raster_gbuffer + deferred_shading, so the image is the same. The G-buffer is
 // still written, by the same resolve, when something reads it (a pass, an AOV, the viewer's
 // shown buffer): `deferred` is this pass, and its G-buffer views cost only when shown.
-// Inputs: none (scene). Outputs: hdr and raster_gbuffer's targets. Parameters: none.
+// Inputs: none (scene). Outputs: hdr and raster_gbuffer's targets. Parameters: on the GPU, which
+// rasterizer draws the visibility (RasterizerSettings).
 #pragma once
 #include "passes/common/gbuffer_writer.h"
 #include "passes/common/gpu_visible_surfaces.h"
@@ -14,7 +15,7 @@
 
 namespace tandem {
 
-class VBufferShadingPass : public Pass {
+class VBufferShadingPass : public SettingsPass<RasterizerSettings> {
  public:
   // Slots, named once: inputs() and outputs() declare them, execute() binds them.
   struct Slots {
@@ -30,6 +31,9 @@ class VBufferShadingPass : public Pass {
   bool hasGpu() const override { return true; }  // compute rasterizer: gpu_visible_surfaces.h
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override { return RasterCounters::all(); }
+
+ protected:
+  const ParamTable<RasterizerSettings>& tableFor() const override { return rasterizerTable(); }
 
  private:
   VisibleSurfaces surfaces_;
