@@ -222,6 +222,15 @@ else
   psnr=$(awk '/^psnr/ {print $2}' <<<"$("$T" compare "$D/ref_gpu.exr" "$D/ref_cpu.exr" 2>&1)")
   check "reference --device gpu takes the CPU's samples (PSNR >= 45 dB, got $psnr)" \
     "[ \"$psnr\" = inf ] || awk -v p=$psnr 'BEGIN{exit !(p >= 45)}'"
+  # Split over 2 MPI processes, each tracing its stripes on the device: the same image, byte for
+  # byte (each pixel's sums come from one process; the others add 0).
+  if command -v mpirun >/dev/null; then
+    OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -n 2 \
+      "$T" reference --scene cornell --device gpu --width 32 --height 18 --spp 4 --no-cache --quiet \
+      --out "$D/ref_gpu_mpi.exr" >"$D/mpi_gpu.log" 2>&1
+    check "mpirun -n 2 --device gpu writes the single-process GPU image" \
+      "grep -q '2 MPI processes' $D/mpi_gpu.log && cmp -s $D/ref_gpu.exr $D/ref_gpu_mpi.exr"
+  fi
   "$T" experiment heuristic --device gpu --scenes spheres --width 32 --height 18 --warmup 0 \
     --static-frames 1 --path-frames 2 --out "$D/exp_gpu" >/dev/null 2>&1
   check "experiment --device gpu renders there and names the device" \

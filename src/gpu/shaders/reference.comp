@@ -278,6 +278,7 @@ void main() {
   const GpuCamera cam = CameraRef(A.camera).c;
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= cam.width || y >= cam.height) return;
+  if ((uint(y) / A.stripeRows) % A.ranks != A.rank) return;  // another process's row: left at 0
   useScene(A.scene);
   giGrid = A.grid;
   whitted = WhittedConfig(A.whittedDepth, A.importanceCutoff, A.shadowCull, A.whittedFlags);

@@ -31,10 +31,11 @@ struct ReferenceArgs {
   TD_INT whittedDepth;
   TD_FLOAT importanceCutoff, shadowCull;
   TD_UINT whittedFlags;  // TD_WHITTED_*
-  TD_UINT pad2;
+  TD_UINT rank;          // this process's rows: stripes of stripeRows with (y / stripeRows) % ranks
   GpuLightGrid grid;     // diffuse-gi: the LightGrid that picks lights (rt/light_grid.h)
   TD_FLOAT pixelSpread;  // the primary hit's texture filtering
-  TD_FLOAT pad3[3];
+  TD_UINT ranks, stripeRows;  // == rank (SampleCluster::ownsRow); 1 process: ranks 1
+  TD_FLOAT pad3;
   // cameraMoves: the camera's position and lookAt at shutter close (at open: `camera`'s) and its
   // up vector; each sample's camera lies between them at its shutter time (cameraAtShutter).
   TD_FLOAT openLookAt[3], closePosition[3], closeLookAt[3], cameraUp[3];

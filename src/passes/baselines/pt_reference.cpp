@@ -132,7 +132,7 @@ void PTReferencePass::render(
 }
 
 bool PTReferencePass::hasGpu() const {
-  return true;  // shaders/reference.comp (MPI ranks: executeGpu runs execute)
+  return true;  // shaders/reference.comp, each MPI rank on its own stripes
 }
 
 namespace {
@@ -172,12 +172,11 @@ std::vector<GpuEmitter> gpuEmitters(const FrameScene& fs, std::vector<int32_t>& 
 }  // namespace
 
 void PTReferencePass::executeGpu(FrameContext& ctx) {
-  // Processes sharing the rows stay on the CPU. An open shutter renders here: each sample's
-  // camera and moving objects where they are at its time (GpuScene keeps the time steps).
-  if (cluster_ && cluster_->ranks() > 1) {
-    execute(ctx);
-    return;
-  }
+  // An open shutter renders here: each sample's camera and moving objects where they are at its
+  // time (GpuScene keeps the time steps). Processes sharing the rows (MPI) each trace their own
+  // stripes on their device, and the sums meet on rank 0 as the CPU's do.
+  SampleCluster single;
+  SampleCluster& cluster = cluster_ ? *cluster_ : single;
   GpuFrame& gpu = *ctx.gpu;
   GpuCommands& cmd = gpu.commands();
   const FrameScene& fs = ctx.frame;
@@ -221,6 +220,9 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
   a.importanceCutoff = w.importanceCutoff;
   a.shadowCull = w.shadowCull;
   a.whittedFlags = gpuWhittedFlags(w);
+  a.rank = uint32_t(cluster.rank());
+  a.ranks = uint32_t(cluster.ranks());
+  a.stripeRows = SampleCluster::kStripeRows;
   const GpuKernel& k =
       gpu.kernel("reference", kReferenceSpv, sizeof(kReferenceSpv) / 4, sizeof(uint64_t));
   const auto* rays = static_cast<const uint32_t*>(gpu.constantsData(a.counters));
@@ -257,6 +259,7 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
         const double left = eye.timeLimitS - msSince(start) * 1e-3;
         batch = std::min(batch, int(std::floor(left / std::max(perSample, 1e-9))));
       }
+      batch = cluster.broadcast(std::max(batch, 0));  // every process stops at rank 0's count
       if (batch <= 0) break;
       // One dispatch a sample (a loop over the batch inside one invocation drifted from the CPU's
       // samples on lavapipe after 16 or so: not understood, so not relied on). On a CPU Vulkan
@@ -282,9 +285,12 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
       sums.samples += batch;
     }
     result.seconds = msSince(start) * 1e-3;
+    cluster.reduceSum(sums.data);  // other processes' rows are 0 here: the sum is exact
+    std::vector<double> traced{double(*rays - raysBefore)};
+    cluster.reduceSum(traced);  // every process's rays, on rank 0
     result.spp = sums.samples;
-    result.rays = uint64_t(*rays - raysBefore);
-    result.relativeError = sums.relativeError();
+    result.rays = uint64_t(traced[0]);
+    if (cluster.rank() == 0) result.relativeError = sums.relativeError();
     return result;
   });
 }

@@ -48,11 +48,9 @@ class PTReferencePass : public SettingsPass<PTReferenceSettings> {
   }
   void execute(FrameContext& ctx) override;
   // Every integrator on the GPU, with the CPU's Sobol samples (the shutter's moving camera and
-  // objects included); diffuse-gi's light grid built on the host; MPI ranks on the CPU.
+  // objects included); diffuse-gi's light grid built on the host; under MPI each rank traces
+  // its stripes of rows on its own device.
   bool hasGpu() const override;
-  std::string gpuCondition() const override {
-    return "in one process (MPI ranks render on the CPU)";
-  }
   void executeGpu(FrameContext& ctx) override;
   std::vector<CounterDesc> counters() const override;
   void resetHistory() override { sums_.clear(); }
