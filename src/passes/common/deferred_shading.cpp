@@ -5,6 +5,7 @@
 #include "gpu/shaders/deferred_shading_spv.h"
 #include "passes/common/gpu_shadow_maps.h"
 #include "passes/common/lights_in_view.h"
+#include "passes/common/shadow_map_params.h"
 #include "passes/common/whitted_settings.h"
 #include "passes/heuristic/shadow_tile.h"
 #include "pipeline/frame_context.h"
@@ -24,16 +25,8 @@ const ParamTable<DeferredSettings>& DeferredShadingPass::tableFor() const {
                              .doc = "off (Listing 5: unshadowed; traced or fallback shadows come "
                                     "later) or the frame's raster shadow maps",
                              .choices = {"off", "shadow_map"}})
-          .add(&S::shadowMapSize,
-               {.name = "shadow_map_size",
-                .min = 64,
-                .max = 8192,
-                .doc = "shadow map resolution (a sun's map twice the side, a point "
-                       "light's cube faces half)"})
-          .add(&S::shadowMapFit,
-               {.name = "shadow_map_fit",
-                .doc = "shadow maps sized to the frame: the smallest power of two at least its "
-                       "larger side where that is more than shadow_map_size"})
+          .add(&S::shadowMapSize, shadowMapSizeParam())
+          .add(&S::shadowMapFit, shadowMapFitParam())
           .add(&S::shadowCull, {.name = "shadow_cull",
                                 .min = 0,
                                 .max = 1,

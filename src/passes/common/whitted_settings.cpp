@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "passes/common/gpu_shadow_maps.h"
+#include "passes/common/shadow_map_params.h"
 
 namespace tandem {
 
@@ -41,16 +42,8 @@ const ParamTable<WhittedParams>& whittedTable() {
                .max = 1,
                .doc = "no shadow query for a light below this fraction of the surface's unshadowed "
                       "light (0: only lights facing away or out of reach)"})
-          .add(&S::shadowMapSize, {.name = "shadow_map_size",
-                                   .min = 64,
-                                   .max = 8192,
-                                   .doc = "shadow map resolution for classified and map shadows (a "
-                                          "sun's map twice the side, a point light's cube faces "
-                                          "half)"})
-          .add(&S::shadowMapFit,
-               {.name = "shadow_map_fit",
-                .doc = "shadow maps sized to the frame: the smallest power of two at least its "
-                       "larger side where that is more than shadow_map_size"});
+          .add(&S::shadowMapSize, shadowMapSizeParam())
+          .add(&S::shadowMapFit, shadowMapFitParam());
   return table;
 }
 

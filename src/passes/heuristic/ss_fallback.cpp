@@ -10,6 +10,7 @@
 #include "gpu/shaders/fallback_spv.h"
 #include "passes/common/gpu_shadow_maps.h"
 #include "passes/common/lights_in_view.h"
+#include "passes/common/shadow_map_params.h"
 #include "passes/heuristic/gpu_reflection_probes.h"
 #include "passes/heuristic/rt_feedback.h"
 #include "passes/heuristic/shadow_tile.h"
@@ -42,16 +43,8 @@ const ParamTable<FallbackSettings>& ScreenSpaceFallbackPass::tableFor() const {
                              .doc = "unselected shadows: off (Walewski et al. 2019: unshadowed) or "
                                     "raster shadow maps",
                              .choices = {"off", "shadow_map"}})
-          .add(&S::shadowMapSize,
-               {.name = "shadow_map_size",
-                .min = 64,
-                .max = 8192,
-                .doc = "shadow map resolution (a sun's map twice the side, a point "
-                       "light's cube faces half)"})
-          .add(&S::shadowMapFit,
-               {.name = "shadow_map_fit",
-                .doc = "shadow maps sized to the frame: the smallest power of two at least its "
-                       "larger side where that is more than shadow_map_size"})
+          .add(&S::shadowMapSize, shadowMapSizeParam())
+          .add(&S::shadowMapFit, shadowMapFitParam())
           .add(&S::shadowCull,
                {.name = "shadow_cull",
                 .min = 0,
