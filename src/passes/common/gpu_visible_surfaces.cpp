@@ -156,7 +156,9 @@ void GpuVisibleSurfaces::record(FrameContext& ctx, const Pass& pass, uint64_t ta
   for (size_t o = 0; o < fs.objects.size(); ++o)
     triangleCount += scene.meshes[size_t(scene.objects[o].mesh)].triangleCount();
   const std::string key = "raster:" + pass.name() + ":";
-  const RasterQueue queueBuffer = rasterQueue(gpu, key + "queue", triangleCount);
+  // The compute rasterizer's queue of large triangles (the graphics draw needs none).
+  const RasterQueue queueBuffer =
+      graphics ? RasterQueue{nullptr, 0} : rasterQueue(gpu, key + "queue", triangleCount);
   const uint64_t motion = gpuObjectMotionConstants(ctx);
 
   // Counted on the host, as the CPU counts them: every triangle in, those of objects outside
