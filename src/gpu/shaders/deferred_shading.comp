@@ -46,7 +46,7 @@ void main() {
       useShadowMaps(a.shadowMaps);
       whitted = WhittedConfig(0, 0.0, a.shadowCull, TD_WHITTED_MAPS);
       vec3 shares;
-      color = color - (vec3(1.0) - shadowTerm(s, wo, -1, shares));
+      color = color - (vec3(1.0) - shadowTermOf(s, wo, color, -1, shares));  // lights summed once
     }
   }
   put3(a.hdr, pixel, color);

@@ -5,12 +5,12 @@
 // and S = 1 - the light the occluders block. The including kernel includes scene.glsl,
 // shadow_maps.glsl and whitted.glsl first.
 
-// S at s seen along wo. `classLight` >= 0: `shares` covers that light alone, else every light:
-// the (traced, lit, shadowed) shares of the lights that reach s (rt_secondary's shadow_class).
-vec3 shadowTerm(Surface s, vec3 wo, int classLight, out vec3 shares) {
+// S at s seen along wo, given `total` = shadeUnshadowed(s, wo) (the light the cull floor is a share
+// of; deferred shading has it already). `classLight` >= 0: `shares` covers that light alone, else
+// every light: the (traced, lit, shadowed) shares of the lights that reach s (rt_secondary's
+// shadow_class).
+vec3 shadowTermOf(Surface s, vec3 wo, vec3 total, int classLight, out vec3 shares) {
   Lights lights = Lights(S.lights);
-  vec3 total = selfTerm(s);
-  for (uint i = 0u; i < S.lightCount; ++i) total += lightTerm(s, wo, lights.l[i]);
   const float floorShare = whitted.shadowCull * luminance(total);
   const bool classified = (whitted.flags & TD_WHITTED_CLASSIFIED) != 0u;
   const bool mapsOnly = (whitted.flags & TD_WHITTED_MAPS) != 0u;
@@ -53,4 +53,9 @@ vec3 shadowTerm(Surface s, vec3 wo, int classLight, out vec3 shares) {
   }
   shares = reached > 0.0 ? classes / reached : classes;
   return vec3(1.0) - blocked;
+}
+
+// S at s seen along wo, its unshadowed light summed here.
+vec3 shadowTerm(Surface s, vec3 wo, int classLight, out vec3 shares) {
+  return shadowTermOf(s, wo, shadeUnshadowed(s, wo), classLight, shares);
 }
