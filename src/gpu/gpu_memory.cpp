@@ -9,18 +9,33 @@ GpuMemory::~GpuMemory() {
     if (b.memory) vkFreeMemory(device_.device(), b.memory, nullptr);
 }
 
-uint32_t GpuMemory::memoryType(uint32_t allowed, bool hostVisible) const {
+uint32_t GpuMemory::memoryType(uint32_t allowed, MemoryUse use) const {
   VkPhysicalDeviceMemoryProperties mem;
   vkGetPhysicalDeviceMemoryProperties(device_.physical(), &mem);
-  const VkMemoryPropertyFlags want =
-      hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                  : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
-    if ((allowed & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) return i;
-  if (!hostVisible)  // no device-local type for this buffer: any allowed one
+  auto first = [&](VkMemoryPropertyFlags want) {
     for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
-      if (allowed & (1u << i)) return i;
-  throw GpuError("GPU: no host-visible memory type for a staging buffer");
+      if ((allowed & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) return int(i);
+    return -1;
+  };
+  constexpr VkMemoryPropertyFlags kHost =
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  int type = -1;
+  if (use == MemoryUse::Device) {
+    type = first(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type < 0) type = first(0);  // no device-local type for this buffer: any allowed one
+  } else {
+    if (use == MemoryUse::Readback) type = first(kHost | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+    if (type < 0) type = first(kHost);
+  }
+  if (type < 0) throw GpuError("GPU: no host-visible memory type for a staging buffer");
+  return uint32_t(type);
+}
+
+VkMemoryPropertyFlags GpuMemory::properties(const GpuBuffer& b) const {
+  if (b.block < 0) return 0;
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(device_.physical(), &mem);
+  return mem.memoryTypes[blocks_[size_t(b.block)].type].propertyFlags;
 }
 
 bool GpuMemory::carve(Block& b, VkDeviceSize size, VkDeviceSize align, VkDeviceSize* offset) {
@@ -41,7 +56,8 @@ bool GpuMemory::carve(Block& b, VkDeviceSize size, VkDeviceSize align, VkDeviceS
   return false;
 }
 
-GpuBuffer GpuMemory::allocate(VkDeviceSize bytes, bool hostVisible) {
+GpuBuffer GpuMemory::allocate(VkDeviceSize bytes, MemoryUse use) {
+  const bool hostVisible = use != MemoryUse::Device;
   VkDevice dev = device_.device();
   // What no allocation could hold is refused before Vulkan is asked (it must not be).
   const VkDeviceSize limit =
@@ -62,7 +78,7 @@ GpuBuffer GpuMemory::allocate(VkDeviceSize bytes, bool hostVisible) {
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(dev, out.buffer, &req);
   try {
-    const uint32_t type = memoryType(req.memoryTypeBits, hostVisible);
+    const uint32_t type = memoryType(req.memoryTypeBits, use);
     int found = -1;
     for (size_t i = 0; i < blocks_.size() && found < 0; ++i)
       if (blocks_[i].type == type && (!hostVisible || blocks_[i].mapped) &&

@@ -22,6 +22,12 @@ struct GpuBuffer {
   explicit operator bool() const { return buffer != VK_NULL_HANDLE; }
 };
 
+// What a buffer is for, which picks its memory type. Device: kernels alone (device-local).
+// Upload: the host writes, the device reads (host-visible and coherent: write-combined where the
+// driver offers it, fine for sequential writes). Readback: the device writes, the host reads
+// (host-visible, and cached where a type is: reads of uncached memory are many times slower).
+enum class MemoryUse { Device, Upload, Readback };
+
 class GpuMemory {
  public:
   // Allocations are at least this large (one buffer larger than it gets an allocation its size).
@@ -31,10 +37,11 @@ class GpuMemory {
   GpuMemory(const GpuMemory&) = delete;
   GpuMemory& operator=(const GpuMemory&) = delete;
 
-  // A storage buffer of `bytes` (> 0) that copies can read and write: device-local, or
-  // host-visible and mapped (staging) when `hostVisible`. Out of device memory is a GpuError
-  // naming the size.
-  GpuBuffer allocate(VkDeviceSize bytes, bool hostVisible);
+  // A storage buffer of `bytes` (> 0) that copies can read and write, in memory for `use`
+  // (mapped unless Device). Out of device memory is a GpuError naming the size.
+  GpuBuffer allocate(VkDeviceSize bytes, MemoryUse use);
+  // The property flags of the memory `b` lives in.
+  VkMemoryPropertyFlags properties(const GpuBuffer& b) const;
   // Gives b's range back to its allocation (b becomes empty).
   void release(GpuBuffer& b);
   VkDeviceSize allocatedBytes() const;  // the large allocations together
@@ -47,7 +54,7 @@ class GpuMemory {
     void* mapped = nullptr;
     std::vector<std::pair<VkDeviceSize, VkDeviceSize>> free;  // offset, size; sorted
   };
-  uint32_t memoryType(uint32_t allowed, bool hostVisible) const;
+  uint32_t memoryType(uint32_t allowed, MemoryUse use) const;
   bool carve(Block& b, VkDeviceSize size, VkDeviceSize align, VkDeviceSize* offset);
   GpuDevice& device_;
   std::vector<Block> blocks_;

@@ -209,7 +209,7 @@ void GpuScene::update(const FrameScene& fs, GpuCommands& cmd) {
 
 GpuBuffer& GpuScene::ensure(GpuBuffer& b, size_t bytes) {
   if (b && b.size < bytes) memory_.release(b);
-  if (!b) b = memory_.allocate(bytes, false);
+  if (!b) b = memory_.allocate(bytes, MemoryUse::Device);
   return b;
 }
 
@@ -262,7 +262,7 @@ void GpuScene::record(const Staging& st, GpuCommands& cmd) {
   size_t total = 0;
   for (const Staging::Piece& p : st.pieces) total += p.bytes.size();
   if (staging_ && staging_.size < total) memory_.release(staging_);
-  if (!staging_) staging_ = memory_.allocate(std::max<size_t>(total, 16), true);
+  if (!staging_) staging_ = memory_.allocate(std::max<size_t>(total, 16), MemoryUse::Upload);
   cmd.begin();
   size_t at = 0;
   for (const Staging::Piece& p : st.pieces) {

@@ -35,13 +35,13 @@ std::vector<GpuHit> GpuTracer::trace(const std::vector<GpuRay>& rays, const GpuK
   if (rays.size() > size_t(65535) * 64)
     throw GpuError("GPU: more than 4,194,240 rays in one batch");
   const size_t rayBytes = rays.size() * sizeof(GpuRay), hitBytes = hits.size() * sizeof(GpuHit);
-  auto ensure = [&](GpuBuffer& b, size_t bytes, bool host) {
+  auto ensure = [&](GpuBuffer& b, size_t bytes, MemoryUse use) {
     if (b && b.size < bytes) memory_.release(b);
-    if (!b) b = memory_.allocate(bytes, host);
+    if (!b) b = memory_.allocate(bytes, use);
   };
-  ensure(rays_, rayBytes, false);
-  ensure(hits_, hitBytes, false);
-  ensure(staging_, std::max(rayBytes, hitBytes), true);
+  ensure(rays_, rayBytes, MemoryUse::Device);
+  ensure(hits_, hitBytes, MemoryUse::Device);
+  ensure(staging_, std::max(rayBytes, hitBytes), MemoryUse::Readback);  // the hits read back
   std::memcpy(staging_.mapped, rays.data(), rayBytes);
   TraceArgs a = scene_.traceArgs();
   a.rays = rays_.address;

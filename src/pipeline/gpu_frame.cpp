@@ -109,10 +109,10 @@ uint64_t GpuFrame::constants(const void* data, size_t bytes) {
     if (constantsArena_ < constants_.size()) ++constantsArena_;
     at = 0;
     if (constantsArena_ == constants_.size())
-      constants_.push_back(memory_.allocate(std::max(kArenaBytes, bytes), true));
+      constants_.push_back(memory_.allocate(std::max(kArenaBytes, bytes), MemoryUse::Upload));
     else if (constants_[constantsArena_].size < bytes) {
       memory_.release(constants_[constantsArena_]);
-      constants_[constantsArena_] = memory_.allocate(bytes, true);
+      constants_[constantsArena_] = memory_.allocate(bytes, MemoryUse::Upload);
     }
   }
   GpuBuffer& arena = constants_[constantsArena_];
@@ -155,7 +155,7 @@ void GpuFrame::dropScratch(const std::string& key) {
 const GpuBuffer& GpuFrame::scratch(const std::string& key, size_t bytes) {
   GpuBuffer& b = scratch_[key];
   if (b && b.size < bytes) release(b);
-  if (!b) b = memory_.allocate(std::max<size_t>(bytes, 4), false);
+  if (!b) b = memory_.allocate(std::max<size_t>(bytes, 4), MemoryUse::Device);
   return b;
 }
 
@@ -179,7 +179,7 @@ bool GpuFrame::onDevice(const std::string& name) const {
 GpuFrame::Copy& GpuFrame::copyFor(const std::string& name, size_t bytes) {
   Copy& c = copies_[name];
   if (c.buffer && c.buffer.size < bytes) release(c.buffer);
-  if (!c.buffer) c.buffer = memory_.allocate(bytes, false);
+  if (!c.buffer) c.buffer = memory_.allocate(bytes, MemoryUse::Device);
   return c;
 }
 
@@ -188,7 +188,7 @@ GpuFrame::Copyback GpuFrame::recordCopyback(const GpuBuffer& src, size_t bytes) 
   if (downloadsUsed_ == downloadStaging_.size()) downloadStaging_.emplace_back();
   GpuBuffer& s = downloadStaging_[downloadsUsed_];
   if (s && s.size < bytes) memory_.release(s);  // last used by an earlier batch, which has run
-  if (!s) s = memory_.allocate(bytes, true);
+  if (!s) s = memory_.allocate(bytes, MemoryUse::Readback);
   commands_.barrier();  // what the batch wrote so far
   Copyback c{downloadsUsed_++, 0, 0};
   c.t0 = commands_.timestamp();
@@ -206,7 +206,7 @@ size_t GpuFrame::upload(const std::string& name, const Buffer& b) {
   Copy& c = copyFor(name, bytes);
   if (bytes) {
     if (uploadStaging_ && uploadStaging_.size < bytes) memory_.release(uploadStaging_);
-    if (!uploadStaging_) uploadStaging_ = memory_.allocate(bytes, true);
+    if (!uploadStaging_) uploadStaging_ = memory_.allocate(bytes, MemoryUse::Upload);
     std::memcpy(uploadStaging_.mapped, b.data.data(), bytes);
     uploads_.begin();
     uploads_.copy(uploadStaging_, c.buffer, bytes);
@@ -317,6 +317,9 @@ void GpuFrame::readBack(const GpuBuffer& b, size_t bytes, void* out) {
   else
     flush();
   std::memcpy(out, downloadStaging_[c.staging].mapped, bytes);
+  // Read, so free again: a batch reading back many times (a reference's batches of samples)
+  // keeps one staging buffer, not one a read.
+  if (wasOpen && c.staging + 1 == downloadsUsed_) --downloadsUsed_;
 }
 
 }  // namespace tandem

@@ -50,18 +50,32 @@ TEST(GpuMemory, SubAllocatesReusesAndRefusesTooMuch) {
   REQUIRE_GPU(dev);
   {
     GpuMemory mem(*dev);
-    GpuBuffer a = mem.allocate(1000, false), b = mem.allocate(5000, false);
+    GpuBuffer a = mem.allocate(1000, MemoryUse::Device), b = mem.allocate(5000, MemoryUse::Device);
     EXPECT_EQ(a.block, b.block);
     EXPECT_NE(a.address, b.address);
     EXPECT_EQ(mem.allocatedBytes(), GpuMemory::kBlockBytes);
     const VkDeviceAddress first = a.address;
     mem.release(a);
-    GpuBuffer c = mem.allocate(800, false);
+    GpuBuffer c = mem.allocate(800, MemoryUse::Device);
     EXPECT_EQ(c.address, first);  // the freed range, first fit
-    GpuBuffer s = mem.allocate(64, true);
+    GpuBuffer s = mem.allocate(64, MemoryUse::Upload);
     EXPECT_NE(s.mapped, nullptr);
+    // What the host reads back lives in cached memory where the device has a type of it.
+    GpuBuffer r = mem.allocate(64, MemoryUse::Readback);
+    EXPECT_NE(r.mapped, nullptr);
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(dev->physical(), &props);
+    constexpr VkMemoryPropertyFlags kCachedHost = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                  VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
+                                                  VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    bool cachedExists = false;
+    for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
+      cachedExists |= (props.memoryTypes[i].propertyFlags & kCachedHost) == kCachedHost;
+    EXPECT_EQ((mem.properties(r) & kCachedHost) == kCachedHost, cachedExists);
+    EXPECT_NE(mem.properties(s) & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT, 0u);
+    EXPECT_NE(mem.properties(c) & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0u);
     try {
-      mem.allocate(VkDeviceSize(1) << 50, false);
+      mem.allocate(VkDeviceSize(1) << 50, MemoryUse::Device);
       FAIL() << "no error";
     } catch (const GpuError& e) {
       EXPECT_NE(std::string(e.what()).find("out of device memory"), std::string::npos) << e.what();
@@ -69,6 +83,7 @@ TEST(GpuMemory, SubAllocatesReusesAndRefusesTooMuch) {
     mem.release(b);
     mem.release(c);
     mem.release(s);
+    mem.release(r);
   }
   expectNoValidationMessages(*dev);
 }

@@ -246,8 +246,14 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
     a.seedLo = uint32_t(eye.seed);
     a.seedHi = uint32_t(eye.seed >> 32);
     const size_t pixels = size_t(cam.width) * size_t(cam.height);
-    std::vector<float> cleared(pixels * 4, 0.0f);
-    a.sums = gpu.constants(cleared.data(), cleared.size() * sizeof(float));
+    // The batch's sums in device memory, which every sample reads and writes, read back once a
+    // batch into cached host memory (GpuMemory's Readback).
+    const size_t sumBytes = pixels * 4 * sizeof(float);
+    const GpuBuffer& sumsBuffer = gpu.scratch(name() + ":sums", sumBytes);
+    cmd.fill(sumsBuffer, 0, sumBytes, 0);
+    cmd.barrier();
+    a.sums = sumsBuffer.address;
+    std::vector<float> batchSums(pixels * 4);
     const uint32_t raysBefore = *rays;
     const auto start = Clock::now();
     ReferenceResult result;
@@ -275,13 +281,11 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
           pollInterrupt();
         }
       }
-      cmd.checkpoint();  // the batch's sums read back: a stop keeps whole samples
-      pollInterrupt();
-      float* batchSums = static_cast<float*>(const_cast<void*>(gpu.constantsData(a.sums)));
-      for (size_t i = 0; i < pixels * 4; ++i) {
-        sums.data[i] += double(batchSums[i]);
-        batchSums[i] = 0.0f;  // the next batch's sums start at 0
-      }
+      gpu.readBack(sumsBuffer, sumBytes, batchSums.data());  // a checkpoint
+      pollInterrupt();                                       // a stop keeps whole samples
+      for (size_t i = 0; i < pixels * 4; ++i) sums.data[i] += double(batchSums[i]);
+      cmd.fill(sumsBuffer, 0, sumBytes, 0);  // the next batch's sums start at 0
+      cmd.barrier();
       sums.samples += batch;
     }
     result.seconds = msSince(start) * 1e-3;
