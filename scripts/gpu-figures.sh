@@ -4,8 +4,9 @@
 # hybrid's pipelines at 1280x720, the depth-of-field pipelines at 1920x1080, the foveated ones in
 # stereo at the Quest 2's 1832x1920 per eye, the motion-blur ones at 1280x720; the hybrid's SSIM
 # against rt-only on the GPU; the graphics pipeline's visibility draw against the compute
-# rasterizer; the reference's ray rate (a still and an open shutter); then, while time is left, the
-# demo and the experiments on the GPU.
+# rasterizer; the frame read back to the host (bench leaves it on the device); the reference's
+# ray rate (a still and an open shutter); then, while time is left, the demo and the experiments
+# on the GPU.
 # Prepared for a lent GPU machine, where one `run` of the device tool must measure everything:
 #
 #   bash ../shared/tools/device-pack.sh
@@ -123,6 +124,12 @@ for r in compute graphics; do
     --warmup $warm --set vbuffer_shading.gpu_rasterizer=$r > "$raw/rasterizer-$r.txt" 2>&1 || true
   echo "deferred atrium ${W}x${H} on the GPU, $r rasterizer: visibility $(awk '$1 == "vbuffer_shading/visibility" {print $2}' "$raw/rasterizer-$r.txt") ms, frame $(median "$raw/rasterizer-$r.txt") ms (medians)" >> "$table"
 done
+# What reading the frame back to the host costs (bench leaves it on the device by default).
+if left "read-output"; then
+  $T bench atrium --pipeline deferred --device gpu --width $W --height $H --frames $frames \
+    --warmup $warm --read-output > "$raw/read-output.txt" 2>&1 || true
+  echo "deferred atrium ${W}x${H} on the GPU with the output read back every frame: frame $(median "$raw/read-output.txt") ms, download:output $(awk '$1 == "download:output" {print $2}' "$raw/read-output.txt") ms (medians)" >> "$table"
+fi
 pack
 
 # The reference's ray rate on both devices (cornell, path tracer).

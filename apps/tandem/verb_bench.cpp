@@ -1,5 +1,6 @@
 // tandem bench: runs the scene's camera path after warm-up frames and reports per-pass
-// median/mean/min/max milliseconds, frame time and fps (and rays/s for passes that trace).
+// median/mean/min/max milliseconds, frame time and fps (and rays/s for passes that trace). On a
+// GPU the output stays on the device, as a real-time renderer presents it, unless --read-output.
 #include <tbb/global_control.h>
 
 #include <cstdio>
@@ -22,6 +23,7 @@ struct BenchVerb {
   RenderOptions opts;
   int warmup = 5;
   std::string json;
+  bool readOutput = false;
 
   int run() {
     if (opts.frames == 1) opts.frames = 60;
@@ -35,6 +37,7 @@ struct BenchVerb {
     RenderSettings settings = renderSettingsFor(scene, opts);
     Renderer renderer(scene, std::move(pipeline), settings);
     renderer.context().keepAllOutputs = false;  // nothing is written: what no pass reads is skipped
+    renderer.context().outputToHost = readOutput;
     for (int f = 0; f < warmup; ++f)
       renderer.renderFrame(f, pathCamera(scene, base, 0, opts.frames));
     std::vector<std::string> order;
@@ -58,9 +61,10 @@ struct BenchVerb {
                      : std::string("cpu");
     std::printf(
         "bench: scene %s, pipeline %s, %dx%d, %d frames after %d warm-up, %s threads (%u cores), "
-        "device %s\n",
+        "device %s%s\n",
         scene.name.c_str(), renderer.pipeline().name.c_str(), opts.width, opts.height, opts.frames,
-        warmup, opts.threads ? std::to_string(opts.threads).c_str() : "all", cores, device.c_str());
+        warmup, opts.threads ? std::to_string(opts.threads).c_str() : "all", cores, device.c_str(),
+        settings.gpu && !readOutput ? " (output left there, as presented)" : "");
     std::printf("  %-28s %9s %9s %9s %9s %12s\n", "pass", "median", "mean", "min", "max",
                 "Mrays/s");
     Json report;
@@ -73,6 +77,7 @@ struct BenchVerb {
     report["threads"] = opts.threads;
     report["cores"] = cores;
     report["device"] = device;
+    report["output_read_back"] = !settings.gpu || readOutput;
     report["passes"] = Json::object();
     for (const std::string& name : order) {
       TimingStats s = summarize(ms[name]);
@@ -120,6 +125,9 @@ VerbRunner addBenchVerb(CLI::App& app) {
   addRenderOptions(sub, verb->opts);
   sub->add_option("--warmup", verb->warmup, "Warm-up frames not timed");
   sub->add_option("--json", verb->json, "Write the report as JSON");
+  sub->add_flag("--read-output", verb->readOutput,
+                "On a GPU, read the output back to the host every frame (timed as "
+                "download:output); by default it stays on the device, as a presented frame");
   return [verb] { return verb->run(); };
 }
 

@@ -214,8 +214,10 @@ else
   psnr=$(awk '/^psnr/ {print $2}' <<<"$out")
   check "--device gpu gives the CPU's image (PSNR >= 45 dB, got $psnr)" \
     "[ \"$psnr\" = inf ] || awk -v p=$psnr 'BEGIN{exit !(p >= 45)}'"
+  out=$("$T" bench cornell --pipeline deferred --device gpu --width 64 --height 36 --frames 2 --warmup 0 --read-output 2>/dev/null)
+  check "bench --read-output names the GPU and the moves' bytes" "grep -q 'device llvmpipe\|device .*GPU' <<<\"\$out\" && grep -q 'download:output.*MiB moved' <<<\"\$out\""
   out=$("$T" bench cornell --pipeline deferred --device gpu --width 64 --height 36 --frames 2 --warmup 0 2>/dev/null)
-  check "bench names the GPU and the moves' bytes" "grep -q 'device llvmpipe\|device .*GPU' <<<\"\$out\" && grep -q 'download:output.*MiB moved' <<<\"\$out\""
+  check "bench on the GPU leaves the output there by default" "grep -q 'output left there' <<<\"\$out\" && ! grep -q 'download:output' <<<\"\$out\""
   # The reference on the GPU takes the CPU's Sobol samples: the same image to rounding.
   "$T" reference --scene cornell --device gpu --width 32 --height 18 --spp 4 --no-cache --quiet --out "$D/ref_gpu.exr" >/dev/null 2>&1
   "$T" reference --scene cornell --device cpu --width 32 --height 18 --spp 4 --no-cache --quiet --out "$D/ref_cpu.exr" >/dev/null 2>&1
