@@ -50,9 +50,12 @@ struct FrameContext {
   // that the caller does not list in `wanted` (AOVs written, the viewer's shown buffer).
   bool keepAllOutputs = true;
   std::set<std::string> wanted;
-  // Off: on a GPU the pipeline's output stays on the device at the frame's end (what a real-time
-  // renderer presents; bench times frames so), moved to the host only if something reads it.
+  // On a GPU, what comes back to the host at the frame's end. outputToHost off: not the
+  // pipeline's output (what a real-time renderer presents stays on the device; bench times
+  // frames so). allToHost off: not every other output either, though keepAllOutputs computes
+  // them. What stays there is read through Renderer::fetch, or moved when a CPU pass reads it.
   bool outputToHost = true;
+  bool allToHost = true;
   std::set<std::string> consumed;  // what the passes read, set by Pipeline::execute
   // Checking mode (tests): each pass runs seeing only the buffers it declares (inputs, history
   // inputs, outputs), as a second device holding only what was moved to it would, and may leave

@@ -465,15 +465,16 @@ bool readsPendingRecord(const Pass& p, const std::set<std::string>& pendingRecor
     if (!in.history && pendingRecords.count(p.bufferName(in.slot))) return true;
   return false;
 }
-// At the frame's end, into its last batch: what the caller reads comes back (without
-// keepAllOutputs only the output, unless outputToHost is off, and what it wants; the rest stays
-// on the device, moved only if a host pass reads it later), and history the device holds is
+// At the frame's end, into its last batch: what the caller reads comes back (with keepAllOutputs
+// and allToHost everything; else the output, unless outputToHost is off, and what it wants; the
+// rest stays on the device, moved only if a host pass or Renderer::fetch reads it later), and history the device holds is
 // copied to its history key (the next frame's GPU passes read it there; a CPU pass that reads it
 // moves it first). The history buffers so copied.
 std::set<std::string> finishOnGpu(FrameContext& ctx, const std::string& output,
                                   const std::vector<std::string>& history, FrameRows& rows) {
   for (const std::string& name : ctx.gpu->deviceOnly())
-    if (ctx.keepAllOutputs || (name == output && ctx.outputToHost) || ctx.wanted.count(name))
+    if ((ctx.keepAllOutputs && ctx.allToHost) || (name == output && ctx.outputToHost) ||
+        ctx.wanted.count(name))
       queueToHost(name, ctx, rows);
   std::set<std::string> copied;
   for (const std::string& name : history) {

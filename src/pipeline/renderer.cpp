@@ -39,6 +39,14 @@ Renderer::Renderer(const Scene& scene, Pipeline pipeline, RenderSettings setting
   resetHistory("first frame");
 }
 
+const Buffer& Renderer::fetch(const std::string& name) {
+  if (ctx_.gpu && ctx_.gpu->deviceNewer(name)) {
+    auto it = ctx_.buffers.find(name);
+    if (it != ctx_.buffers.end()) ctx_.gpu->download(name, it->second);
+  }
+  return ctx_.input(name);
+}
+
 void Renderer::resetHistory(const std::string& reason) {
   ctx_.historyReset = true;
   resetReason_ = reason;

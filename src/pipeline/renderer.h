@@ -52,7 +52,16 @@ class Renderer {
   // (motion blur over settings.shutter seconds; the same camera for a still one).
   FrameTimings renderFrameAt(int index, float time, const CameraDesc& camera,
                              const CameraDesc& shutterClose, Vec2 jitter = {0, 0});
-  const Buffer& output() const { return ctx_.input(pipeline_.output); }
+  // The output's / buffer `name`'s current value on the host: downloaded first where only the
+  // device holds it (a renderer that keeps buffers there, keepOnDevice).
+  const Buffer& output() { return fetch(pipeline_.output); }
+  const Buffer& fetch(const std::string& name);
+  // On a GPU, buffers stay where they were written at a frame's end, read back only through
+  // output() and fetch(): a timed frame pays no readback the CPU's frame does not (experiments).
+  void keepOnDevice() {
+    ctx_.outputToHost = false;
+    ctx_.allToHost = false;
+  }
   FrameContext& context() { return ctx_; }
   const FrameContext& context() const { return ctx_; }
   Pipeline& pipeline() { return pipeline_; }

@@ -207,6 +207,32 @@ TEST(GpuPipeline, PipelinesMatchTheCpuAndMoveEachBufferOnce) {
   expectNoValidationMessages(*dev);
 }
 
+// A renderer that keeps its buffers on the device (the experiments' timed frames) moves nothing
+// back at a frame's end, and what it fetches afterwards is what one that brings everything back
+// holds, value for value, over frames of a temporal pipeline (its history untouched by it).
+TEST(GpuPipeline, BuffersKeptOnTheDeviceUntilFetched) {
+  REQUIRE_GPU(dev);
+  Scene scene = loadScene("cornell");
+  CameraDesc cam = defaultCamera(scene);
+  RenderSettings rs{.width = 96, .height = 54, .gpu = dev};
+  Renderer all(scene, Pipeline::load("deferred-taa"), rs),
+      kept(scene, Pipeline::load("deferred-taa"), rs);
+  kept.keepOnDevice();
+  for (int f = 0; f < 3; ++f) {
+    cam.position = cam.position + Vec3(0.02f, 0.0f, 0.0f);
+    all.renderFrame(f, cam);
+    const FrameTimings ft = kept.renderFrame(f, cam);
+    for (const PassTiming& t : ft.passes)
+      EXPECT_NE(t.name.rfind("download:", 0), 0u) << "frame " << f << ": " << t.name;
+    EXPECT_TRUE(kept.context().gpu->deviceNewer(kept.pipeline().output)) << "frame " << f;
+    for (const char* name : {"taa", "motion"})
+      EXPECT_EQ(kept.fetch(name).data, all.context().input(name).data) << name << ", frame " << f;
+    EXPECT_EQ(kept.output().data, all.output().data) << "frame " << f;
+    EXPECT_FALSE(kept.context().gpu->deviceNewer(kept.pipeline().output)) << "frame " << f;
+  }
+  expectNoValidationMessages(*dev);
+}
+
 // TAA on the GPU over 8 frames of a moving camera (its history kept from frame to frame, the
 // reprojection through motion vectors, the neighbourhood clamp) gives the CPU's frames: PSNR of
 // every frame >= 45 dB, and the history stays on the device (no row moves it).

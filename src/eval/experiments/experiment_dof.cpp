@@ -150,6 +150,7 @@ StaticRun renderStatic(const Scene& scene, const std::string& pipeline, const Pi
   Pipeline p = Pipeline::load(pipeline);
   applyEdits(p, edits);
   Renderer r(scene, std::move(p), RenderSettings{.width = w, .height = h});
+  r.keepOnDevice();  // timed: nothing read back until the frames are done
   const CameraDesc cam = defaultCamera(scene);
   for (int f = 0; f < warmup; ++f) r.renderFrame(0, cam);
   std::map<std::string, std::vector<double>> ms;
@@ -438,6 +439,7 @@ void temporalTable(const DofExperimentOptions& o, const std::vector<Scene>& scen
           [&](DofAccumulationSettings& a) { a.adaptiveAlpha = adaptive; })(p);
       Renderer r(scene, std::move(p),
                  RenderSettings{.width = o.temporalWidth, .height = o.temporalHeight});
+      r.keepOnDevice();  // only the frames compared are read back
       double sum = 0, worst = 1;
       int n = 0;
       for (int f = 0; f < o.temporalFrames; ++f) {

@@ -173,7 +173,9 @@ Renderer makeRenderer(const Scene& scene, const char* pipeline, int w, int h,
   RenderSettings rs{.width = w, .height = h};
   rs.stereo = scene.stereo;
   rs.stereo.enabled = true;
-  return Renderer(scene, std::move(p), rs);
+  Renderer r(scene, std::move(p), rs);
+  r.keepOnDevice();  // timed: images read back after the frames (Renderer::output)
+  return r;
 }
 
 // The same path tracer converged, without foveation or denoising (the thesis' reference), both

@@ -141,6 +141,7 @@ Cell renderCell(const Scene& scene, const CameraDesc& cam, const GalleryEntry& e
   Pipeline p = Pipeline::load(e.pipeline);
   for (const std::string& s : e.sets) p.setParam(s, "gallery");
   Renderer r(scene, std::move(p), rs);
+  r.keepOnDevice();  // timed: the picture read back after the frames
   std::vector<double> ms;
   for (int i = 0; i < frames; ++i) {
     const FrameTimings t = r.renderFrame(0, cam);
@@ -156,7 +157,7 @@ Cell renderCell(const Scene& scene, const CameraDesc& cam, const GalleryEntry& e
   c.timing = timing;
   c.shown = c.image;
   if (!e.overlay.empty()) {  // the buffer's visualisation over the picture, a third opaque
-    const Buffer ov = leftEye(visualizeBuffer(r.context().input(e.overlay)), rs.width);
+    const Buffer ov = leftEye(visualizeBuffer(r.fetch(e.overlay)), rs.width);
     for (int y = 0; y < c.shown.height; ++y)
       for (int x = 0; x < c.shown.width; ++x)
         for (int k = 0; k < std::min(3, c.shown.channels); ++k)

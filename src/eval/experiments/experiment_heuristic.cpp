@@ -87,6 +87,7 @@ struct Run {
     applyEdits(p, edits);
     RenderSettings settings{.width = o.width, .height = o.height};
     renderer = std::make_unique<Renderer>(scene, std::move(p), settings);
+    renderer->keepOnDevice();  // timed: images and masks read back after the frames
     for (const auto& pass : renderer->pipeline().passes) heuristic |= pass->type() == "heuristic";
     if (heuristic)
       for (const char* c : {HeuristicCounters::selected, HeuristicCounters::nodes,
@@ -123,7 +124,7 @@ StaticResult runStatic(Run& run, const CameraDesc& cam, const HeuristicExperimen
     r.visible = size_t(run.counter(HeuristicCounters::visibleObjects));
     // What was ray traced: the mask less the tiles a deadline cut.
     const FrameContext& ctx = run.renderer->context();
-    r.mask = ctx.input(ctx.has("traced_mask") ? "traced_mask" : "heuristic_mask");
+    r.mask = run.renderer->fetch(ctx.has("traced_mask") ? "traced_mask" : "heuristic_mask");
   }
   return r;
 }

@@ -169,6 +169,7 @@ Row renderPoint(const SweepSpec& s, const std::string& file, const Scene& scene,
   if (swept) p.setParam(s.param + "=" + valueText(v), file + ": sweep");
   Renderer r(scene, std::move(p),
              RenderSettings{.width = s.width, .height = s.height, .seed = s.seed});
+  r.keepOnDevice();  // timed: nothing read back until the frames are done
   for (int i = 0; i < s.warmup; ++i) r.renderFrame(0, cam);
   std::vector<double> ms;
   for (int i = 0; i < s.frames; ++i) ms.push_back(r.renderFrame(0, cam).totalMs);

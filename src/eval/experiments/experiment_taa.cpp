@@ -95,6 +95,7 @@ void staticShot(const TaaExperimentOptions& o, const Scene& scene, const std::st
   const Buffer truth = visualizeBuffer(supersample(scene, basePipe, cam, rs, n));
   Renderer base(scene, Pipeline::load(basePipe), rs), taa(scene, Pipeline::load(taaPipe), rs),
       jittered(scene, Pipeline::load(basePipe), rs);
+  for (Renderer* r : {&base, &taa, &jittered}) r->keepOnDevice();  // timed; outputs fetched
   base.renderFrame(0, cam);
   const Buffer aliased = base.output();
   Buffer lastTaa, lastJit;
@@ -151,6 +152,7 @@ void cameraPath(const TaaExperimentOptions& o, const Scene& scene, const std::st
           : 48;
   Renderer basePath(scene, Pipeline::load(basePipe), rs),
       taaPath(scene, Pipeline::load(taaPipe), rs);
+  for (Renderer* r : {&basePath, &taaPath}) r->keepOnDevice();
   double baseSsim = 0, taaSsim = 0, baseChange = 0, taaPathChange = 0;
   int compared = 0;
   Buffer prevBase, prevTaa;
@@ -160,8 +162,8 @@ void cameraPath(const TaaExperimentOptions& o, const Scene& scene, const std::st
     taaPath.renderFrame(f, c);
     const Buffer b = basePath.output(), t = taaPath.output();
     if (f > 0) {
-      baseChange += compensatedChange(b, prevBase, basePath.context().input("motion"));
-      taaPathChange += compensatedChange(t, prevTaa, taaPath.context().input("motion"));
+      baseChange += compensatedChange(b, prevBase, basePath.fetch("motion"));
+      taaPathChange += compensatedChange(t, prevTaa, taaPath.fetch("motion"));
     }
     prevBase = b;
     prevTaa = t;
