@@ -467,9 +467,9 @@ bool readsPendingRecord(const Pass& p, const std::set<std::string>& pendingRecor
 }
 // At the frame's end, into its last batch: what the caller reads comes back (with keepAllOutputs
 // and allToHost everything; else the output, unless outputToHost is off, and what it wants; the
-// rest stays on the device, moved only if a host pass or Renderer::fetch reads it later), and history the device holds is
-// copied to its history key (the next frame's GPU passes read it there; a CPU pass that reads it
-// moves it first). The history buffers so copied.
+// rest stays on the device, moved only if a host pass or Renderer::fetch reads it later), and
+// history the device holds is copied to its history key (the next frame's GPU passes read it
+// there; a CPU pass that reads it moves it first). The history buffers so copied.
 std::set<std::string> finishOnGpu(FrameContext& ctx, const std::string& output,
                                   const std::vector<std::string>& history, FrameRows& rows) {
   for (const std::string& name : ctx.gpu->deviceOnly())
