@@ -169,16 +169,11 @@ std::vector<GpuEmitter> gpuEmitters(const FrameScene& fs, std::vector<int32_t>& 
   }
   return emitters;
 }
-}  // namespace
-
-void PTReferencePass::executeGpu(FrameContext& ctx) {
-  // An open shutter renders here: each sample's camera and moving objects where they are at its
-  // time (GpuScene keeps the time steps). Processes sharing the rows (MPI) each trace their own
-  // stripes on their device, and the sums meet on rank 0 as the CPU's do.
-  SampleCluster single;
-  SampleCluster& cluster = cluster_ ? *cluster_ : single;
+// The arguments every sample of the frame shares: the scene, its emitters and light grid, the
+// integrator's settings and this process's rows.
+ReferenceArgs sceneArgs(FrameContext& ctx, const PTReferenceSettings& s,
+                        const SampleCluster& cluster) {
   GpuFrame& gpu = *ctx.gpu;
-  GpuCommands& cmd = gpu.commands();
   const FrameScene& fs = ctx.frame;
   const Scene& scene = *ctx.scene;
   const uint64_t sceneAddress = gpu.scene(fs).sceneAddress();
@@ -197,11 +192,11 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
   a.lightSkip = gpu.constants(lightSkip.data(), lightSkip.size() * sizeof(uint32_t));
   const uint32_t zero = 0;
   a.counters = gpu.constants(&zero, sizeof zero);
-  a.maxDepth = settings().maxDepth;
+  a.maxDepth = s.maxDepth;
   a.rouletteDepth = PathSettings{}.rouletteDepth;
-  a.integrator = settings().integrator == Integrator::Whitted     ? TD_REFERENCE_WHITTED
-                 : settings().integrator == Integrator::DiffuseGI ? TD_REFERENCE_DIFFUSE_GI
-                                                                  : TD_REFERENCE_PATH;
+  a.integrator = s.integrator == Integrator::Whitted     ? TD_REFERENCE_WHITTED
+                 : s.integrator == Integrator::DiffuseGI ? TD_REFERENCE_DIFFUSE_GI
+                                                         : TD_REFERENCE_PATH;
   // diffuse-gi picks its lights by the grid renderReference builds: built on the host (its
   // visibility probes are the CPU's rays, once a render) and copied to the device.
   if (a.integrator == TD_REFERENCE_DIFFUSE_GI) {
@@ -213,7 +208,7 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
   }
   const WhittedSettings w = [&] {
     WhittedSettings ws;
-    ws.maxDepth = settings().whittedDepth;
+    ws.maxDepth = s.whittedDepth;
     return ws;
   }();
   a.whittedDepth = w.maxDepth;
@@ -223,6 +218,19 @@ void PTReferencePass::executeGpu(FrameContext& ctx) {
   a.rank = uint32_t(cluster.rank());
   a.ranks = uint32_t(cluster.ranks());
   a.stripeRows = SampleCluster::kStripeRows;
+  return a;
+}
+}  // namespace
+
+void PTReferencePass::executeGpu(FrameContext& ctx) {
+  // An open shutter renders here: each sample's camera and moving objects where they are at its
+  // time (GpuScene keeps the time steps). Processes sharing the rows (MPI) each trace their own
+  // stripes on their device, and the sums meet on rank 0 as the CPU's do.
+  SampleCluster single;
+  SampleCluster& cluster = cluster_ ? *cluster_ : single;
+  GpuFrame& gpu = *ctx.gpu;
+  GpuCommands& cmd = gpu.commands();
+  ReferenceArgs a = sceneArgs(ctx, settings(), cluster);
   const GpuKernel& k =
       gpu.kernel("reference", kReferenceSpv, sizeof(kReferenceSpv) / 4, sizeof(uint64_t));
   const auto* rays = static_cast<const uint32_t*>(gpu.constantsData(a.counters));
